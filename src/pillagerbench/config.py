@@ -1,0 +1,27 @@
+"""Hydra configuration: `pillagerbench <command> key=value group=option ...`.
+
+Configs live in `pillagerbench/conf` (groups: `llm`, later `scenario`, `team`, `experiment`).
+We use Hydra's compose API so every sub-command takes the same override syntax.
+"""
+
+from __future__ import annotations
+
+from hydra import compose, initialize_config_module
+from hydra.core.global_hydra import GlobalHydra
+from hydra.errors import HydraException
+from omegaconf import DictConfig, OmegaConf
+
+
+class ConfigError(ValueError):
+    """Bad configuration or override; the message names the problem and the valid choices."""
+
+
+def load_config(overrides: list[str] | None = None, config_name: str = "config") -> DictConfig:
+    GlobalHydra.instance().clear()
+    try:
+        with initialize_config_module(config_module="pillagerbench.conf", version_base="1.3"):
+            cfg = compose(config_name=config_name, overrides=list(overrides or []))
+    except HydraException as exc:  # unknown group option, bad override syntax, ...
+        raise ConfigError(str(exc)) from None
+    OmegaConf.set_readonly(cfg, False)
+    return cfg

