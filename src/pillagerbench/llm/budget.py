@@ -1,0 +1,72 @@
+"""Per-team, per-episode LLM budgets: calls, input tokens, output tokens and cost (USD).
+
+`check()` runs before every call and raises BudgetExceeded once any limit has been reached, so
+the call that crosses a token or cost limit still completes and the next one is refused.
+Cache hits are charged like real calls (with the tokens the answer originally took), so a
+replayed episode runs out of budget at the same point as the original.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from .errors import BudgetExceeded
+
+LIMITS = ("max_calls", "max_input_tokens", "max_output_tokens", "max_cost_usd")
+
+
+@dataclass
+class Budget:
+    max_calls: int | None = None
+    max_input_tokens: int | None = None
+    max_output_tokens: int | None = None
+    max_cost_usd: float | None = None
+    price_input_per_1m: float = 0.0
+    price_output_per_1m: float = 0.0
+    calls: int = 0
+    input_tokens: int = 0
+    output_tokens: int = 0
+    cost_usd: float = 0.0
+
+    @classmethod
+    def from_limits(cls, limits: Mapping[str, Any] | None, price_input_per_1m: float = 0.0,
+                    price_output_per_1m: float = 0.0) -> "Budget":
+        limits = dict(limits or {})
+        unknown = sorted(set(limits) - set(LIMITS))
+        if unknown:
+            raise ValueError(f"unknown budget limits {unknown}; valid: {list(LIMITS)}")
+        return cls(**{k: v for k, v in limits.items() if v is not None},
+                   price_input_per_1m=float(price_input_per_1m or 0.0),
+                   price_output_per_1m=float(price_output_per_1m or 0.0))
+
+    def cost(self, input_tokens: int, output_tokens: int) -> float:
+        return (input_tokens * self.price_input_per_1m + output_tokens * self.price_output_per_1m) / 1e6
+
+    def exceeded(self) -> str | None:
+        """Why no further call is allowed, or None."""
+        for used, limit, what in ((self.calls, self.max_calls, "calls"),
+                                  (self.input_tokens, self.max_input_tokens, "input tokens"),
+                                  (self.output_tokens, self.max_output_tokens, "output tokens"),
+                                  (self.cost_usd, self.max_cost_usd, "cost (USD)")):
+            if limit is not None and used >= limit:
+                return f"budget of {limit} {what} per episode used up ({used:g} used)"
+        return None
+
+    def check(self, **context: Any) -> None:
+        reason = self.exceeded()
+        if reason is not None:
+            raise BudgetExceeded(reason, **context)
+
+    def charge(self, input_tokens: int, output_tokens: int) -> float:
+        """Count one call; returns its cost."""
+        cost = self.cost(input_tokens, output_tokens)
+        self.calls += 1
+        self.input_tokens += input_tokens
+        self.output_tokens += output_tokens
+        self.cost_usd += cost
+        return cost
+
+    def reset(self) -> None:
+        self.calls = self.input_tokens = self.output_tokens = 0
+        self.cost_usd = 0.0

@@ -1,0 +1,76 @@
+"""Typed view of one `llm` config group entry (see conf/llm/*.yaml for the meaning of each field).
+
+It holds the NAME of the key's environment variable, never the key: the key is read when a
+client is made and handed straight to the SDK.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field, fields
+from typing import Any, Mapping
+
+from .errors import LLMConfigError
+from .redact import register_secret
+
+NO_KEY = "no-key"  # sent to servers that need none, so the SDK never falls back to OPENAI_API_KEY
+
+
+@dataclass(frozen=True)
+class LLMSettings:
+    provider: str = "openai_compatible"
+    base_url: str = "http://127.0.0.1:8080/v1"
+    model: str = "local"
+    api_key_env: str | None = None
+    temperature: float | None = 0.3
+    max_tokens: int | None = 512
+    timeout: float = 60.0
+    max_retries: int = 3
+    retry_backoff_s: float = 1.0
+    retry_max_wait_s: float = 30.0
+    system_role: str = "system"  # system | developer
+    send_temperature: bool = True
+    max_tokens_param: str = "max_tokens"  # max_tokens | max_completion_tokens
+    strip_think: bool = True
+    extra_headers: dict[str, str] = field(default_factory=dict)
+    extra_body: dict[str, Any] = field(default_factory=dict)
+    price_input_per_1m: float = 0.0  # USD per million input tokens
+    price_output_per_1m: float = 0.0
+    budget: dict[str, float | None] = field(default_factory=dict)  # per team and episode
+
+    @classmethod
+    def from_config(cls, cfg: Mapping[str, Any]) -> "LLMSettings":
+        """From the `llm` node of the Hydra config (a DictConfig or a plain dict)."""
+        try:
+            from omegaconf import OmegaConf
+
+            data = OmegaConf.to_container(cfg, resolve=True) if OmegaConf.is_config(cfg) else dict(cfg)
+        except ImportError:  # pragma: no cover
+            data = dict(cfg)
+        data = dict(data)
+        price = data.pop("price", None) or {}
+        data.setdefault("price_input_per_1m", price.get("input_per_1m", 0.0))
+        data.setdefault("price_output_per_1m", price.get("output_per_1m", 0.0))
+        known = {f.name for f in fields(cls)}
+        unknown = sorted(set(data) - known)
+        if unknown:
+            raise LLMConfigError(f"unknown llm settings {unknown}; valid: {sorted(known)}")
+        for name in ("extra_headers", "extra_body", "budget"):
+            data[name] = dict(data.get(name) or {})
+        settings = cls(**data)
+        if settings.system_role not in ("system", "developer"):
+            raise LLMConfigError(f"llm.system_role must be system or developer, not {settings.system_role!r}")
+        if settings.max_tokens_param not in ("max_tokens", "max_completion_tokens"):
+            raise LLMConfigError("llm.max_tokens_param must be max_tokens or max_completion_tokens")
+        return settings
+
+    def api_key(self) -> str:
+        """The key from the environment (registered for redaction), or a placeholder if none is needed."""
+        if not self.api_key_env:
+            return NO_KEY
+        value = os.environ.get(self.api_key_env)
+        if not value:
+            raise LLMConfigError(f"environment variable {self.api_key_env} is not set "
+                                 f"(llm.api_key_env names the variable holding the key for {self.provider})")
+        register_secret(value)
+        return value
