@@ -1,0 +1,99 @@
+"""Client side of the control channel: JSON lines over a socket shared with the server process.
+
+Requests are `{"id", "op", "args"}`; replies `{"id", "ok", "result"|"error"}`; anything with an
+`event` key is a pushed event (block dug, item tossed, player joined, ...). The op list is in
+`js/server/control.js`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import json
+from typing import Any, Callable
+
+
+class ControlError(RuntimeError):
+    """The server refused a control request; the message names the problem."""
+
+
+class ChannelClosed(ControlError):
+    """The control channel closed (the server stopped or died)."""
+
+
+class ControlChannel:
+    def __init__(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter,
+                 on_close: Callable[[], str] | None = None):
+        self._reader, self._writer = reader, writer
+        self._ids = itertools.count(1)
+        self._pending: dict[int, asyncio.Future] = {}
+        self._subscribers: list[asyncio.Queue] = []
+        self._on_close = on_close
+        self._closed_reason: str | None = None
+        self.ready: asyncio.Future = asyncio.get_running_loop().create_future()
+        self._task = asyncio.create_task(self._read_loop())
+
+    async def request(self, op: str, timeout: float | None = 30, **args: Any) -> Any:
+        if self._closed_reason:
+            raise ChannelClosed(self._closed_reason)
+        rid = next(self._ids)
+        fut = asyncio.get_running_loop().create_future()
+        self._pending[rid] = fut
+        self._writer.write((json.dumps({"id": rid, "op": op, "args": args}) + "\n").encode())
+        try:
+            await self._writer.drain()
+            return await asyncio.wait_for(fut, timeout)
+        except asyncio.TimeoutError:
+            raise ControlError(f"control op {op!r} got no reply within {timeout} s") from None
+        finally:
+            self._pending.pop(rid, None)
+
+    def subscribe(self) -> asyncio.Queue:
+        """A queue receiving every pushed event from now on (dicts with an `event` key)."""
+        q: asyncio.Queue = asyncio.Queue()
+        self._subscribers.append(q)
+        return q
+
+    def unsubscribe(self, q: asyncio.Queue) -> None:
+        if q in self._subscribers:
+            self._subscribers.remove(q)
+
+    async def _read_loop(self) -> None:
+        try:
+            while line := await self._reader.readline():
+                try:
+                    msg = json.loads(line)
+                except json.JSONDecodeError:
+                    continue
+                if "event" in msg:
+                    if msg["event"] == "ready" and not self.ready.done():
+                        self.ready.set_result(msg)
+                    for q in list(self._subscribers):
+                        q.put_nowait(msg)
+                    continue
+                fut = self._pending.get(msg.get("id"))
+                if fut is None or fut.done():
+                    continue
+                if msg.get("ok"):
+                    fut.set_result(msg.get("result"))
+                else:
+                    fut.set_exception(ControlError(msg.get("error", "unknown error")))
+        except (ConnectionError, asyncio.IncompleteReadError):
+            pass
+        finally:
+            self._closed_reason = (self._on_close() if self._on_close else None) or "control channel closed"
+            err = ChannelClosed(self._closed_reason)
+            for fut in self._pending.values():
+                if not fut.done():
+                    fut.set_exception(err)
+            if not self.ready.done():
+                self.ready.set_exception(err)
+            for q in list(self._subscribers):
+                q.put_nowait({"event": "closed", "reason": self._closed_reason})
+
+    async def close(self) -> None:
+        try:
+            self._writer.close()
+        except Exception:
+            pass
+        self._task.cancel()

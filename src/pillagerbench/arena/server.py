@@ -1,0 +1,121 @@
+"""Start, watch and stop the arena server process (node + flying-squid + our plugins).
+
+    async with ArenaServer() as server:          # free port on 127.0.0.1
+        await server.control.request("set_block", pos=[0, 4, 0], block="chest")
+
+The server log goes to a file (`log_path`); the control channel is a socket pair inherited by
+the child. If the process dies, pending and later requests fail with the exit code and the
+last lines of its log.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+import socket
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.arena.control import ControlChannel
+from pillagerbench.node import JS_DIR, node_binary, node_env
+
+MAIN_JS = JS_DIR / "server" / "main.js"
+MC_VERSION = "1.16.5"
+GROUND_Y = 3  # top of the grass layer; players stand at y = 4
+
+
+class ArenaServerError(RuntimeError):
+    """The arena server could not start or died."""
+
+
+class ArenaServer:
+    def __init__(self, host: str = "127.0.0.1", port: int = 0, log_path: str | Path | None = None,
+                 view_distance: int = 4, crop_growth_chance: float = 0.2, tps: int = 20):
+        self.host = host
+        self.requested_port = port
+        self.port: int | None = None
+        self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
+        self.settings = {"host": host, "port": port, "viewDistance": view_distance,
+                         "cropGrowthChance": crop_growth_chance, "tps": tps}
+        self.process: asyncio.subprocess.Process | None = None
+        self.control: ControlChannel | None = None
+        self.ready_seconds: float | None = None
+
+    async def start(self, timeout: float = 30) -> "ArenaServer":
+        self.log_path.parent.mkdir(parents=True, exist_ok=True)
+        parent_sock, child_sock = socket.socketpair()
+        env = node_env()
+        settings = dict(self.settings, controlFd=child_sock.fileno())
+        t0 = time.perf_counter()
+        with open(self.log_path, "ab") as log:
+            self.process = await asyncio.create_subprocess_exec(
+                str(node_binary()), str(MAIN_JS), json.dumps(settings),
+                stdin=asyncio.subprocess.DEVNULL, stdout=log, stderr=asyncio.subprocess.STDOUT,
+                pass_fds=(child_sock.fileno(),), env=env, start_new_session=True,
+            )
+        child_sock.close()
+        reader, writer = await asyncio.open_unix_connection(sock=parent_sock)
+        self.control = ControlChannel(reader, writer, on_close=self._death_reason)
+        try:
+            ready = await asyncio.wait_for(asyncio.shield(self.control.ready), timeout)
+        except asyncio.TimeoutError:
+            await self.stop()
+            raise ArenaServerError(f"arena server not ready within {timeout} s; log: {self.log_path}\n{self.log_tail()}") from None
+        except Exception as exc:
+            await self.stop()
+            raise ArenaServerError(f"arena server failed to start: {exc}") from None
+        self.port = int(ready["port"])
+        self.ready_seconds = time.perf_counter() - t0
+        return self
+
+    def _death_reason(self) -> str:
+        code = self.process.returncode if self.process else None
+        if code is None and self.process:
+            try:
+                pid, status = os.waitpid(self.process.pid, os.WNOHANG)
+                code = os.waitstatus_to_exitcode(status) if pid else None
+            except ChildProcessError:
+                pass
+        return (f"arena server process ended (exit code {code}); log: {self.log_path}\n"
+                f"{self.log_tail()}")
+
+    def log_tail(self, lines: int = 15) -> str:
+        try:
+            text = self.log_path.read_text(errors="replace").splitlines()
+        except OSError:
+            return ""
+        return "\n".join(text[-lines:])
+
+    async def request(self, op: str, **args: Any) -> Any:
+        if self.control is None:
+            raise ArenaServerError("arena server is not started")
+        return await self.control.request(op, **args)
+
+    @property
+    def alive(self) -> bool:
+        return self.process is not None and self.process.returncode is None
+
+    async def stop(self, timeout: float = 5) -> None:
+        proc, self.process = self.process, None
+        if self.control:
+            await self.control.close()
+        if proc is None or proc.returncode is not None:
+            return
+        try:
+            await asyncio.wait_for(proc.wait(), timeout)  # closing the channel asks it to stop
+        except asyncio.TimeoutError:
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            await proc.wait()
+
+    async def __aenter__(self) -> "ArenaServer":
+        return await self.start()
+
+    async def __aexit__(self, *exc) -> None:
+        await self.stop()

@@ -1,0 +1,144 @@
+'use strict'
+// The control channel: JSON lines on stdin -> replies on stdout, plus pushed events.
+//   request: {"id": 7, "op": "set_block", "args": {"pos": [0, 4, 0], "block": "chest"}}
+//   reply:   {"id": 7, "ok": true, "result": ...}  or  {"id": 7, "ok": false, "error": "unknown block 'chst' ..."}
+//   event:   {"event": "block_dug", ...}
+// The game master and the arena builder use only this. Every op validates its input; a bad request
+// gets an error reply and never affects players.
+const { ControlError, toPos, toBlockPos, stateIdOf, itemByName } = require('./util')
+
+function playerNamed (serv, name) {
+  const p = serv.players.find(pl => pl.username === name)
+  if (!p) throw new ControlError(`no player named ${JSON.stringify(name)} (online: ${serv.players.map(pl => pl.username).join(', ') || 'none'})`)
+  return p
+}
+
+const GAME_MODES = { survival: 0, creative: 1, adventure: 2, spectator: 3 }
+
+// op name -> async (serv, args) => result
+const OPS = {
+  ping: async () => 'pong',
+  status: async (serv) => ({ players: serv.players.map(p => p.username), tps: serv.pb.tps, tick: serv.tickCount, entities: Object.keys(serv.entities).length }),
+  get_block: async (serv, { pos }) => serv.pb.describeBlock(toBlockPos(pos)),
+  set_block: async (serv, { pos, block, properties }) => {
+    await serv.pb.setBlockQuiet(toBlockPos(pos), stateIdOf(serv.registry, block, properties || {}))
+    return true
+  },
+  // blocks: [[x, y, z, name, {props}?], ...] — validated first, then applied
+  set_blocks: async (serv, { blocks }) => {
+    if (!Array.isArray(blocks)) throw new ControlError('blocks must be a list of [x, y, z, name, properties?]')
+    const edits = blocks.map((b, i) => {
+      if (!Array.isArray(b) || b.length < 4) throw new ControlError(`blocks[${i}] must be [x, y, z, name, properties?]`)
+      return [toBlockPos(b.slice(0, 3), `blocks[${i}]`), stateIdOf(serv.registry, b[3], b[4] || {})]
+    })
+    await Promise.all(edits.map(([p, s]) => serv.pb.setBlockQuiet(p, s)))
+    return edits.length
+  },
+  fill: async (serv, { from, to, block, properties }) => serv.pb.fill(from, to, block, properties || {}),
+  // Non-air blocks in a box, as [x, y, z, name, props]
+  scan: async (serv, { from, to }) => {
+    const a = toBlockPos(from, 'from'); const b = toBlockPos(to, 'to')
+    const vol = (Math.abs(a.x - b.x) + 1) * (Math.abs(a.y - b.y) + 1) * (Math.abs(a.z - b.z) + 1)
+    if (vol > 200000) throw new ControlError(`scan volume ${vol} is larger than 200000 blocks`)
+    const out = []
+    for (let x = Math.min(a.x, b.x); x <= Math.max(a.x, b.x); x++) {
+      for (let y = Math.min(a.y, b.y); y <= Math.max(a.y, b.y); y++) {
+        for (let z = Math.min(a.z, b.z); z <= Math.max(a.z, b.z); z++) {
+          const blk = await serv.overworld.getBlock(a.clone().set(x, y, z))
+          if (blk.name !== 'air') out.push([x, y, z, blk.name, blk.getProperties ? blk.getProperties() : {}])
+        }
+      }
+    }
+    return out
+  },
+  players: async (serv) => serv.players.map(p => ({
+    name: p.username, pos: [p.position.x, p.position.y, p.position.z], health: p.health, gamemode: p.gameMode
+  })),
+  inventory: async (serv, { player }) => serv.pb.listInventory(playerNamed(serv, player)),
+  give: async (serv, { player, item, count = 1 }) => serv.pb.give(playerNamed(serv, player), item, count),
+  take: async (serv, { player, item, count }) => serv.pb.take(playerNamed(serv, player), item, count),
+  clear: async (serv, { player }) => { serv.pb.clearInventory(playerNamed(serv, player)); return true },
+  set_inventory: async (serv, { player, items = {} }) => {
+    const p = playerNamed(serv, player)
+    for (const name of Object.keys(items)) itemByName(serv.registry, name)
+    serv.pb.closeContainer(p)
+    serv.pb.clearInventory(p)
+    for (const [name, count] of Object.entries(items)) serv.pb.give(p, name, count)
+    return serv.pb.listInventory(p)
+  },
+  teleport: async (serv, { player, pos, yaw, pitch }) => {
+    const p = playerNamed(serv, player)
+    p.teleport(toPos(pos))
+    if (yaw !== undefined || pitch !== undefined) p._client.write('position', { x: p.position.x, y: p.position.y, z: p.position.z, yaw: yaw ?? 0, pitch: pitch ?? 0, flags: 0, teleportId: 0 })
+    return true
+  },
+  gamemode: async (serv, { player, mode }) => {
+    if (!(mode in GAME_MODES)) throw new ControlError(`unknown game mode ${JSON.stringify(mode)} (valid: ${Object.keys(GAME_MODES).join(', ')})`)
+    playerNamed(serv, player).setGameMode(GAME_MODES[mode])
+    return true
+  },
+  chat: async (serv, { message }) => { serv.broadcast(String(message)); return true },
+  tell: async (serv, { player, message }) => { playerNamed(serv, player).chat(String(message)); return true },
+  tick_rate: async (serv, { tps }) => {
+    if (!(tps >= 1 && tps <= 200)) throw new ControlError(`tps must be between 1 and 200, got ${JSON.stringify(tps)}`)
+    serv.setTickInterval(tps); serv.pb.tps = tps
+    return true
+  },
+  crop_growth: async (serv, { chance }) => {
+    if (!(chance >= 0 && chance <= 1)) throw new ControlError(`chance must be within 0..1, got ${JSON.stringify(chance)}`)
+    serv.pb.cropGrowthChance = chance
+    return true
+  },
+  summon: async (serv, { mob, pos }) => serv.pb.mobs.summon(mob, toPos(pos)),
+  mobs: async (serv) => serv.pb.mobs.list(),
+  items: async (serv) => Object.values(serv.entities).filter(e => e.type === 'object' && e.itemId && !e.collected)
+    .map(e => ({ id: e.id, item: serv.registry.items[e.itemId]?.name, count: e.itemCount, pos: [e.position.x, e.position.y, e.position.z], thrower: e.thrower || null })),
+  remove_entities: async (serv) => { serv.pb.mobs.removeAll(); return true },
+  set_chest: async (serv, { pos, items }) => serv.pb.chests.set(toBlockPos(pos), items),
+  get_chest: async (serv, { pos }) => serv.pb.chests.get(toBlockPos(pos)),
+  set_furnace: async (serv, { pos, input, fuel, output }) => serv.pb.furnaces.set(toBlockPos(pos), { input, fuel, output }),
+  get_furnace: async (serv, { pos }) => serv.pb.furnaces.get(toBlockPos(pos)),
+  egg_farm: async (serv, { chest, interval_s: intervalS, radius }) => { serv.pb.mobs.addEggFarm([...toBlockPos(chest).toArray()], intervalS, radius); return true },
+  // Forget containers, farms and crops of the last match (the arena builder then sets them anew).
+  reset_state: async (serv) => {
+    for (const p of serv.players) serv.pb.closeContainer(p)
+    serv.pb.chests.reset(); serv.pb.furnaces.reset(); serv.pb.crops.reset(); serv.pb.mobs.clearEggFarms(); serv.pb.mobs.removeAll()
+    return true
+  },
+  seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true }
+}
+
+function attach (serv, { input, write }) {
+  const reply = (obj) => write(JSON.stringify(obj) + '\n')
+  serv.on('control_event', (ev) => reply(ev))
+  let buffer = ''
+  input.setEncoding('utf8')
+  input.on('data', (chunk) => {
+    buffer += chunk
+    let nl
+    while ((nl = buffer.indexOf('\n')) >= 0) {
+      const line = buffer.slice(0, nl).trim()
+      buffer = buffer.slice(nl + 1)
+      if (line) handle(line)
+    }
+  })
+  async function handle (line) {
+    let msg
+    try { msg = JSON.parse(line) } catch (err) { return reply({ id: null, ok: false, error: `malformed control message (not JSON): ${err.message}` }) }
+    const id = msg && typeof msg === 'object' ? msg.id ?? null : null
+    try {
+      if (!msg || typeof msg !== 'object' || typeof msg.op !== 'string') throw new ControlError('control message must be an object with a string "op"')
+      const fn = OPS[msg.op]
+      if (!fn) throw new ControlError(`unknown op ${JSON.stringify(msg.op)} (valid: ${Object.keys(OPS).join(', ')})`)
+      const args = msg.args ?? {}
+      if (typeof args !== 'object' || Array.isArray(args)) throw new ControlError('"args" must be an object')
+      reply({ id, ok: true, result: (await fn(serv, args)) ?? null })
+    } catch (err) {
+      if (!(err instanceof ControlError)) serv.emit('pluginError', err, `control op ${msg && msg.op}`)
+      reply({ id, ok: false, error: err instanceof ControlError ? err.message : `internal error: ${err.message}` })
+    }
+  }
+  input.on('end', () => serv.emit('control_closed'))
+}
+
+module.exports = { attach, OPS }

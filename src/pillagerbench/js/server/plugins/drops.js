@@ -1,0 +1,58 @@
+'use strict'
+// Block drops by our rules (tables.BLOCK_DROPS): chance and count ranges, crop age. Blocks without a
+// rule drop their loot-table items once, as flying-squid does. Reports every dug block.
+const { Vec3 } = require('vec3')
+const { BLOCK_DROPS, GROWTH } = require('../tables')
+const { seededRandom } = require('../util')
+
+module.exports.server = function (serv) {
+  const reg = serv.registry
+  serv.pb.rollCount = ([lo, hi]) => Math.max(0, lo + Math.floor(serv.pb.random() * (hi - lo + 1)))
+  serv.pb.random = Math.random
+  serv.pb.seedRandom = (seed) => { serv.pb.random = seededRandom(seed) }
+
+  // [{id, count}] for a dug block (properties decide ripeness).
+  serv.pb.dropsFor = (block) => {
+    let rule = BLOCK_DROPS[block.name]
+    if (rule && !Array.isArray(rule)) {
+      const g = GROWTH[block.name]
+      const age = Number((block.getProperties?.() || {})[g.prop] ?? 0)
+      rule = age >= (block.name === 'sweet_berry_bush' ? 2 : g.max) ? rule.ripe : rule.young
+    }
+    if (!rule) return null
+    return rule.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
+  }
+
+  serv.pb.spawnDrops = (world, position, drops) => {
+    for (const d of drops) {
+      serv.spawnObject(reg.entitiesByName.item.id, world, position.offset(0.5, 0.5, 0.5), {
+        velocity: new Vec3(Math.random() * 2 - 1, 2, Math.random() * 2 - 1),
+        itemId: d.id, itemCount: d.count, pickupTime: 500, deathTime: 300000
+      })
+    }
+  }
+}
+
+module.exports.player = function (player, serv) {
+  player.on('dug_cancel', serv.guarded('dug rules', (data) => {
+    const ours = serv.pb.dropsFor(data.block)
+    const base = data.drops[0]
+    if (ours && base) {
+      const template = { ...base }
+      data.drops.length = 0
+      for (const d of ours) data.drops.push({ ...template, blockDropId: d.id, blockDropCount: d.count })
+    } else if (ours) {
+      data.drops.length = 0
+    }
+    for (const d of data.drops) d.blockDropCount = d.blockDropCount || 1
+  }))
+  player.on('dug', serv.guarded('dug event', (data, cancelled) => {
+    if (cancelled) return
+    const p = data.position
+    serv.emit('control_event', {
+      event: 'block_dug', player: player.username, pos: [p.x, p.y, p.z], block: data.block.name,
+      properties: data.block.getProperties?.() || {},
+      drops: data.drops.map(d => [serv.registry.items[d.blockDropId]?.name, d.blockDropCount || 1])
+    })
+  }))
+}

@@ -1,0 +1,96 @@
+'use strict'
+// Farm animals: summoned still (no random launch velocity), take damage by the held weapon, die and
+// drop their loot; cows can be milked with a bucket; egg farms put eggs into a chest while a chicken
+// lives near it. Velocities sent to clients are clamped (flying-squid's knockback overflowed int16
+// and disconnected every client nearby).
+const { Vec3 } = require('vec3')
+const { MOBS, ATTACK_DAMAGE } = require('../tables')
+const { ControlError } = require('../util')
+
+const MAX_SPEED = 20 // blocks/s per axis; the protocol's limit is about 81
+
+module.exports.server = function (serv) {
+  const reg = serv.registry
+  const eggFarms = []
+
+  serv.pb.mobs = {
+    summon: (name, pos) => {
+      if (!MOBS[name]) throw new ControlError(`unknown mob '${name}' (valid: ${Object.keys(MOBS).join(', ')})`)
+      const mob = serv.spawnMob(reg.entitiesByName[name].id, serv.overworld, pos, { velocity: new Vec3(0, 0, 0) })
+      return mob.id
+    },
+    list: () => Object.values(serv.entities).filter(e => e.type === 'mob' && !e.dead)
+      .map(e => ({ id: e.id, name: e.name, pos: [e.position.x, e.position.y, e.position.z], health: e.health })),
+    removeAll: () => {
+      for (const e of Object.values(serv.entities)) if (e.type === 'mob' || e.type === 'object') serv.destroyEntity(e)
+    },
+    addEggFarm: (chest, intervalS, radius = 6) => {
+      if (!(intervalS > 0)) throw new ControlError('egg farm interval_s must be > 0')
+      eggFarms.push({ chest, intervalTicks: Math.max(1, Math.round(intervalS * 20)), radius, next: serv.tickCount + Math.round(intervalS * 20) })
+    },
+    clearEggFarms: () => { eggFarms.length = 0 }
+  }
+
+  serv.on('newEntity', (e) => {
+    const send = e.sendVelocity
+    e.sendVelocity = (vel, maxVel) => {
+      const c = (v) => Math.max(-MAX_SPEED, Math.min(MAX_SPEED, v))
+      return send(new Vec3(c(vel.x), c(vel.y), c(vel.z)), maxVel)
+    }
+    if (e.type !== 'mob' || !MOBS[e.name]) return
+    e.health = MOBS[e.name].health
+    e.takeDamage = serv.guarded('mob damage', ({ damage = 1, attacker } = {}) => {
+      if (e.dead) return
+      e.health -= damage
+      if (e.health > 0) {
+        e._writeOthers('entity_status', { entityId: e.id, entityStatus: 2 })
+        return
+      }
+      e.dead = true
+      e._writeOthers('entity_status', { entityId: e.id, entityStatus: 3 })
+      const drops = MOBS[e.name].loot.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
+      serv.pb.spawnDrops(e.world, e.position.floored(), drops)
+      serv.emit('control_event', {
+        event: 'mob_killed', mob: e.name, player: attacker || null,
+        drops: drops.map(d => [reg.items[d.id].name, d.count])
+      })
+      setTimeout(() => serv.destroyEntity(e), 800)
+    })
+  })
+
+  serv.on('tick', serv.guarded('egg farms', (delta, tick) => {
+    for (const farm of eggFarms) {
+      if (tick < farm.next) continue
+      farm.next = tick + farm.intervalTicks
+      const chickens = Object.values(serv.entities).filter(e => e.name === 'chicken' && !e.dead &&
+        e.position.distanceTo(new Vec3(farm.chest[0] + 0.5, farm.chest[1], farm.chest[2] + 0.5)) <= farm.radius)
+      if (chickens.length) serv.pb.chests.add(new Vec3(...farm.chest), 'egg', 1)
+    }
+  }))
+}
+
+module.exports.player = function (player, serv) {
+  const reg = serv.registry
+  // The damage of an attack comes from the weapon in hand.
+  player.on('attack_cancel', (data) => {
+    const held = player.inventory.slots[36 + player.heldItemSlot]
+    data.damage = ATTACK_DAMAGE[held?.name] ?? 1
+    data.attacker = player.username
+    data.velocity = new Vec3(0, 0, 0)
+  })
+  // Right-click a cow with a bucket: milk.
+  player._client.on('use_entity', serv.guarded('milking', ({ target, mouse }) => {
+    if (mouse !== 0 && mouse !== 2) return
+    const cow = serv.entities[target]
+    const slot = 36 + player.heldItemSlot
+    const held = player.inventory.slots[slot]
+    if (!cow || cow.name !== 'cow' || cow.dead || held?.name !== 'bucket') return
+    if (cow.position.distanceTo(player.position) > 6) return
+    if (player.pbMilkedAt && Date.now() - player.pbMilkedAt < 200) return // main hand and off hand packets
+    player.pbMilkedAt = Date.now()
+    serv.pb.removeItem(player.inventory, held.type, 1, [slot])
+    const left = serv.pb.addItem(player.inventory, reg.itemsByName.milk_bucket.id, 1)
+    if (left) serv.pb.dropItem(player, reg.itemsByName.milk_bucket.id, 1)
+    serv.emit('control_event', { event: 'cow_milked', player: player.username })
+  }))
+}

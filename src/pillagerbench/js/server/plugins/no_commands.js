@@ -1,0 +1,11 @@
+'use strict'
+// Agent players are not operators: every chat command from a player is refused.
+// The game master drives the world through the control channel instead.
+module.exports.player = function (player, serv) {
+  player.op = false
+  player.handleCommand = async (str) => {
+    const name = String(str).split(' ')[0]
+    player.chat(`Commands are disabled for players: /${name} refused`)
+    serv.emit('control_event', { event: 'command_refused', player: player.username, command: String(str) })
+  }
+}

@@ -1,0 +1,119 @@
+'use strict'
+// The rules of our Minecraft, as data. Plugins read these tables; nothing here runs.
+
+// Block drops. count: [min, max] uniform (values below 0 clamp to 0, as vanilla's mushroom blocks:
+// uniform -6..2 gives 0 with p=7/9, mean 1/3). `ripe` = the same with age at max; `young` otherwise.
+const BLOCK_DROPS = {
+  red_mushroom_block: [{ item: 'red_mushroom', count: [-6, 2] }],
+  brown_mushroom_block: [{ item: 'brown_mushroom', count: [-6, 2] }],
+  mushroom_stem: [],
+  grass_block: [{ item: 'dirt', count: [1, 1] }],
+  farmland: [{ item: 'dirt', count: [1, 1] }],
+  melon: [{ item: 'melon_slice', count: [3, 7] }],
+  wheat: { ripe: [{ item: 'wheat', count: [1, 1] }, { item: 'wheat_seeds', count: [0, 3] }], young: [{ item: 'wheat_seeds', count: [1, 1] }] },
+  carrots: { ripe: [{ item: 'carrot', count: [1, 4] }], young: [{ item: 'carrot', count: [1, 1] }] },
+  potatoes: { ripe: [{ item: 'potato', count: [1, 4] }], young: [{ item: 'potato', count: [1, 1] }] },
+  beetroots: { ripe: [{ item: 'beetroot', count: [1, 1] }, { item: 'beetroot_seeds', count: [1, 3] }], young: [{ item: 'beetroot_seeds', count: [1, 1] }] },
+  cocoa: { ripe: [{ item: 'cocoa_beans', count: [2, 3] }], young: [{ item: 'cocoa_beans', count: [1, 1] }] },
+  sweet_berry_bush: { ripe: [{ item: 'sweet_berries', count: [2, 3] }], young: [] },
+  melon_stem: [{ item: 'melon_seeds', count: [0, 1] }],
+  pumpkin_stem: [{ item: 'pumpkin_seeds', count: [0, 1] }],
+  attached_melon_stem: [{ item: 'melon_seeds', count: [0, 1] }],
+  attached_pumpkin_stem: [{ item: 'pumpkin_seeds', count: [0, 1] }]
+}
+
+// Crops that grow by random ticks: property and maximum.
+const GROWTH = {
+  wheat: { prop: 'age', max: 7 },
+  carrots: { prop: 'age', max: 7 },
+  potatoes: { prop: 'age', max: 7 },
+  beetroots: { prop: 'age', max: 3 },
+  cocoa: { prop: 'age', max: 2 },
+  sweet_berry_bush: { prop: 'age', max: 3 },
+  melon_stem: { prop: 'age', max: 7, fruit: 'melon', attached: 'attached_melon_stem' },
+  pumpkin_stem: { prop: 'age', max: 7, fruit: 'pumpkin', attached: 'attached_pumpkin_stem' },
+  sugar_cane: { prop: 'age', max: 15, column: 3 }
+}
+
+// Planting: item -> block it becomes and what it must stand on (or hang on, for cocoa).
+const PLANTING = {
+  wheat_seeds: { block: 'wheat', soil: ['farmland'] },
+  carrot: { block: 'carrots', soil: ['farmland'] },
+  potato: { block: 'potatoes', soil: ['farmland'] },
+  beetroot_seeds: { block: 'beetroots', soil: ['farmland'] },
+  melon_seeds: { block: 'melon_stem', soil: ['farmland'] },
+  pumpkin_seeds: { block: 'pumpkin_stem', soil: ['farmland'] },
+  sweet_berries: { block: 'sweet_berry_bush', soil: ['grass_block', 'dirt', 'coarse_dirt', 'podzol', 'farmland'] },
+  sugar_cane: { block: 'sugar_cane', soil: ['grass_block', 'dirt', 'sand', 'sugar_cane'] },
+  cocoa_beans: { block: 'cocoa', side: ['jungle_log', 'jungle_wood'] }
+}
+const FRUIT_SOIL = ['farmland', 'dirt', 'grass_block', 'coarse_dirt', 'podzol']
+const TILLABLE = ['grass_block', 'dirt', 'grass_path']
+const HOES = ['wooden_hoe', 'stone_hoe', 'iron_hoe', 'golden_hoe', 'diamond_hoe', 'netherite_hoe']
+
+// Smelting: input item -> output item. Ticks per item and fuel burn ticks (vanilla numbers).
+const SMELTING = {
+  potato: 'baked_potato',
+  beef: 'cooked_beef',
+  chicken: 'cooked_chicken',
+  porkchop: 'cooked_porkchop',
+  mutton: 'cooked_mutton',
+  rabbit: 'cooked_rabbit',
+  cod: 'cooked_cod',
+  salmon: 'cooked_salmon',
+  kelp: 'dried_kelp',
+  sand: 'glass',
+  cobblestone: 'stone',
+  iron_ore: 'iron_ingot',
+  gold_ore: 'gold_ingot',
+  oak_log: 'charcoal',
+  cactus: 'green_dye'
+}
+const SMELT_TICKS = 200
+const FUEL_TICKS = {
+  coal: 1600,
+  charcoal: 1600,
+  coal_block: 16000,
+  lava_bucket: 20000,
+  blaze_rod: 2400,
+  dried_kelp_block: 4000,
+  stick: 100,
+  bamboo: 50,
+  oak_planks: 300,
+  spruce_planks: 300,
+  birch_planks: 300,
+  jungle_planks: 300,
+  oak_log: 300,
+  spruce_log: 300,
+  birch_log: 300,
+  jungle_log: 300,
+  crafting_table: 300,
+  wooden_sword: 200,
+  wooden_pickaxe: 200,
+  wooden_axe: 200,
+  wooden_shovel: 200,
+  wooden_hoe: 200
+}
+// Fuel items that leave something behind in the fuel slot.
+const FUEL_LEFTOVER = { lava_bucket: 'bucket' }
+
+// Crafting ingredients that stay in the grid as another item.
+const CRAFT_LEFTOVER = { milk_bucket: 'bucket', water_bucket: 'bucket', lava_bucket: 'bucket', honey_bottle: 'glass_bottle' }
+
+// Mobs: health, loot.
+const MOBS = {
+  cow: { health: 10, loot: [{ item: 'beef', count: [1, 3] }, { item: 'leather', count: [0, 2] }] },
+  chicken: { health: 4, loot: [{ item: 'chicken', count: [1, 1] }, { item: 'feather', count: [0, 2] }] },
+  pig: { health: 10, loot: [{ item: 'porkchop', count: [1, 3] }] },
+  sheep: { health: 8, loot: [{ item: 'mutton', count: [1, 2] }, { item: 'white_wool', count: [1, 1] }] }
+}
+// Attack damage by held item (vanilla 1.16 values); anything else does 1.
+const ATTACK_DAMAGE = {
+  wooden_sword: 4, golden_sword: 4, stone_sword: 5, iron_sword: 6, diamond_sword: 7, netherite_sword: 8,
+  wooden_axe: 7, golden_axe: 7, stone_axe: 9, iron_axe: 9, diamond_axe: 9, netherite_axe: 10
+}
+
+module.exports = {
+  BLOCK_DROPS, GROWTH, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
+  FUEL_LEFTOVER, CRAFT_LEFTOVER, MOBS, ATTACK_DAMAGE
+}
