@@ -27,9 +27,9 @@ import openai
 from . import errors as E
 from .budget import Budget
 from .cache import LLMCache, normalize_mode
-from .fake_server import ROLE_HEADER, TEAM_HEADER
 from .ledger import Ledger
 from .parsing import parse_json, strip_think
+from .protocol import ROLE_HEADER, TEAM_HEADER
 from .settings import LLMSettings
 
 Messages = str | Sequence[Mapping[str, Any]]

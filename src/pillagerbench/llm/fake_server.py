@@ -35,8 +35,7 @@ from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any, Callable
 
-ROLE_HEADER = "X-PillagerBench-Role"
-TEAM_HEADER = "X-PillagerBench-Team"
+from pillagerbench.llm.protocol import ROLE_HEADER, TEAM_HEADER
 
 
 def count_tokens(text: str) -> int:
@@ -203,6 +202,7 @@ def _error(status: int, message: str, kind: str) -> dict:
 class _Handler(BaseHTTPRequestHandler):
     fake: FakeLLMServer
     protocol_version = "HTTP/1.1"  # keep-alive, like real providers
+    disable_nagle_algorithm = True  # headers and body are separate writes: no 40 ms delayed-ACK stall
 
     def log_message(self, *args: object) -> None:  # quiet
         pass
