@@ -30,6 +30,7 @@ class ControlChannel:
         self._subscribers: list[asyncio.Queue] = []
         self._on_close = on_close
         self._closed_reason: str | None = None
+        self.unmatched: list[dict] = []  # replies to no pending request (e.g. errors for malformed lines)
         self.ready: asyncio.Future = asyncio.get_running_loop().create_future()
         self._task = asyncio.create_task(self._read_loop())
 
@@ -73,6 +74,7 @@ class ControlChannel:
                     continue
                 fut = self._pending.get(msg.get("id"))
                 if fut is None or fut.done():
+                    self.unmatched = (self.unmatched + [msg])[-20:]
                     continue
                 if msg.get("ok"):
                     fut.set_result(msg.get("result"))

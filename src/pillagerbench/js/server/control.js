@@ -67,9 +67,7 @@ const OPS = {
     return serv.pb.listInventory(p)
   },
   teleport: async (serv, { player, pos, yaw, pitch }) => {
-    const p = playerNamed(serv, player)
-    p.teleport(toPos(pos))
-    if (yaw !== undefined || pitch !== undefined) p._client.write('position', { x: p.position.x, y: p.position.y, z: p.position.z, yaw: yaw ?? 0, pitch: pitch ?? 0, flags: 0, teleportId: 0 })
+    await serv.pb.teleport(playerNamed(serv, player), toPos(pos), yaw, pitch)
     return true
   },
   gamemode: async (serv, { player, mode }) => {

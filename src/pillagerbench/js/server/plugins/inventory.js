@@ -61,8 +61,10 @@ module.exports.server = function (serv) {
 }
 
 module.exports.player = function (player, serv) {
-  // Pick up the whole stack (flying-squid adds 1 per pickup); record who threw it.
-  player.collect = serv.guarded('collect', (entity) => {
+  // Pick up the whole stack (flying-squid adds 1 per pickup); record who threw it. Set after
+  // flying-squid's own inventory plugin has defined its version.
+  setImmediate(() => { player.collect = collect })
+  const collect = serv.guarded('collect', (entity) => {
     if (entity.collected || !entity.itemId) return
     const count = entity.itemCount || 1
     const left = serv.pb.addItem(player.inventory, entity.itemId, count)

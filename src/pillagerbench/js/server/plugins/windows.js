@@ -80,15 +80,17 @@ module.exports.server = function (serv) {
   }
 
   function sendWindow (player, w) {
-    player._client.write('window_items', { windowId: w.id, items: w.slots.map(it => Item.toNotch(it)) })
+    const windowId = w === player.inventory ? 0 : w.id
+    player._client.write('window_items', { windowId, items: w.slots.map(it => Item.toNotch(it)) })
     player._client.write('set_slot', { windowId: -1, slot: -1, item: Item.toNotch(w.selectedItem) })
   }
   serv.pb.sendWindow = sendWindow
 
   serv.pb.handleClick = (player, click) => {
     const { windowId, slot, mouseButton, mode, action } = click
+    // (flying-squid's player.inventory window has id 1 internally; on the wire it is window 0)
     const c = windowId === 0 ? { w: player.inventory, spec: player.pbInventorySpec } : player.pbContainer
-    const ours = c && c.w.id === windowId
+    const ours = windowId === 0 || (c && c.w.id === windowId)
     player._client.write('transaction', { windowId, action, accepted: true })
     if (!ours) return
     const w = c.w

@@ -1,0 +1,66 @@
+"""One arena server and two real mineflayer bots (alice, bob) for the whole arena test module set.
+
+Each test gets its own area of the world and resets the bots' inventories through the control
+channel, so tests stay independent while paying for one server start and two logins.
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest_asyncio
+
+from pillagerbench.arena import ArenaServer
+from tests.support.bots import TestBot
+
+
+@pytest_asyncio.fixture(scope="session", loop_scope="session")
+async def arena():
+    server = ArenaServer(crop_growth_chance=0.0)
+    await server.start()
+    yield server
+    await server.stop()
+
+
+@pytest_asyncio.fixture(scope="session", loop_scope="session")
+async def bots(arena):
+    alice = await TestBot(arena.port, "alice").start()
+    await asyncio.sleep(0.3)  # flying-squid handles one login at a time best
+    bob = await TestBot(arena.port, "bob").start()
+    yield alice, bob
+    await alice.stop()
+    await bob.stop()
+
+
+class Area:
+    """A fresh patch of ground for one test: x in [x0, x0+16), z in [0, 16)."""
+
+    _next = 0
+
+    def __init__(self, arena: ArenaServer):
+        Area._next += 1
+        self.arena = arena
+        self.x0 = 32 * Area._next
+
+    def at(self, dx: float, dy: float, dz: float) -> list[float]:
+        return [self.x0 + dx, dy, dz]
+
+    async def put(self, bot: TestBot, dx: float, dz: float, items: dict[str, int] | None = None):
+        """Teleport a bot onto the ground at (dx, dz), give it exactly `items`, wait until it sees the chunk."""
+        await self.arena.request("set_inventory", player=bot.username, items=items or {})
+        await self.arena.request("teleport", player=bot.username, pos=self.at(dx + 0.5, 4, dz + 0.5))
+        await bot.eval(
+            "for (let i = 0; i < 100; i++) { const b = bot.blockAt(bot.entity.position.offset(0, -1, 0));"
+            " if (b && b.name !== 'air' && bot.entity.position.distanceTo(new Vec3(%f, 4, %f)) < 1) break; await sleep(50) }"
+            % (self.x0 + dx + 0.5, dz + 0.5)
+        )
+
+
+@pytest_asyncio.fixture(loop_scope="session")
+async def area(arena):
+    return Area(arena)
+
+
+async def count(arena: ArenaServer, player: str, item: str) -> int:
+    """How many of `item` the server says the player holds."""
+    return sum(s["count"] for s in await arena.request("inventory", player=player) if s["name"] == item)

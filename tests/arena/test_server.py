@@ -1,0 +1,77 @@
+"""The arena server process and its control channel: start, bad input, death."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+
+import pytest
+
+from pillagerbench.arena import ArenaServer, ControlError
+from pillagerbench.arena.control import ChannelClosed
+
+
+async def test_ready_with_flat_world_and_log(arena):
+    assert arena.port and arena.port > 0
+    assert arena.log_path.exists()
+    assert (await arena.request("get_block", pos=[5, 3, 5]))["name"] == "grass_block"
+    assert (await arena.request("get_block", pos=[5, 2, 5]))["name"] == "dirt"
+    assert (await arena.request("get_block", pos=[5, 0, 5]))["name"] == "bedrock"
+    assert (await arena.request("get_block", pos=[5, 4, 5]))["name"] == "air"
+
+
+@pytest.mark.parametrize("op,args,message", [
+    ("set_block", {"pos": [0, 4, 0], "block": "chst"}, "unknown block 'chst'"),
+    ("set_block", {"pos": [0, 300, 0], "block": "stone"}, "out of range"),
+    ("set_block", {"pos": [0, "a", 0], "block": "stone"}, "must be [x, y, z] numbers"),
+    ("set_block", {"pos": [0, 4, 0], "block": "wheat", "properties": {"age": 12}}, "bad value 12 for wheat.age"),
+    ("give", {"player": "nobody", "item": "bread"}, "no player named \"nobody\""),
+    ("fill", {"from": [0, 4, 0], "to": [100, 100, 100], "block": "stone"}, "larger than"),
+    ("set_chest", {"pos": [0, 4, 0], "items": {"brea": 3}}, "unknown item 'brea'"),
+    ("summon", {"mob": "dragon", "pos": [0, 4, 0]}, "unknown mob 'dragon'"),
+    ("tick_rate", {"tps": 0}, "tps must be between"),
+    ("no_such_op", {}, "unknown op \"no_such_op\""),
+])
+async def test_bad_requests_get_an_error_naming_the_problem(arena, op, args, message):
+    with pytest.raises(ControlError, match=None) as info:
+        await arena.request(op, **args)
+    assert message in str(info.value)
+    assert await arena.request("ping") == "pong"  # still running
+
+
+async def test_malformed_lines_get_an_error_reply(arena):
+    arena.control._writer.write(b"this is not json\n{\"op\": 5}\n[1, 2]\n")
+    await arena.control._writer.drain()
+    assert await arena.request("ping") == "pong"
+    errors = [m["error"] for m in arena.control.unmatched[-3:]]
+    assert "malformed control message (not JSON)" in errors[0]
+    assert "string \"op\"" in errors[1]
+    assert "string \"op\"" in errors[2]
+
+
+async def test_unknown_item_in_give_names_item(arena, bots):
+    with pytest.raises(ControlError, match="unknown item 'diamnd'"):
+        await arena.request("give", player="alice", item="diamnd", count=1)
+
+
+async def test_death_of_the_server_is_reported_clearly(tmp_path):
+    server = ArenaServer(log_path=tmp_path / "server.log")
+    await server.start()
+    assert server.ready_seconds is not None
+    os.killpg(server.process.pid, signal.SIGKILL)
+    with pytest.raises(ChannelClosed, match="exit code"):
+        for _ in range(50):
+            await server.request("ping")
+            await asyncio.sleep(0.1)
+    await server.stop()
+
+
+async def test_clean_shutdown(tmp_path):
+    server = ArenaServer(log_path=tmp_path / "server.log")
+    await server.start()
+    proc = server.process
+    await server.stop()
+    assert proc.returncode is not None
+    assert not server.alive
