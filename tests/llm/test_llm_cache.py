@@ -113,3 +113,13 @@ async def test_errors_are_not_cached(fake_llm, make_client, tmp_path):
     with pytest.raises(Exception):
         await client.complete("q", role="action")
     assert cache_files(tmp_path / "c") == []
+
+
+async def test_concurrent_identical_requests_get_distinct_samples(fake_llm, make_client, tmp_path):
+    import asyncio
+
+    fake_llm.default_reply = counter_reply()
+    client = make_client("llm.temperature=0.7", "llm_cache.mode=readwrite", f"llm_cache.dir={tmp_path / 'c'}")
+    answers = await asyncio.gather(*(client.complete("same", role="action") for _ in range(10)))
+    assert sorted(a.sample for a in answers) == list(range(10))
+    assert len({a.text for a in answers}) == 10 and len(cache_files(tmp_path / "c")) == 10
