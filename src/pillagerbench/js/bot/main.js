@@ -1,0 +1,250 @@
+'use strict'
+// One player: a mineflayer bot driven by JSON lines on stdin, answering on stdout.
+//   usage: node --permission ... main.js '{"host": "127.0.0.1", "port": 25565, "username": "Ryn", "primitives": null}'
+// Lines out:
+//   {"hb": 1}                                heartbeat every 200 ms (the Python side's watchdog)
+//   {"spawned": {...}}                       logged in and the chunks around are loaded
+//   {"ev": [type, data], "run": id}          an event of run `id` (onChat, onError, onSave, observe)
+//   {"id": n, "ok": true, "result": ...}     reply to request n (or "ok": false, "error": "...")
+//   {"fatal": "..."}                         the bot was kicked or disconnected; the process exits
+// Requests in: {"id", "op": "run", "code", "timeout"?} | {"id", "op": "stop"} | {"id", "op": "observe"} |
+//   {"id", "op": "clear"} | {"id", "op": "equip", "equipment"} | {"id", "op": "settle", "pos"?} | {"id", "op": "ping"}
+const readline = require('readline')
+
+const settings = JSON.parse(process.argv[2] || '{}')
+const out = (obj) => process.stdout.write(JSON.stringify(obj) + '\n')
+const log = (...args) => process.stderr.write(args.join(' ') + '\n')
+
+const heartbeat = setInterval(() => out({ hb: 1 }), settings.heartbeatMs || 200)
+
+const mineflayer = require('mineflayer')
+const { pathfinder } = require('mineflayer-pathfinder')
+const { Vec3 } = require('vec3')
+const { Run, isStop } = require('./run')
+const { Observer } = require('./observe')
+const sandbox = require('./sandbox')
+const primitives = require('./primitives')
+
+const CHAT_LIMIT = 25
+const CHAT_WINDOW_TICKS = 100
+const CHAT_PIECE = 256
+const EVENT_BUFFER = 200
+
+const bot = mineflayer.createBot({
+  host: settings.host || '127.0.0.1',
+  port: settings.port,
+  username: settings.username,
+  version: '1.16.5',
+  auth: 'offline',
+  checkTimeoutInterval: 3600 * 1000,
+  hideErrors: true,
+  logErrors: false
+})
+bot.loadPlugin(pathfinder)
+
+let mcData = null
+let observer = null
+let current = null // the active Run
+const buffered = [] // events that happened between runs, delivered with the next run
+let chatCount = 0
+const pendingEcho = [] // our own chat lines not yet seen back from the server
+
+// ---- events --------------------------------------------------------------------------------
+function emit (type, value) {
+  let data
+  try { data = observer.observe() } catch (err) { data = {} }
+  if (type !== 'observe') data[type] = value
+  const ev = [type, data]
+  if (current) out({ ev, run: current.id })
+  else {
+    buffered.push(ev)
+    if (buffered.length > EVENT_BUFFER) buffered.shift()
+  }
+}
+
+function reportError (err) {
+  if (isStop(err)) return
+  emit('onError', sandbox.describeError(err, current ? current.code : ''))
+}
+
+// ---- chat with upstream's rate limit ---------------------------------------------------------
+function chat (message) {
+  const text = String(message)
+  const pieces = text.length === 0 ? [''] : text.match(new RegExp(`[^]{1,${CHAT_PIECE}}`, 'g'))
+  if (chatCount + pieces.length > CHAT_LIMIT) {
+    throw new Error(`Too many chats in short succession! At most ${CHAT_LIMIT} chat messages per ${CHAT_WINDOW_TICKS} ticks.`)
+  }
+  chatCount += pieces.length
+  for (const piece of pieces) {
+    if (!piece.startsWith('/')) pendingEcho.push({ line: `<${bot.username}> ${piece}`, at: Date.now() })
+    bot.chat(piece)
+  }
+}
+
+function waitEchoes (maxMs) {
+  const deadline = Date.now() + maxMs
+  return new Promise(resolve => {
+    const check = () => {
+      while (pendingEcho.length && Date.now() - pendingEcho[0].at > 3000) pendingEcho.shift()
+      if (pendingEcho.length === 0 || Date.now() >= deadline) return resolve()
+      setTimeout(check, 5)
+    }
+    check()
+  })
+}
+
+// ---- runs ------------------------------------------------------------------------------------
+// Stop whatever the bot is doing on behalf of the run, then settle the run.
+function halt (run, reason) {
+  if (!run.active) return
+  try { bot.pathfinder.stop(); bot.pathfinder.setGoal(null) } catch (_) {}
+  try { if (bot.targetDigBlock) bot.stopDigging() } catch (_) {}
+  try { bot.clearControlStates() } catch (_) {}
+  try { if (bot.currentWindow) bot.closeWindow(bot.currentWindow) } catch (_) {}
+  try { bot.deactivateItem() } catch (_) {}
+  run.stop(reason)
+}
+
+async function doRun (msg) {
+  if (current) halt(current, 'Stopped: another run started')
+  const code = typeof msg.code === 'string' ? msg.code : ''
+  const run = new Run(msg.id, { startTick: observer.ticks })
+  run.code = code
+  observer.runStartTick = observer.ticks
+  current = run
+  for (const ev of buffered.splice(0)) out({ ev, run: run.id })
+  let timer = null
+  if (msg.timeout) {
+    timer = setTimeout(() => {
+      if (!run.active) return
+      emit('onError', `Timeout: the code ran longer than ${msg.timeout} s and was stopped`)
+      run.timedOut = true
+      halt(run, 'Stopped: time limit reached')
+    }, msg.timeout * 1000)
+  }
+  const ctx = {
+    bot,
+    run,
+    mcData,
+    Vec3,
+    goals: require('mineflayer-pathfinder').goals,
+    observer,
+    chat: (m) => { run.check(); chat(m) },
+    save: (name) => { run.check(); emit('onSave', name) }
+  }
+  try {
+    const prims = primitives.build(ctx, settings.primitives || null)
+    const context = sandbox.createContext({
+      bot, run, mcData, Vec3, primitives: prims, chat: ctx.chat, save: ctx.save, report: reportError,
+      log: (level, text) => log(`[agent ${level}] ${text.slice(0, 2000)}`)
+    })
+    const done = sandbox.execute(context, code)
+    await Promise.race([done, run.stopped])
+  } catch (err) {
+    if (!isStop(err) && run.active) emit('onError', sandbox.describeError(err, code))
+  }
+  clearTimeout(timer)
+  const stopped = !run.active
+  halt(run, 'Stopped: the code has finished')
+  await waitEchoes(stopped ? 100 : 1000)
+  emit('observe')
+  current = null
+  out({ id: msg.id, ok: true, result: { stopped: stopped && !run.timedOut } })
+}
+
+// ---- requests --------------------------------------------------------------------------------
+const OPS = {
+  ping: async () => 'pong',
+  run: null, // handled by doRun (replies itself)
+  stop: async () => {
+    if (current) halt(current, 'Stopped')
+    return true
+  },
+  observe: async () => observer.observe(),
+  clear: async () => {
+    buffered.length = 0
+    pendingEcho.length = 0
+    observer.clear()
+    chatCount = 0
+    return true
+  },
+  // equipment: [head, chest, legs, feet, mainhand, offhand] names or null
+  equip: async ({ equipment }) => {
+    const dests = ['head', 'torso', 'legs', 'feet', 'hand', 'off-hand']
+    const list = Array.isArray(equipment) ? equipment : dests.map(d => (equipment || {})[d] ?? null)
+    for (let i = 0; i < dests.length; i++) {
+      const name = list[i]
+      if (!name) continue
+      const item = bot.inventory.items().find(it => it.name === name)
+      if (!item) throw new Error(`cannot equip ${name}: not in the inventory`)
+      await bot.equip(item, dests[i])
+    }
+    return true
+  },
+  // Wait until the bot stands near `pos` (after a teleport) and the ground under it is loaded.
+  settle: async ({ pos, timeout = 5 }) => {
+    const deadline = Date.now() + timeout * 1000
+    const target = pos ? new Vec3(pos[0], pos[1], pos[2]) : null
+    while (Date.now() < deadline) {
+      const here = bot.entity.position
+      const below = bot.blockAt(here.offset(0, -1, 0))
+      if ((!target || here.distanceTo(target) < 1.5) && below) return true
+      await bot.waitForTicks(1)
+    }
+    return false
+  }
+}
+
+function startProtocol () {
+  const rl = readline.createInterface({ input: process.stdin })
+  rl.on('line', async (line) => {
+    let msg
+    try { msg = JSON.parse(line) } catch (err) { return out({ id: null, ok: false, error: `bad request: ${err.message}` }) }
+    if (msg.op === 'run') {
+      doRun(msg).catch(err => out({ id: msg.id, ok: false, error: String(err && err.stack ? err.stack : err) }))
+      return
+    }
+    const fn = OPS[msg.op]
+    if (!fn) return out({ id: msg.id, ok: false, error: `unknown op ${msg.op}` })
+    try {
+      out({ id: msg.id, ok: true, result: (await fn(msg)) ?? null })
+    } catch (err) {
+      out({ id: msg.id, ok: false, error: err && err.message ? err.message : String(err) })
+    }
+  })
+  rl.on('close', () => { try { bot.quit() } catch (_) {} setTimeout(() => process.exit(0), 100) })
+}
+
+bot.once('spawn', async () => {
+  mcData = require('minecraft-data')(bot.version)
+  observer = new Observer(bot)
+  bot.pathfinder.setMovements(sandbox.defaultMovements(bot))
+  bot.pathfinder.thinkTimeout = 2000
+  bot.on('physicsTick', () => { if (observer.ticks % CHAT_WINDOW_TICKS === 0) chatCount = 0 })
+  bot.on('messagestr', (message, position) => {
+    if (position === 'game_info') return
+    const i = pendingEcho.findIndex(p => p.line === message)
+    if (i >= 0) pendingEcho.splice(0, i + 1)
+    emit('onChat', message)
+  })
+  bot.on('mount', () => { try { bot.dismount() } catch (_) {} })
+  try { await bot.waitForChunksToLoad() } catch (_) {}
+  sandbox.harden()
+  const p = bot.entity.position
+  out({ spawned: { username: bot.username, position: { x: p.x, y: p.y, z: p.z } } })
+  startProtocol()
+})
+
+process.on('unhandledRejection', (err) => {
+  if (isStop(err)) return
+  reportError(err)
+})
+process.on('uncaughtException', (err) => {
+  if (isStop(err)) return
+  log(`[bot] uncaught: ${err && err.stack ? err.stack : err}`)
+  if (observer) reportError(err)
+})
+
+bot.on('kicked', (reason) => { out({ fatal: `kicked: ${typeof reason === 'string' ? reason : JSON.stringify(reason)}` }); process.exit(3) })
+bot.on('end', (reason) => { out({ fatal: `disconnected: ${reason}` }); clearInterval(heartbeat); process.exit(3) })
+bot.on('error', (err) => log(`[bot] error: ${err && err.message ? err.message : err}`))

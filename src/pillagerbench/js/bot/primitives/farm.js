@@ -1,0 +1,172 @@
+'use strict'
+// Farming (reference §5.9): tillLand, plantCrop and its wrappers, harvest and its wrappers,
+// equipBucket, milkCow, destroyCrop.
+const { helpers, checkString } = require('./util')
+
+const UP = [0, 1, 0]
+const SIDES = [[1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1]]
+const MAX_BLOCKS = 64
+
+module.exports = {
+  name: 'farm',
+  make (ctx) {
+    const { bot, run, mcData, goals, Vec3 } = ctx
+    const h = helpers(ctx)
+    const TOO_MANY = 'Farming failed too many times, check chat log to see what happened'
+    const blockId = (name) => {
+      const b = mcData.blocksByName[name]
+      if (!b) throw new Error(`No block named ${name}`)
+      return b.id
+    }
+    const isAir = (b) => b && (b.name === 'air' || b.name === 'cave_air')
+    const ageOf = (b) => Number((b.getProperties?.() || {}).age ?? 0)
+
+    async function walkTo (pos, range = 3) {
+      if (bot.entity.position.distanceTo(pos.offset(0.5, 0.5, 0.5)) > range + 0.5) await h.goto(h.near(pos, range))
+      return bot.entity.position.distanceTo(pos.offset(0.5, 0.5, 0.5)) <= 5
+    }
+
+    async function tillLand (_bot, lands = ['dirt']) {
+      const hoe = h.items().find(i => i.name.endsWith('_hoe'))
+      if (!hoe) { ctx.chat('No hoe in inventory.'); run.fail('farm', TOO_MANY); return }
+      const ids = new Set(lands.map(blockId))
+      const targets = bot.findBlocks({ matching: b => ids.has(b.type), maxDistance: 32, count: 1000 })
+        .filter(p => isAir(bot.blockAt(p.offset(0, 1, 0)))).slice(0, MAX_BLOCKS)
+      for (const pos of targets) {
+        if (!await walkTo(pos)) continue
+        const hoeNow = h.items().find(i => i.name.endsWith('_hoe'))
+        if (!hoeNow) break
+        await run.race(bot.equip(hoeNow, 'hand'))
+        await run.race(bot.activateBlock(bot.blockAt(pos), new Vec3(0, 1, 0)))
+        await h.waitTicks(1)
+      }
+      ctx.chat('All available land has been tilled.')
+    }
+
+    async function plantCrop (_bot, crop, lands, directions = [UP]) {
+      checkString(crop, 'crop for plantCrop')
+      if (!mcData.itemsByName[crop]) throw new Error(`No item named ${crop}`)
+      if (h.itemCount(crop) === 0) { ctx.chat(`No ${crop} in inventory.`); run.fail('farm', TOO_MANY); return }
+      const ids = new Set(lands.map(blockId))
+      const dirs = directions.map(d => h.toVec3(d, 'direction'))
+      const spots = []
+      for (const pos of bot.findBlocks({ matching: b => ids.has(b.type), maxDistance: 32, count: 1000 })) {
+        for (const d of dirs) if (isAir(bot.blockAt(pos.plus(d)))) { spots.push([pos, d]); break }
+        if (spots.length >= MAX_BLOCKS) break
+      }
+      for (const [pos, d] of spots) {
+        if (h.itemCount(crop) === 0) break
+        if (!isAir(bot.blockAt(pos.plus(d)))) continue
+        if (!await walkTo(pos)) continue
+        await run.race(bot.equip(h.findItem(crop), 'hand'))
+        try {
+          await run.race(bot.placeBlock(bot.blockAt(pos), d))
+        } catch (err) {
+          if (h.isStop(err) || !run.active) throw err
+        }
+      }
+      ctx.chat(`All available land has been planted with ${crop}.`)
+    }
+
+    const plant = (crop, lands, dirs) => (_bot) => plantCrop(_bot, crop, lands, dirs)
+    const plantSweetBerryBushes = plant('sweet_berries', ['farmland', 'dirt', 'grass_block'], [UP])
+    const plantWheatSeeds = plant('wheat_seeds', ['farmland'], [UP])
+    const plantPotatoes = plant('potato', ['farmland'], [UP])
+    const plantCarrots = plant('carrot', ['farmland'], [UP])
+    const plantBeetrootSeeds = plant('beetroot_seeds', ['farmland'], [UP])
+    const plantMelonSeeds = plant('melon_seeds', ['farmland'], [UP])
+    const plantPumpkinSeeds = plant('pumpkin_seeds', ['farmland'], [UP])
+    const plantCocoaBeans = plant('cocoa_beans', ['jungle_log'], SIDES)
+    const plantSugarCane = plant('sugar_cane', ['dirt', 'sand', 'grass_block'], [UP])
+
+    async function harvest (_bot, pos, crop, goalNear = true, activateBlock = false, matching = () => true) {
+      checkString(crop, 'crop for harvest')
+      const id = blockId(crop)
+      const center = pos ? h.toVec3(pos, 'position for harvest') : bot.entity.position
+      const targets = bot.findBlocks({ matching: (b) => b.type === id && matching(b), useExtraInfo: true, maxDistance: 25, count: 20, point: center })
+      if (targets.length === 0) {
+        ctx.chat(`No ${crop} nearby`)
+        run.fail('farm', TOO_MANY)
+        return
+      }
+      ctx.chat(`Harvesting ${crop}`)
+      let n = 0
+      for (const p of targets) {
+        const b = bot.blockAt(p)
+        if (!b || b.type !== id || !matching(b)) continue
+        if (goalNear) {
+          if (!await walkTo(p)) continue
+        } else if (bot.entity.position.distanceTo(p.offset(0.5, 0.5, 0.5)) > 4) {
+          await h.goto(new goals.GoalLookAtBlock(p, bot.world, { reach: 4 }))
+        }
+        const now = bot.blockAt(p)
+        if (!now || now.type !== id) continue
+        try {
+          if (activateBlock) await run.race(bot.activateBlock(now))
+          else await run.race(bot.dig(now, true))
+        } catch (err) {
+          if (h.isStop(err) || !run.active) throw err
+          continue
+        }
+        n++
+        await h.collectDrops(p.offset(0.5, 0.5, 0.5))
+      }
+      ctx.chat(`Harvested ${n} ${crop}`)
+    }
+
+    const ripe = (min) => (b) => ageOf(b) >= min
+    const harvestBerries = (_bot, pos) => harvest(_bot, pos, 'sweet_berry_bush', true, true, ripe(2))
+    const harvestWheat = (_bot, pos) => harvest(_bot, pos, 'wheat', true, false, ripe(7))
+    const harvestPotatoes = (_bot, pos) => harvest(_bot, pos, 'potatoes', true, false, ripe(7))
+    const harvestCarrots = (_bot, pos) => harvest(_bot, pos, 'carrots', true, false, ripe(7))
+    const harvestBeetroot = (_bot, pos) => harvest(_bot, pos, 'beetroots', true, false, ripe(3))
+    const harvestCocoa = (_bot, pos) => harvest(_bot, pos, 'cocoa', false, false, ripe(2))
+    const harvestMelons = (_bot, pos) => harvest(_bot, pos, 'melon', true, false)
+    const harvestPumpkins = (_bot, pos) => harvest(_bot, pos, 'pumpkin', true, false)
+    const harvestSugarCane = (_bot, groundY) => harvest(_bot, null, 'sugar_cane', true, false, (b) => b.position.y === groundY + 2)
+
+    async function equipBucket (_bot) {
+      const bucket = h.findItem('bucket')
+      if (!bucket) { ctx.chat('No bucket in inventory.'); return false }
+      await run.race(bot.equip(bucket, 'hand'))
+      return true
+    }
+
+    async function milkCow (_bot) {
+      const cow = bot.nearestEntity(e => e.name === 'cow' && e.position.distanceTo(bot.entity.position) < 48)
+      if (!cow) { ctx.chat('No cow nearby, please explore first'); run.fail('farm', TOO_MANY); return false }
+      if (!h.findItem('bucket')) { ctx.chat('No bucket in inventory.'); run.fail('farm', TOO_MANY); return false }
+      if (bot.entity.position.distanceTo(cow.position) > 3) await h.goto(new goals.GoalFollow(cow, 2))
+      if (!await equipBucket(_bot)) return false
+      const before = h.itemCount('milk_bucket')
+      await run.race(bot.lookAt(cow.position.offset(0, 1, 0), true))
+      bot.useOn(cow)
+      for (let i = 0; i < 20 && h.itemCount('milk_bucket') <= before; i++) await h.waitTicks(1)
+      if (h.itemCount('milk_bucket') <= before) { ctx.chat('Failed to milk cow'); run.fail('farm', TOO_MANY); return false }
+      ctx.chat('Milked cow')
+      return true
+    }
+
+    async function destroyCrop (_bot, crop) {
+      checkString(crop, 'crop for destroyCrop')
+      const id = blockId(crop)
+      ctx.chat(`Destroying all ${crop} nearby`)
+      const targets = bot.findBlocks({ matching: id, maxDistance: 32, count: 1000 })
+      let n = 0
+      for (const p of targets) {
+        const b = bot.blockAt(p)
+        if (!b || b.type !== id) continue
+        if (!await walkTo(p)) continue
+        try { await run.race(bot.dig(bot.blockAt(p), true)); n++ } catch (err) { if (h.isStop(err) || !run.active) throw err }
+      }
+      return n
+    }
+
+    return {
+      tillLand, plantCrop, plantSweetBerryBushes, plantWheatSeeds, plantPotatoes, plantCarrots, plantBeetrootSeeds,
+      plantMelonSeeds, plantPumpkinSeeds, plantCocoaBeans, plantSugarCane, harvest, harvestBerries, harvestWheat,
+      harvestPotatoes, harvestCarrots, harvestBeetroot, harvestCocoa, harvestMelons, harvestPumpkins, harvestSugarCane,
+      equipBucket, milkCow, destroyCrop
+    }
+  }
+}

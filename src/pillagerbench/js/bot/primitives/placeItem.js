@@ -1,0 +1,60 @@
+'use strict'
+// placeItem(bot, name, position): place a block from the inventory at `position`.
+const { helpers, checkString } = require('./util')
+
+const FACES = [[0, 1, 0], [0, -1, 0], [1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1]]
+const EMPTY = new Set(['air', 'cave_air', 'void_air', 'water', 'lava', 'grass', 'tall_grass'])
+
+module.exports = {
+  name: 'placeItem',
+  make (ctx) {
+    const { bot, run, mcData, goals, Vec3 } = ctx
+    const h = helpers(ctx)
+    const TOO_MANY = 'placeItem failed too many times, please find another position to place'
+
+    async function placeItem (_bot, name, position) {
+      checkString(name, 'name for placeItem')
+      const pos = h.toVec3(position, 'position for placeItem').floored()
+      if (!mcData.itemsByName[name]) throw new Error(`No item named ${name}`)
+      const item = h.findItem(name)
+      if (!item) {
+        ctx.chat(`No ${name} in inventory`)
+        run.fail('placeItem', TOO_MANY)
+        return
+      }
+      const before = h.itemCount(name)
+      let reference = null
+      let face = null
+      for (const [dx, dy, dz] of FACES) {
+        const b = bot.blockAt(pos.offset(dx, dy, dz))
+        if (b && !EMPTY.has(b.name)) { reference = b; face = new Vec3(-dx, -dy, -dz); break }
+      }
+      if (!reference) {
+        ctx.chat(`No block to place ${name} on. You cannot place a floating block.`)
+        run.fail('placeItem', TOO_MANY)
+        return
+      }
+      try {
+        if (bot.entity.position.distanceTo(pos.offset(0.5, 0.5, 0.5)) > 4.2 ||
+            bot.entity.position.floored().equals(pos) || bot.entity.position.floored().offset(0, 1, 0).equals(pos)) {
+          await h.goto(new goals.GoalPlaceBlock(pos, bot.world, { range: 4 }), { quiet: false })
+        }
+        await run.race(bot.equip(h.findItem(name), 'hand'))
+        await run.race(bot.placeBlock(reference, face))
+        ctx.chat(`Placed ${name}`)
+        ctx.save(`${name}_placed`)
+      } catch (err) {
+        if (h.isStop(err) || !run.active) throw err
+        if (h.itemCount(name) < before) {
+          ctx.chat(`Placed ${name}`)
+          ctx.save(`${name}_placed`)
+          return
+        }
+        ctx.chat(`Error placing ${name}: ${err.message}, please find another position to place`)
+        run.fail('placeItem', TOO_MANY)
+      }
+    }
+
+    return { placeItem }
+  }
+}

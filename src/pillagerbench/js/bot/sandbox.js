@@ -1,0 +1,217 @@
+'use strict'
+// The sandbox: agent code runs in a fresh `vm` context per run holding only the primitives, a
+// documented subset of the mineflayer bot (a facade), Vec3, mcData, the pathfinder goals, Movements
+// options and timers/listeners owned by the run. Code generation from strings is off inside the
+// context and the host realm's function constructors are blocked (harden), so `x.constructor.constructor`
+// leads nowhere; the process also runs under Node's permission model (see main.js).
+const vm = require('vm')
+const { goals, Movements } = require('mineflayer-pathfinder')
+const { isStop } = require('./run')
+
+const FILENAME = 'agent.js'
+const SYNC_TIMEOUT_MS = 1000
+
+// Block the host realm's Function constructors (reached as someHostFunction.constructor).
+function harden () {
+  const protos = [Function.prototype, Object.getPrototypeOf(async function () {}),
+    Object.getPrototypeOf(function * () {}), Object.getPrototypeOf(async function * () {})]
+  for (const proto of protos) {
+    const name = proto.constructor.name
+    const blocked = function () { throw new EvalError('Code generation is not available to agent code') }
+    Object.defineProperty(blocked, 'name', { value: name })
+    Object.defineProperty(proto, 'constructor', { value: blocked, writable: false, configurable: false, enumerable: false })
+  }
+  try {
+    Object.defineProperty(Error, 'prepareStackTrace', { value: undefined, writable: false, configurable: false })
+  } catch (_) {}
+}
+
+const MOVEMENT_OPTIONS = ['canDig', 'digCost', 'placeCost', 'allow1by1towers', 'allowFreeMotion', 'allowParkour',
+  'allowSprinting', 'dontCreateFlow', 'dontMineUnderFallingBlock', 'maxDropDown', 'infiniteLiquidDropdownDistance',
+  'liquidCost', 'entityCost', 'canOpenDoors', 'allowEntityDetection']
+
+function defaultMovements (bot) {
+  const m = new Movements(bot)
+  m.canDig = false
+  m.allow1by1towers = false
+  m.scafoldingBlocks = []
+  m.allowParkour = false
+  return m
+}
+
+// The `bot` agent code sees. Every method checks that the run is still active; async ones settle
+// when the run stops.
+function makeFacade (bot, run, { chat, save, report }) {
+  const sync = (fn) => function (...args) { run.check(); return fn(...args) }
+  const async = (fn) => async function (...args) { run.check(); return run.race(fn(...args)) }
+  const wrapListener = (listener) => function (...args) {
+    if (!run.active) return
+    try {
+      const r = listener(...args)
+      if (r && typeof r.catch === 'function') r.catch(err => { if (!isStop(err)) report(err) })
+    } catch (err) { if (!isStop(err)) report(err) }
+  }
+  const owned = new Map() // agent listener -> [event, wrapped]
+
+  const pathfinder = {
+    goto: async (goal) => run.race(bot.pathfinder.goto(goal)),
+    setGoal: sync((goal, dynamic = false) => bot.pathfinder.setGoal(goal, dynamic)),
+    stop: sync(() => bot.pathfinder.stop()),
+    isMoving: () => bot.pathfinder.isMoving(),
+    isMining: () => bot.pathfinder.isMining(),
+    isBuilding: () => bot.pathfinder.isBuilding(),
+    get goal () { return bot.pathfinder.goal },
+    setMovements: sync((options = {}) => {
+      const m = defaultMovements(bot)
+      for (const k of MOVEMENT_OPTIONS) if (options[k] !== undefined) m[k] = options[k]
+      bot.pathfinder.setMovements(m)
+    })
+  }
+
+  const facade = {
+    get username () { return bot.username },
+    get entity () { return bot.entity },
+    get entities () { return bot.entities },
+    get players () { return bot.players },
+    get health () { return bot.health },
+    get food () { return bot.food },
+    get foodSaturation () { return bot.foodSaturation },
+    get oxygenLevel () { return bot.oxygenLevel },
+    get heldItem () { return bot.heldItem },
+    get inventory () { return bot.inventory },
+    get currentWindow () { return bot.currentWindow },
+    get game () { return bot.game },
+    get time () { return bot.time },
+    get version () { return bot.version },
+    get world () { return bot.world },
+    get quickBarSlot () { return bot.quickBarSlot },
+    get targetDigBlock () { return bot.targetDigBlock },
+    get experience () { return bot.experience },
+    get controlState () { return { ...bot.controlState } },
+    pathfinder,
+    blockAt: sync((p, extra) => bot.blockAt(p, extra)),
+    findBlock: sync((o) => bot.findBlock(o)),
+    findBlocks: sync((o) => bot.findBlocks(o)),
+    nearestEntity: sync((f) => bot.nearestEntity(f)),
+    canSeeBlock: sync((b) => bot.canSeeBlock(b)),
+    canDigBlock: sync((b) => bot.canDigBlock(b)),
+    digTime: sync((b) => bot.digTime(b)),
+    blockAtCursor: sync((d) => bot.blockAtCursor(d)),
+    entityAtCursor: sync((d) => bot.entityAtCursor(d)),
+    recipesFor: sync((...a) => bot.recipesFor(...a)),
+    recipesAll: sync((...a) => bot.recipesAll(...a)),
+    setControlState: sync((c, s) => bot.setControlState(c, s)),
+    getControlState: sync((c) => bot.getControlState(c)),
+    clearControlStates: sync(() => bot.clearControlStates()),
+    setQuickBarSlot: sync((s) => bot.setQuickBarSlot(s)),
+    attack: sync((e) => bot.attack(e)),
+    swingArm: sync((...a) => bot.swingArm(...a)),
+    useOn: sync((e) => bot.useOn(e)),
+    stopDigging: sync(() => bot.stopDigging()),
+    deactivateItem: sync(() => bot.deactivateItem()),
+    closeWindow: sync((w) => bot.closeWindow(w)),
+    inventoryUsed: sync(() => bot.inventory.slots.slice(9, 45).filter(Boolean).length),
+    chat: sync((m) => chat(m)),
+    save: sync((name) => save(String(name))),
+    waitForTicks: async((n) => bot.waitForTicks(n)),
+    waitForChunksToLoad: async(() => bot.waitForChunksToLoad()),
+    equip: async((i, d) => bot.equip(i, d)),
+    unequip: async((d) => bot.unequip(d)),
+    toss: async((t, m, c) => bot.toss(t, m, c)),
+    tossStack: async((i) => bot.tossStack(i)),
+    dig: async((b, f, d) => bot.dig(b, f, d)),
+    placeBlock: async((b, f) => bot.placeBlock(b, f)),
+    activateBlock: async((b, d, c) => bot.activateBlock(b, d, c)),
+    activateItem: async((o) => bot.activateItem(o)),
+    activateEntity: async((e) => bot.activateEntity(e)),
+    consume: async(() => bot.consume()),
+    lookAt: async((p, f) => bot.lookAt(p, f)),
+    look: async((y, p, f) => bot.look(y, p, f)),
+    openContainer: async((b) => bot.openContainer(b)),
+    openChest: async((b) => bot.openContainer(b)),
+    openFurnace: async((b) => bot.openFurnace(b)),
+    craft: async((r, c, t) => bot.craft(r, c, t)),
+    on: sync((event, listener) => {
+      const w = wrapListener(listener); owned.set(listener, [event, w]); run.listen(bot, String(event), w); return facade
+    }),
+    once: sync((event, listener) => {
+      const w = wrapListener((...a) => { run.unlisten(bot, String(event), w); owned.delete(listener); return listener(...a) })
+      owned.set(listener, [event, w]); run.listen(bot, String(event), w); return facade
+    }),
+    removeListener: (event, listener) => {
+      const o = owned.get(listener)
+      if (o) { run.unlisten(bot, o[0], o[1]); owned.delete(listener) }
+      return facade
+    }
+  }
+  facade.addListener = facade.on
+  facade.off = facade.removeListener
+  return facade
+}
+
+// A fresh context for one run. `names`: primitive functions; `log`: console output.
+function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report, log }) {
+  const trackTimer = (set, clear, registry) => (fn, ms, ...args) => {
+    run.check()
+    if (typeof fn !== 'function') throw new TypeError('timer callback must be a function')
+    const id = set(() => {
+      if (registry === run.timers) registry.delete(id)
+      if (!run.active) return
+      try {
+        const r = fn(...args)
+        if (r && typeof r.catch === 'function') r.catch(err => { if (!isStop(err)) report(err) })
+      } catch (err) { if (!isStop(err)) report(err) }
+    }, ms)
+    registry.add(id)
+    return id
+  }
+  const clearTimer = (clear, registry) => (id) => { if (registry.has(id)) { registry.delete(id); clear(id) } }
+  const print = (level) => (...args) => log(level, args.map(a => typeof a === 'string' ? a : safeString(a)).join(' '))
+  const goalNames = ['GoalNear', 'GoalBlock', 'GoalXZ', 'GoalNearXZ', 'GoalY', 'GoalGetToBlock', 'GoalLookAtBlock',
+    'GoalPlaceBlock', 'GoalBreakBlock', 'GoalFollow', 'GoalCompositeAny', 'GoalCompositeAll', 'GoalInvert']
+  const sandbox = {
+    bot: makeFacade(bot, run, { chat, save, report }),
+    mcData,
+    Vec3,
+    Movements: function Movements () { return Object.fromEntries(MOVEMENT_OPTIONS.map(k => [k, undefined])) },
+    setTimeout: trackTimer(setTimeout, clearTimeout, run.timers),
+    clearTimeout: clearTimer(clearTimeout, run.timers),
+    setInterval: trackTimer(setInterval, clearInterval, run.intervals),
+    clearInterval: clearTimer(clearInterval, run.intervals),
+    console: { log: print('log'), info: print('info'), warn: print('warn'), error: print('error'), debug: print('debug') },
+    ...Object.fromEntries(goalNames.map(n => [n, goals[n]])),
+    ...primitives
+  }
+  return vm.createContext(sandbox, { name: 'agent', codeGeneration: { strings: false, wasm: false } })
+}
+
+function safeString (v) {
+  try { return JSON.stringify(v) ?? String(v) } catch (_) { return String(v) }
+}
+
+// Compile and start the code; returns the promise of its completion. Throws SyntaxError or the
+// vm timeout synchronously.
+function execute (context, code) {
+  const script = new vm.Script(`(async () => {\n${code}\n})()`, { filename: FILENAME, lineOffset: -1 })
+  return script.runInContext(context, { timeout: SYNC_TIMEOUT_MS, breakOnSigint: false })
+}
+
+// An error message that points at the line of the agent's code.
+function describeError (err, code) {
+  let text
+  if (err && typeof err === 'object' && 'message' in err) text = `${err.name || 'Error'}: ${err.message}`
+  else text = `Error: ${safeString(err)}`
+  if (/Script execution timed out/.test(text)) {
+    return `Error: the code ran for more than ${SYNC_TIMEOUT_MS / 1000} s without pausing (an endless loop?) and was stopped`
+  }
+  const stack = err && typeof err === 'object' && typeof err.stack === 'string' ? err.stack : ''
+  const m = stack.match(new RegExp(FILENAME.replace('.', '\\.') + ':(\\d+)'))
+  if (m) {
+    const lines = code.split('\n')
+    const n = Number(m[1])
+    if (n >= 1 && n <= lines.length) text += `\nat line ${n}: ${lines[n - 1].trim()}`
+  }
+  return text
+}
+
+module.exports = { harden, createContext, execute, describeError, defaultMovements, SYNC_TIMEOUT_MS }
