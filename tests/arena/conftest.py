@@ -50,8 +50,9 @@ class Area:
         await self.arena.request("set_inventory", player=bot.username, items=items or {})
         await self.arena.request("teleport", player=bot.username, pos=self.at(dx + 0.5, 4, dz + 0.5))
         await bot.eval(
-            "for (let i = 0; i < 100; i++) { const b = bot.blockAt(bot.entity.position.offset(0, -1, 0));"
-            " if (b && b.name !== 'air' && bot.entity.position.distanceTo(new Vec3(%f, 4, %f)) < 1) break; await sleep(50) }"
+            "for (let i = 0; ; i++) { const b = bot.blockAt(bot.entity.position.offset(0, -1, 0));"
+            " if (b && b.name !== 'air' && bot.entity.position.distanceTo(new Vec3(%f, 4, %f)) < 1) return;"
+            " if (i > 100) throw new Error('no ground after teleport: ' + bot.entity.position); await sleep(50) }"
             % (self.x0 + dx + 0.5, dz + 0.5)
         )
 

@@ -35,6 +35,7 @@ bot.once('spawn', () => {
   })
   rl.on('close', () => { bot.quit(); setTimeout(() => process.exit(0), 200) })
 })
+process.on('unhandledRejection', (err) => out({ event: 'unhandled', error: String(err) }))
 bot.on('kicked', (reason) => { out({ event: 'kicked', reason: String(reason) }); process.exit(3) })
 bot.on('error', (err) => out({ event: 'error', error: String(err) }))
 bot.on('end', (reason) => { out({ event: 'end', reason: String(reason) }); process.exit(0) })

@@ -2,6 +2,7 @@
 // Teleports that stick.
 // - Until the client confirms a teleport, its movement packets (sent from the old position) are
 //   ignored; flying-squid applied them and snapped the player back.
+// - the chunks around the destination are sent even when an earlier chunk send was under way;
 // - flying-squid re-sends the login position once the client has loaded its chunks, which undid
 //   a teleport made right after spawning; after a teleport that re-send keeps the current position.
 module.exports.server = function (serv) {
@@ -10,6 +11,7 @@ module.exports.server = function (serv) {
     player.pbTeleported = true
     await player.sendPosition(pos, false, true) // moves the entity and tells the others
     player.position = pos
+    player.updateAndSpawn() // who sees whom: flying-squid ran it before the position changed
     player._client.write('position', {
       x: pos.x, y: pos.y, z: pos.z,
       yaw: yaw ?? player.yaw * 360 / 256,
@@ -17,6 +19,9 @@ module.exports.server = function (serv) {
       flags: 0,
       teleportId: 1
     })
+    // flying-squid sends the chunks of a new place only if it is not busy sending others; make sure.
+    for (let i = 0; i < 150 && player.sendingChunks; i++) await new Promise(resolve => setTimeout(resolve, 20))
+    if (player.lastPositionChunkUpdated !== pos) await player.worldSendRestOfChunks()
   }
 }
 

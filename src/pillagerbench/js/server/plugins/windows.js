@@ -51,8 +51,8 @@ module.exports.server = function (serv) {
     const c = player.pbContainer
     if (!c) return
     player.pbContainer = null
+    pushInventory(player, c.w) // first: onClose may return grid items into the real inventory
     c.spec.onClose?.(c.w, player)
-    pushInventory(player, c.w)
     if (c.w.selectedItem) returnCursor(player, c.w)
   }
   serv.pb.closeContainer = closeContainer
