@@ -39,6 +39,7 @@ function main () {
     cropGrowthChance: settings.cropGrowthChance
   })
   serv.pb.tps = 20
+  serv.pb.operators = settings.operators || []
   serv.on('error', (err) => log('[server] error', err && err.stack ? err.stack : err))
   process.on('uncaughtException', (err) => log('[server] uncaught', err && err.stack ? err.stack : err))
   process.on('unhandledRejection', (err) => log('[server] unhandled rejection', err && err.stack ? err.stack : err))

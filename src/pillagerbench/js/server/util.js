@@ -94,3 +94,10 @@ function seededRandom (seed) {
   }
 }
 module.exports.seededRandom = seededRandom
+
+// A count drawn uniformly from [lo, hi], negative results meaning none (vanilla's way of giving
+// mushroom blocks 0-2 mushrooms, 0 with probability 7/9).
+function rollCount ([lo, hi], random = Math.random) {
+  return Math.max(0, lo + Math.floor(random() * (hi - lo + 1)))
+}
+module.exports.rollCount = rollCount

@@ -3,11 +3,11 @@
 // rule drop their loot-table items once, as flying-squid does. Reports every dug block.
 const { Vec3 } = require('vec3')
 const { BLOCK_DROPS, GROWTH } = require('../tables')
-const { seededRandom } = require('../util')
+const { seededRandom, rollCount } = require('../util')
 
 module.exports.server = function (serv) {
   const reg = serv.registry
-  serv.pb.rollCount = ([lo, hi]) => Math.max(0, lo + Math.floor(serv.pb.random() * (hi - lo + 1)))
+  serv.pb.rollCount = (range) => rollCount(range, serv.pb.random)
   serv.pb.random = Math.random
   serv.pb.seedRandom = (seed) => { serv.pb.random = seededRandom(seed) }
 

@@ -17,6 +17,7 @@ module.exports.server = function (serv) {
     summon: (name, pos) => {
       if (!MOBS[name]) throw new ControlError(`unknown mob '${name}' (valid: ${Object.keys(MOBS).join(', ')})`)
       const mob = serv.spawnMob(reg.entitiesByName[name].id, serv.overworld, pos, { velocity: new Vec3(0, 0, 0) })
+      farmAnimal(mob)
       return mob.id
     },
     list: () => Object.values(serv.entities).filter(e => e.type === 'mob' && !e.dead)
@@ -37,7 +38,12 @@ module.exports.server = function (serv) {
       const c = (v) => Math.max(-MAX_SPEED, Math.min(MAX_SPEED, v))
       return send(new Vec3(c(vel.x), c(vel.y), c(vel.z)), maxVel)
     }
-    if (e.type !== 'mob' || !MOBS[e.name]) return
+  })
+
+  // Our animals stand still (no mob AI; flying-squid's physics lifted them off the ground), have
+  // their real health and die into their loot.
+  function farmAnimal (e) {
+    e.velocity = null
     e.health = MOBS[e.name].health
     e.takeDamage = serv.guarded('mob damage', ({ damage = 1, attacker } = {}) => {
       if (e.dead) return
@@ -56,7 +62,7 @@ module.exports.server = function (serv) {
       })
       setTimeout(() => serv.destroyEntity(e), 800)
     })
-  })
+  }
 
   serv.on('tick', serv.guarded('egg farms', (delta, tick) => {
     for (const farm of eggFarms) {

@@ -1,0 +1,76 @@
+"""Farm animals: killing for loot without kicking anyone, milking, egg farms."""
+
+from __future__ import annotations
+
+import asyncio
+
+from tests.arena.conftest import count
+
+ATTACK = """
+const mob = bot.nearestEntity(e => e.name === '%s')
+if (!mob) throw new Error('no %s in sight')
+await bot.equip(mcData.itemsByName['%s'].id, 'hand')
+for (let i = 0; i < 20 && bot.entities[mob.id]; i++) { await bot.lookAt(mob.position.offset(0, 0.5, 0), true); bot.attack(mob); await sleep(150) }
+await sleep(1200)
+return !bot.entities[mob.id]
+"""
+
+
+async def wait_mob(bot, name):
+    await bot.eval("for (let i = 0; i < 60 && !bot.nearestEntity(e => e.name === '%s'); i++) await sleep(50)" % name)
+
+
+async def test_kill_cow_and_chicken_for_loot_and_nobody_is_kicked(arena, bots, area):
+    alice, bob = bots
+    await area.put(alice, 2, 2, {"iron_sword": 1})
+    await area.put(bob, 2, 5)
+    await arena.request("summon", mob="cow", pos=area.at(3.5, 4, 2.5))
+    await wait_mob(alice, "cow")
+    q = arena.control.subscribe()
+    try:
+        assert await alice.eval(ATTACK % ("cow", "cow", "iron_sword")) is True
+        await arena.request("summon", mob="chicken", pos=area.at(2.5, 4, 3.5))
+        await wait_mob(alice, "chicken")
+        assert await alice.eval(ATTACK % ("chicken", "chicken", "iron_sword")) is True
+        await asyncio.sleep(0.3)
+        kills = [e for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "mob_killed"]
+    finally:
+        arena.control.unsubscribe(q)
+    assert [k["mob"] for k in kills] == ["cow", "chicken"]
+    assert all(k["player"] == "alice" for k in kills)
+    ground = {}
+    for i in await arena.request("items"):
+        ground[i["item"]] = ground.get(i["item"], 0) + i["count"]
+    beef = await count(arena, "alice", "beef") + await count(arena, "bob", "beef") + ground.get("beef", 0)
+    chicken = await count(arena, "alice", "chicken") + await count(arena, "bob", "chicken") + ground.get("chicken", 0)
+    assert 1 <= beef <= 3
+    assert chicken == 1
+    assert not alice.kicked and not bob.kicked
+    assert not any(m["name"] in ("cow", "chicken") and abs(m["pos"][0] - area.x0) < 16 for m in await arena.request("mobs"))
+
+
+async def test_milk_a_cow_with_a_bucket(arena, bots, area):
+    alice, _ = bots
+    await area.put(alice, 2, 2, {"bucket": 2})
+    await arena.request("summon", mob="cow", pos=area.at(3.5, 4, 2.5))
+    await wait_mob(alice, "cow")
+    await alice.eval("""
+        await bot.equip(mcData.itemsByName.bucket.id, 'hand')
+        const cow = bot.nearestEntity(e => e.name === 'cow')
+        await bot.activateEntity(cow)
+        await sleep(400)
+    """)
+    assert await count(arena, "alice", "milk_bucket") == 1
+    assert await count(arena, "alice", "bucket") == 1
+
+
+async def test_egg_farm_fills_its_chest_only_while_a_chicken_lives_nearby(arena, area):
+    with_chicken, without = area.at(2, 4, 2), area.at(12, 4, 12)
+    await arena.request("set_blocks", blocks=[[*with_chicken, "chest"], [*without, "chest"]])
+    await arena.request("summon", mob="chicken", pos=area.at(3.5, 4, 3.5))
+    await arena.request("egg_farm", chest=with_chicken, interval_s=0.25)
+    await arena.request("egg_farm", chest=without, interval_s=0.25, radius=2)
+    await asyncio.sleep(1.5)
+    eggs = (await arena.request("get_chest", pos=with_chicken)).get("egg", 0)
+    assert 3 <= eggs <= 7
+    assert await arena.request("get_chest", pos=without) == {}
