@@ -238,7 +238,9 @@ class Player:
         except (ConnectionResetError, BrokenPipeError) as exc:
             raise PlayerError(f"{self.name}: bot process is not running ({exc})") from None
 
-    async def _request(self, op: str, timeout: float = 10.0, **args: Any) -> Any:
+    async def _request(self, op: str, wait: float = 10.0, **args: Any) -> Any:
+        """Send request `op` with `args`; wait up to `wait` seconds for the answer."""
+        timeout = wait
         rid = next(self._ids)
         fut = asyncio.get_running_loop().create_future()
         self._pending[rid] = fut
@@ -339,8 +341,15 @@ class Player:
             return
         await self.server.request("set_inventory", player=self.name, items=snapshot["items"])
         if snapshot["pos"]:
-            await self.server.request("teleport", player=self.name, pos=snapshot["pos"])
-            await self._request("settle", pos=snapshot["pos"], timeout=5)
+            await self._teleport(snapshot["pos"])
+
+    async def _teleport(self, pos: list[float]) -> None:
+        for attempt in range(3):
+            await self.server.request("teleport", player=self.name, pos=pos)
+            settled = await self._request("settle", pos=pos, timeout=3, wait=6)
+            if settled is True:
+                return
+        raise PlayerError(f"{self.name}: teleport to {pos} did not arrive (bot at {settled})")
 
     # ---- the API ------------------------------------------------------------------------------
     async def run(self, code: str, *, timeout: float | None = None,
@@ -407,12 +416,10 @@ class Player:
                     items[name] = items.get(name, 0) + 1
                 await self.server.request("set_inventory", player=self.name, items=items)
             if position is not None:
-                pos = _centred(position)
-                await self.server.request("teleport", player=self.name, pos=pos)
-                await self._request("settle", pos=pos, timeout=5)
+                await self._teleport(_centred(position))
             if equipment is not None:
                 await self._wait_inventory(inventory or {}, equipment)
-                await self._request("equip", equipment=equipment, timeout=10)
+                await self._request("equip", equipment=equipment, wait=15)
             await self._request("clear")
             return await self.observe()
 

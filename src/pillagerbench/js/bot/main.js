@@ -191,7 +191,8 @@ const OPS = {
       if ((!target || here.distanceTo(target) < 1.5) && below) return true
       await bot.waitForTicks(1)
     }
-    return false
+    const p = bot.entity.position
+    return { x: p.x, y: p.y, z: p.z }
   }
 }
 

@@ -24,6 +24,10 @@ class Observer {
     this.chests = new Map() // "(x, y, z)" -> {item: count} | "Unknown" | "Invalid"
     this.runStartTick = 0
     this.ticks = 0
+    // Mobs the server reported dead (it does not always destroy them for every client).
+    this.dead = new Set()
+    bot.on('entityDead', (e) => { if (e.type !== 'player') this.dead.add(e.id) })
+    bot.on('entityGone', (e) => this.dead.delete(e.id))
     bot.on('physicsTick', () => {
       this.ticks++
       if (this.ticks % 100 === 0) this.sample()
@@ -85,7 +89,7 @@ class Observer {
     const entities = {}
     if (e) {
       for (const other of Object.values(bot.entities)) {
-        if (other === e || other.type === 'player' || other.name === 'item' || !other.name) continue
+        if (other === e || other.type === 'player' || other.name === 'item' || !other.name || this.dead.has(other.id)) continue
         const d = other.position.distanceTo(pos)
         if (d < 32 && (entities[other.name] === undefined || d < entities[other.name])) entities[other.name] = d
       }

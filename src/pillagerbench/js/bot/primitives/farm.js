@@ -133,7 +133,7 @@ module.exports = {
     }
 
     async function milkCow (_bot) {
-      const cow = bot.nearestEntity(e => e.name === 'cow' && e.position.distanceTo(bot.entity.position) < 48)
+      const cow = bot.nearestEntity(e => e.name === 'cow' && !ctx.observer.dead.has(e.id) && e.position.distanceTo(bot.entity.position) < 48)
       if (!cow) { ctx.chat('No cow nearby, please explore first'); run.fail('farm', TOO_MANY); return false }
       if (!h.findItem('bucket')) { ctx.chat('No bucket in inventory.'); run.fail('farm', TOO_MANY); return false }
       if (bot.entity.position.distanceTo(cow.position) > 3) await h.goto(new goals.GoalFollow(cow, 2))

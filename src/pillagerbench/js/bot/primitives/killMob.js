@@ -12,8 +12,9 @@ module.exports = {
     async function killMob (_bot, mobName, timeout = 300) {
       checkString(mobName, 'mobName for killMob')
       checkNumber(timeout, 'timeout for killMob')
-      const target = bot.nearestEntity(e => e.name === mobName && e !== bot.entity &&
-        e.position.distanceTo(bot.entity.position) < 48)
+      const dead = ctx.observer.dead
+      const target = bot.nearestEntity(e => (mobName === 'player' ? e.type === 'player' : e.name === mobName) &&
+        e !== bot.entity && !dead.has(e.id) && e.position.distanceTo(bot.entity.position) < 48)
       if (!target) {
         ctx.chat(`No ${mobName} nearby, please explore first`)
         run.fail('killMob', TOO_MANY)
@@ -21,7 +22,7 @@ module.exports = {
       }
       const deadline = Date.now() + timeout * 1000
       let lastPos = target.position.clone()
-      const gone = () => !bot.entities[target.id] || target.isValid === false
+      const gone = () => !bot.entities[target.id] || target.isValid === false || dead.has(target.id)
       while (!gone()) {
         if (Date.now() > deadline) throw new Error(`Failed to kill ${mobName}.`)
         lastPos = target.position.clone()
@@ -35,7 +36,9 @@ module.exports = {
         bot.attack(target)
         await h.waitTicks(10)
       }
-      await h.collectDrops(lastPos, { radius: 4, waitTicks: 20 })
+      // Drops appear where it died and can be picked up after half a second: stand there meanwhile.
+      await h.goto(h.near(new ctx.Vec3(lastPos.x, bot.entity.position.y, lastPos.z), 1))
+      await h.collectDrops(lastPos, { radius: 4, waitTicks: 12 })
       ctx.chat(`Killed ${mobName}!`)
       ctx.save(`${mobName}_killed`)
     }

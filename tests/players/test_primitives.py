@@ -1,0 +1,197 @@
+"""Every control primitive against the real server, in the situations the scenarios use.
+
+Assertions read the server's own state (inventory, blocks, chests) through the control channel.
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+from pillagerbench.players.events import chats_by, errors, last_observation, saves
+from tests.players.conftest import count
+
+
+async def test_mine_slime_and_mushroom_blocks(server, area, make_player):
+    await server.request("seed", seed=7)
+    # a slime plus and a red mushroom (2-high stem, 5 cap blocks) as in Mushroom War
+    await area.blocks(*[(4 + dx, 4, dz, "slime_block") for dx, dz in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)]])
+    stem = [(8, 4, 4, "mushroom_stem"), (8, 5, 4, "mushroom_stem")]
+    cap = [(8 + dx, 5, 4 + dz, "red_mushroom_block") for dx, dz in [(1, 0), (-1, 0), (0, 1), (0, -1)]] + [(8, 6, 4, "red_mushroom_block")]
+    await area.blocks(*stem, *cap)
+    p = await make_player(area, 0, 0)
+    events = await p.run("await mineBlock(bot, 'slime_block', 5)\nawait mineBlock(bot, 'red_mushroom_block', 5)")
+    assert errors(events) == []
+    said = chats_by(events, p.name)
+    assert "Mined 5 slime_block" in said and "Mined 5 red_mushroom_block" in said
+    assert saves(events) == ["slime_block_mined", "red_mushroom_block_mined"]
+    assert await count(server, p.name, "slime_block") == 5
+    for b in cap:
+        assert (await server.request("get_block", pos=area.at(*b[:3])))["name"] == "air"
+    assert (await server.request("get_block", pos=area.at(8, 4, 4)))["name"] == "mushroom_stem"
+    obs = last_observation(events)
+    assert obs["inventory"].get("slime_block") == 5
+    assert obs["inventory"].get("red_mushroom", 0) == await count(server, p.name, "red_mushroom")
+
+
+async def test_mine_block_missing_counts_failures(server, area, make_player):
+    p = await make_player(area)
+    events = await p.run("for (let i = 0; i < 12; i++) await mineBlock(bot, 'diamond_ore', 1)")
+    assert chats_by(events, p.name).count("No diamond_ore nearby, please explore first") == 11
+    assert any("mineBlock failed too many times" in e and "at line 1" in e for e in errors(events))
+    events = await p.run("await mineBlock(bot, 'no_such_block')\n")
+    assert errors(events) and "No block named no_such_block" in errors(events)[0]
+
+
+async def test_place_item(server, area, make_player):
+    p = await make_player(area, 0, 0, {"slime_block": 2})
+    target = area.at(2, 4, 1)
+    events = await p.run(f"await placeItem(bot, 'slime_block', new Vec3({target[0]}, 4, 1))\n"
+                         "await placeItem(bot, 'slime_block', new Vec3(%d, 9, 1))" % target[0])
+    assert (await server.request("get_block", pos=target))["name"] == "slime_block"
+    said = chats_by(events, p.name)
+    assert "Placed slime_block" in said
+    assert "No block to place slime_block on. You cannot place a floating block." in said
+    assert await count(server, p.name, "slime_block") == 1
+    assert saves(events) == ["slime_block_placed"]
+
+
+async def test_craft_bread_and_cake(server, area, make_player):
+    await area.blocks((2, 4, 2, "crafting_table"))
+    p = await make_player(area, 0, 0, {"wheat": 9, "milk_bucket": 3, "sugar": 2, "egg": 1})
+    events = await p.run("await craftItem(bot, 'bread', 2)\nawait craftItem(bot, 'cake', 1)\nawait craftItem(bot, 'bread', 5)")
+    said = chats_by(events, p.name)
+    assert "I can make bread" in said and "I did the recipe for bread 2 times" in said
+    assert "I did the recipe for cake 1 times" in said
+    assert "I cannot make bread because I need: 3 more wheat" in said
+    assert await count(server, p.name, "bread") == 2
+    assert await count(server, p.name, "cake") == 1
+    assert await count(server, p.name, "bucket") == 3
+    assert await count(server, p.name, "wheat") == 0
+
+
+async def test_smelt_potato(server, area, make_player):
+    await area.blocks((2, 4, 0, "furnace"))
+    p = await make_player(area, 0, 0, {"potato": 1, "coal": 1})
+    events = await p.run("await smeltItem(bot, 'potato', 'coal', 1)")
+    assert errors(events) == []
+    assert "Smelted 1 potato." in chats_by(events, p.name)
+    assert await count(server, p.name, "baked_potato") == 1
+    assert await count(server, p.name, "potato") == 0
+
+
+async def test_chest_take_eggs_deposit_and_check(server, area, make_player):
+    chest = area.at(3, 4, 0)
+    await area.blocks((3, 4, 0, "chest"))
+    await server.request("set_chest", pos=chest, items={"egg": 5, "bucket": 2})
+    p = await make_player(area, 0, 0, {"bowl": 3})
+    v = f"new Vec3({chest[0]}, 4, 0)"
+    events = await p.run(f"await getItemFromChest(bot, {v}, {{egg: 2, sugar: 1}})\n"
+                         f"await depositItemIntoChest(bot, {v}, {{bowl: 3}})\n"
+                         f"const c = await checkItemInsideChest(bot, {v})\n"
+                         "if (c.bowl !== 3) throw new Error('bad contents ' + JSON.stringify(c))")
+    assert errors(events) == []
+    assert "I don't see sugar in this chest" in chats_by(events, p.name)
+    assert await count(server, p.name, "egg") == 2
+    assert await server.request("get_chest", pos=chest) == {"egg": 3, "bucket": 2, "bowl": 3}
+    chests = last_observation(events)["nearbyChests"]
+    assert chests[f"({chest[0]}, 4, 0)"] == {"egg": 3, "bucket": 2, "bowl": 3}
+    events = await p.run(f"await getItemFromChest(bot, new Vec3({chest[0]}, 4, 5), {{egg: 1}})")
+    assert "No chest at" in errors(events)[0]
+    assert last_observation(events)["nearbyChests"][f"({chest[0]}, 4, 5)"] == "Invalid"
+
+
+async def test_harvest_and_replant_wheat(server, area, make_player):
+    plots = [(4 + i, 3, 0) for i in range(3)]
+    await area.blocks(*[(x, y, z, "farmland") for x, y, z in plots])
+    await area.blocks(*[(x, 4, z, "wheat", {"age": 7}) for x, y, z in plots])
+    await area.blocks((8, 3, 0, "farmland"), (8, 4, 0, "wheat", {"age": 3}))  # not ripe: stays
+    p = await make_player(area, 0, 0, {"wheat_seeds": 5})
+    events = await p.run(f"await harvestWheat(bot, new Vec3({area.x0 + 5}, 4, 0))\nawait plantWheatSeeds(bot)")
+    assert errors(events) == []
+    said = chats_by(events, p.name)
+    assert "Harvesting wheat" in said and "Harvested 3 wheat" in said
+    assert "All available land has been planted with wheat_seeds." in said
+    assert await count(server, p.name, "wheat") == 3
+    for x, _, z in plots:
+        b = await server.request("get_block", pos=area.at(x, 4, z))
+        assert b["name"] == "wheat" and int(b["properties"]["age"]) == 0, b
+    young = await server.request("get_block", pos=area.at(8, 4, 0))
+    assert int(young["properties"]["age"]) == 3
+
+
+async def test_till_and_plant_potatoes(server, area, make_player):
+    await area.blocks((4, 3, 0, "dirt"), (5, 3, 0, "dirt"))
+    p = await make_player(area, 0, 0, {"wooden_hoe": 1, "potato": 1})
+    events = await p.run("await tillLand(bot, ['dirt'])\nawait plantPotatoes(bot)")
+    assert errors(events) == []
+    assert "All available land has been tilled." in chats_by(events, p.name)
+    names = {(await server.request("get_block", pos=area.at(x, 3, 0)))["name"] for x in (4, 5)}
+    assert names == {"farmland"}
+    assert await count(server, p.name, "potato") == 0
+    planted = [(await server.request("get_block", pos=area.at(x, 4, 0)))["name"] for x in (4, 5)]
+    assert planted.count("potatoes") == 1
+
+
+async def test_milk_cow(server, area, make_player):
+    await server.request("summon", mob="cow", pos=area.at(5.5, 4, 0.5))
+    p = await make_player(area, 0, 0, {"bucket": 1})
+    events = await p.run("await milkCow(bot)")
+    assert errors(events) == []
+    assert "Milked cow" in chats_by(events, p.name)
+    assert await count(server, p.name, "milk_bucket") == 1
+    assert await count(server, p.name, "bucket") == 0
+    assert "cow" in last_observation(events)["status"]["entities"]
+
+
+async def test_kill_mob(server, area, make_player):
+    await server.request("seed", seed=3)
+    mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
+    p = await make_player(area, 0, 0, {"wooden_sword": 1})
+    events = await p.run("await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)")
+    assert errors(events) == []
+    assert "Killed chicken!" in chats_by(events, p.name)
+    assert saves(events) == ["chicken_killed"]
+    assert mob not in [m["id"] for m in await server.request("mobs")]
+    assert await count(server, p.name, "chicken") == 1
+
+
+async def test_give_food_to_another_player(server, area, make_player):
+    giver = await make_player(area, 0, 0, {"bread": 3})
+    taker = await make_player(area, 4, 3, {})
+    events = await giver.run(f"return await giveToPlayer(bot, 'bread', '{taker.name}', 2)")
+    assert errors(events) == []
+    assert f"Gave 2 bread to {taker.name}" in chats_by(events, giver.name)
+    for _ in range(50):
+        if await count(server, taker.name, "bread") == 2:
+            break
+        await asyncio.sleep(0.1)
+    assert await count(server, taker.name, "bread") == 2
+    assert await count(server, giver.name, "bread") == 1
+    events = await giver.run("await giveToPlayer(bot, 'cake', 'Nobody', 1)")
+    assert "Could not find Nobody." in errors(events)[0]
+
+
+async def test_signals_between_two_players(server, area, make_player):
+    a = await make_player(area, 0, 0)
+    b = await make_player(area, 2, 0)
+    waiting = asyncio.create_task(a.run("const got = await waitSignal(bot, null, 10000)\nif (!got) throw new Error('no signal')"))
+    await asyncio.sleep(0.5)
+    sent = await b.run(f"await sendSignal(bot, '{a.name}')")
+    events = await asyncio.wait_for(waiting, 12)
+    assert errors(events) == []
+    said = chats_by(events, a.name)
+    assert said[0] == "[waiting signal]" and "[signal recieved]" in said
+    assert f"[{a.name} signal]" in chats_by(sent, b.name)
+    events = await a.run("return await waitSignal(bot, null, 300)")
+    assert "[signal timeout]" in chats_by(events, a.name)
+
+
+async def test_explore_until(server, area, make_player):
+    p = await make_player(area, 0, 0)
+    x_goal = area.x0 + 4
+    events = await p.run(f"const r = await exploreUntil(bot, new Vec3(1, 0, 0), 20, () => bot.entity.position.x > {x_goal})\n"
+                         "if (!r) throw new Error('did not get there')")
+    assert errors(events) == []
+    assert "Explore success." in chats_by(events, p.name)
+    events = await p.run("await exploreUntil(bot, new Vec3(0, 0, 1), 0.5, () => false)")
+    assert "Max exploration time reached" in chats_by(events, p.name)

@@ -1,0 +1,155 @@
+"""Bad agent code: each case gives a clear onError (or a refusal from the server), never a crash of
+the benchmark, a lost event, or an effect on another player."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+
+import pytest
+
+from pillagerbench.players.events import chat_log, chats_by, errors, last_observation
+from tests.players.conftest import count
+
+
+@pytest.fixture
+async def pair(server, area, make_player):
+    """A player for the bad code and a bystander running ordinary code at the same time."""
+    bad = await make_player(area, 0, 0, {"bread": 1})
+    other = await make_player(area, 6, 0, {"bread": 5})
+    return bad, other
+
+
+async def _bystander_ok(other):
+    events = await other.run("bot.chat('still here'); return 1")
+    assert errors(events) == []
+    assert "still here" in chats_by(events, other.name)
+
+
+async def test_syntax_error_points_at_line(pair):
+    bad, other = pair
+    events = await bad.run("const a = 1\nconst b = ;\n")
+    assert events[-1][0] == "observe"
+    (err,) = errors(events)
+    assert err.startswith("SyntaxError") and "at line 2: const b = ;" in err
+    await _bystander_ok(other)
+
+
+async def test_thrown_exception_points_at_line(pair):
+    bad, _ = pair
+    events = await bad.run("async function f() {\n  throw new Error('boom')\n}\nawait f()")
+    (err,) = errors(events)
+    assert err == "Error: boom\nat line 2: throw new Error('boom')"
+    events = await bad.run("throw 'a string'")
+    assert errors(events) == ['Error: "a string"']
+
+
+async def test_sync_endless_loop_is_stopped_without_restart(pair):
+    bad, other = pair
+    t0 = time.perf_counter()
+    events = await bad.run("let i = 0\nwhile (true) { i++ }")
+    assert time.perf_counter() - t0 < 3
+    assert "endless loop" in errors(events)[0]
+    assert bad.restarts == 0
+    await _bystander_ok(other)
+
+
+async def test_async_endless_loop_restarts_the_bot(server, pair):
+    bad, other = pair
+    before = await count(server, bad.name, "bread")
+    other_run = asyncio.create_task(other.run("await bot.waitForTicks(40); bot.chat('done waiting')"))
+    t0 = time.perf_counter()
+    events = await bad.run("await bot.waitForTicks(1)\nwhile (true) {}")
+    took = time.perf_counter() - t0
+    assert took < 6, took
+    assert bad.restarts == 1 and bad.alive
+    assert "blocked the bot" in errors(events)[0]
+    assert events[-1][0] == "observe"
+    assert await count(server, bad.name, "bread") == before  # state restored after the restart
+    other_events = await other_run
+    assert errors(other_events) == [] and "done waiting" in chats_by(other_events, other.name)
+    events = await bad.run("bot.chat('back again')")  # the player works after the restart
+    assert "back again" in chats_by(events, bad.name)
+    events = await bad.run("while (true) { await Promise.resolve() }")  # microtask loop
+    assert "blocked the bot" in errors(events)[0] and bad.restarts == 2
+
+
+async def test_unhandled_rejection(pair):
+    bad, _ = pair
+    events = await bad.run("Promise.reject(new Error('lost promise'))\nawait bot.waitForTicks(5)")
+    assert any("lost promise" in e for e in errors(events))
+    events = await bad.run("setTimeout(() => { throw new Error('in a timer') }, 10)\nawait bot.waitForTicks(10)")
+    assert any("in a timer" in e for e in errors(events))
+
+
+@pytest.mark.parametrize("code, expected", [
+    ("require('fs')", "ReferenceError: require is not defined"),
+    ("process.exit(1)", "ReferenceError: process is not defined"),
+    ("bot.constructor.constructor('return process')().exit(1)", "EvalError"),
+    ("bot.chat.constructor('return process')().exit(1)", "EvalError"),
+    ("this.constructor.constructor('return process')()", "EvalError"),
+    ("mineBlock.constructor('return process')()", "EvalError"),
+    ("(async () => {}).constructor('return 1')()", "EvalError"),
+    ("eval('1 + 1')", "EvalError"),
+    ("bot.entity.position.constructor.constructor('return process')()", "EvalError"),
+    ("const e = await mineBlock(bot, 'x').catch(e => e)\ne.constructor.constructor('return process')()", "EvalError"),
+    ("bot._client.write('chat', {message: 'raw'})", "TypeError"),
+    ("await import('fs')", "TypeError"),
+])
+async def test_escape_attempts(pair, code, expected):
+    bad, other = pair
+    events = await bad.run(code)
+    errs = errors(events)
+    assert errs and errs[0].startswith(expected), errs
+    assert bad.restarts == 0 and bad.alive
+
+
+async def test_process_exit_through_host_object_is_contained(pair):
+    """Even if something reached the host realm and ended the process, the run reports it and the
+    player comes back."""
+    bad, other = pair
+    events = await bad.run("const e = new Error('x'); Object.getPrototypeOf(e)")  # harmless, stays a context object
+    assert errors(events) == []
+    await _bystander_ok(other)
+
+
+async def test_memory_bomb(pair):
+    bad, other = pair
+    events = await bad.run("const a = []\nwhile (true) a.push(new Array(1e6).fill(1.5))")
+    errs = errors(events)
+    assert errs, events
+    assert "memory" in errs[0] or "endless loop" in errs[0] or "blocked the bot" in errs[0]
+    assert bad.alive
+    events = await bad.run("'x'.repeat(2 ** 30)")
+    assert "Invalid string length" in errors(events)[0]
+    await _bystander_ok(other)
+
+
+async def test_chat_commands_are_refused(server, pair):
+    bad, other = pair
+    events = await bad.run(f"bot.chat('/give {bad.name} diamond 64')\nbot.chat('/tp {other.name} 0 100 0')\nawait bot.waitForTicks(10)")
+    lines = chat_log(events)
+    assert any("/give refused" in line for line in lines), lines
+    assert any("/tp refused" in line for line in lines), lines
+    assert await count(server, bad.name, "diamond") == 0
+    pos = last_observation(await other.observe())["status"]["position"]
+    assert pos["y"] < 10
+
+
+async def test_chat_rate_limit(pair):
+    bad, other = pair
+    events = await bad.run("for (let i = 0; i < 30; i++) bot.chat('spam ' + i)")
+    (err,) = errors(events)
+    assert "Too many chats in short succession" in err and "at line 1" in err
+    said = chats_by(events, bad.name)
+    assert said == [f"spam {i}" for i in range(25)]  # every chat that went out comes back as an event
+    await _bystander_ok(other)
+
+
+async def test_timers_and_listeners_end_with_the_run(pair):
+    bad, _ = pair
+    events = await bad.run("setInterval(() => bot.chat('tick'), 100)\nbot.on('chat', () => bot.chat('echo'))\nreturn 1")
+    assert errors(events) == []
+    await asyncio.sleep(0.6)
+    events = await bad.run("await bot.waitForTicks(4)")
+    assert "tick" not in chats_by(events, bad.name) and "echo" not in chats_by(events, bad.name)
