@@ -33,14 +33,25 @@ class ArenaServerError(RuntimeError):
 
 
 class ArenaServer:
+    @classmethod
+    def from_config(cls, server_cfg, log_path: str | Path | None = None) -> "ArenaServer":
+        """Build from the `server` section of the Hydra config."""
+        log_dir = server_cfg.get("log_dir")
+        return cls(host=server_cfg.host, port=int(server_cfg.port),
+                   log_path=log_path or (Path(log_dir) / "server.log" if log_dir else None),
+                   view_distance=int(server_cfg.view_distance), crop_growth_chance=float(server_cfg.crop_growth_chance),
+                   tps=int(server_cfg.tps), operators=list(server_cfg.operators))
+
     def __init__(self, host: str = "127.0.0.1", port: int = 0, log_path: str | Path | None = None,
-                 view_distance: int = 4, crop_growth_chance: float = 0.2, tps: int = 20):
+                 view_distance: int = 4, crop_growth_chance: float = 0.2, tps: int = 20,
+                 operators: list[str] | None = None):
         self.host = host
         self.requested_port = port
         self.port: int | None = None
         self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
         self.settings = {"host": host, "port": port, "viewDistance": view_distance,
-                         "cropGrowthChance": crop_growth_chance, "tps": tps}
+                         "cropGrowthChance": crop_growth_chance, "tps": tps,
+                         "operators": list(operators or [])}
         self.process: asyncio.subprocess.Process | None = None
         self.control: ControlChannel | None = None
         self.ready_seconds: float | None = None
