@@ -56,6 +56,8 @@ async def make_player(server, tmp_path):
     yield make
     for p in made:
         await p.close()
+    # Mobs left in the world make later logins fail (server bug, see docs/players.md): remove them.
+    await server.request("remove_entities")
 
 
 async def count(server: ArenaServer, player: str, item: str) -> int:

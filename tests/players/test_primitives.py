@@ -133,8 +133,8 @@ async def test_till_and_plant_potatoes(server, area, make_player):
 
 
 async def test_milk_cow(server, area, make_player):
+    p = await make_player(area, 0, 0, {"bucket": 1})  # log in first: see the note in conftest
     await server.request("summon", mob="cow", pos=area.at(5.5, 4, 0.5))
-    p = await make_player(area, 0, 0, {"bucket": 1})
     events = await p.run("await milkCow(bot)")
     assert errors(events) == []
     assert "Milked cow" in chats_by(events, p.name)
@@ -145,8 +145,8 @@ async def test_milk_cow(server, area, make_player):
 
 async def test_kill_mob(server, area, make_player):
     await server.request("seed", seed=3)
-    mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
     p = await make_player(area, 0, 0, {"wooden_sword": 1})
+    mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
     events = await p.run("await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)")
     assert errors(events) == []
     assert "Killed chicken!" in chats_by(events, p.name)

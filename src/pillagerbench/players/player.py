@@ -413,7 +413,8 @@ class Player:
             if inventory is not None or equipment is not None:
                 items = dict(inventory or {})
                 for name in _equipment_names(equipment):
-                    items[name] = items.get(name, 0) + 1
+                    if name not in (inventory or {}):  # equipment not listed in the inventory is extra
+                        items[name] = items.get(name, 0) + 1
                 await self.server.request("set_inventory", player=self.name, items=items)
             if position is not None:
                 await self._teleport(_centred(position))
@@ -426,7 +427,7 @@ class Player:
     async def _wait_inventory(self, inventory: dict[str, int], equipment) -> None:
         want = dict(inventory)
         for name in _equipment_names(equipment):
-            want[name] = want.get(name, 0) + 1
+            want.setdefault(name, 1)
         for _ in range(100):
             inv = (await self._request("observe"))["inventory"]
             if all(inv.get(k, 0) >= v for k, v in want.items()):

@@ -141,7 +141,10 @@ async function doRun (msg) {
     const done = sandbox.execute(context, code)
     await Promise.race([done, run.stopped])
   } catch (err) {
-    if (!isStop(err) && run.active) emit('onError', sandbox.describeError(err, code))
+    if (!isStop(err) && run.active) {
+      await waitEchoes(500) // chats sent before the error come first, as they happened
+      emit('onError', sandbox.describeError(err, code))
+    }
   }
   clearTimeout(timer)
   const stopped = !run.active

@@ -40,10 +40,10 @@ class Observer {
   }
 
   // Every 100 ticks: remember block names seen nearby and chests within 16 blocks.
-  sample () {
+  sample (voxels = null) {
     const bot = this.bot
     if (!bot.entity) return
-    for (const name of this.voxels()) this.blockRecords.add(name)
+    for (const name of (voxels || this.voxels())) this.blockRecords.add(name)
     const chestId = bot.registry.blocksByName.chest.id
     for (const p of bot.findBlocks({ matching: chestId, maxDistance: 16, count: 64 })) {
       const key = p.toString()
@@ -103,8 +103,8 @@ class Observer {
     return {
       health: bot.health,
       food: bot.food,
-      saturation: bot.foodSaturation ?? 5,
-      oxygen: bot.oxygenLevel,
+      saturation: Number.isFinite(bot.foodSaturation) ? bot.foodSaturation : 5,
+      oxygen: Number.isFinite(bot.oxygenLevel) ? bot.oxygenLevel : 20,
       position: vec(pos),
       velocity: e ? vec(e.velocity) : { x: 0, y: 0, z: 0 },
       yaw: e ? e.yaw : 0,
@@ -128,12 +128,14 @@ class Observer {
 
   // The state part of every event.
   observe () {
+    const voxels = this.voxels()
+    this.sample(voxels)
     const inventory = this.inventory()
     const held = new Set(Object.keys(inventory))
     const chests = {}
     for (const [k, v] of this.chests) chests[k] = v
     return {
-      voxels: this.voxels(),
+      voxels,
       status: this.status(),
       inventory,
       nearbyChests: chests,

@@ -1,0 +1,133 @@
+"""`pillagerbench try scenario=mushroom_war player=Ryn code=FILE.js`: run agent code by hand.
+
+Builds the scenario's arena on a fresh server (a flat arena when the scenario cannot be built),
+logs the player in at its spawn, runs the file as that player's code and prints every event as one
+JSON line as it happens, ending with the `observe` event. Exits 1 (with the error on stderr) when
+the code failed, 2 on bad arguments.
+
+Options (key=value): scenario, player, code (a file, or - for stdin), timeout (seconds, default 120),
+inventory (JSON object, e.g. inventory='{"bread": 2}'), pos (x,y,z), full=true (print every event's
+whole state, not only the final observe), log_dir.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import importlib
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.arena import ArenaServer
+from pillagerbench.players.player import Player, PlayerError
+
+# Fallback spawns (upstream's, y shifted by +64) when the scenario module is not available.
+FALLBACK_SPAWNS: dict[str, dict[str, tuple[float, float, float]]] = {
+    "mushroom_war": {"Ryn": (-7, 4, -10), "Raze": (-11, 4, -10), "Byte": (-11, 4, 6), "Blink": (-7, 4, 6)},
+    "dash_and_dine": {"Ryn": (-5, 4, -10), "Raze": (-5, 4, -8), "Byte": (-5, 4, 6), "Blink": (-5, 4, 8)},
+}
+
+USAGE = "usage: pillagerbench try scenario=mushroom_war player=Ryn code=FILE.js [timeout=120] [inventory='{...}'] [pos=x,y,z] [full=true]"
+
+
+def parse_args(argv: list[str]) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for arg in argv:
+        if "=" not in arg:
+            raise ValueError(f"expected key=value, got {arg!r}")
+        k, v = arg.split("=", 1)
+        out[k.strip().lstrip("+")] = v
+    unknown = set(out) - {"scenario", "player", "code", "timeout", "inventory", "pos", "full", "log_dir"}
+    if unknown:
+        raise ValueError(f"unknown option(s) {', '.join(sorted(unknown))}")
+    if "code" not in out:
+        raise ValueError("code=FILE.js is required")
+    return out
+
+
+def load_scenario(key: str) -> Any | None:
+    """The scenario object if its module exists (duck-typed: arena, all_players(), primitives)."""
+    try:
+        mod = importlib.import_module(f"pillagerbench.scenarios.{key}")
+    except ImportError:
+        return None
+    for obj in vars(mod).values():
+        if isinstance(obj, type) and getattr(obj, "key", None) == key:
+            try:
+                return obj()
+            except TypeError:
+                return None
+    return None
+
+
+async def _main(opts: dict[str, str]) -> int:
+    scenario_key = opts.get("scenario", "mushroom_war")
+    player_name = opts.get("player", "Ryn")
+    code_arg = opts["code"]
+    code = sys.stdin.read() if code_arg == "-" else Path(code_arg).read_text(encoding="utf-8")
+    timeout = float(opts.get("timeout", 120))
+    inventory = json.loads(opts["inventory"]) if "inventory" in opts else {}
+    full = opts.get("full", "false").lower() in ("1", "true", "yes")
+
+    scenario = load_scenario(scenario_key)
+    spawn = None
+    primitives = None
+    if scenario is not None:
+        for spec in scenario.all_players():
+            if spec.name == player_name:
+                spawn = tuple(spec.spawn)
+        primitives = list(getattr(scenario, "primitives", None) or []) or None
+    if spawn is None:
+        spawn = FALLBACK_SPAWNS.get(scenario_key, {}).get(player_name)
+    if "pos" in opts:
+        spawn = tuple(float(v) for v in opts["pos"].split(","))
+    if spawn is None:
+        print(f"pillagerbench try: no player {player_name!r} in scenario {scenario_key!r}; give pos=x,y,z", file=sys.stderr)
+        return 2
+
+    def show(event: list) -> None:
+        kind, data = event
+        line = event if (full or kind == "observe") else [kind, data.get(kind)]
+        print(json.dumps(line), flush=True)
+
+    async with ArenaServer() as server:
+        built = False
+        if scenario is not None:
+            try:
+                await scenario.arena.build(server)
+                built = True
+            except Exception as exc:  # noqa: BLE001 - a flat arena still lets the code run
+                print(f"pillagerbench try: could not build the {scenario_key} arena ({exc}); using a flat arena",
+                      file=sys.stderr)
+        if not built:
+            print(f"pillagerbench try: flat arena ({scenario_key} not built)", file=sys.stderr)
+        player = Player(player_name, server.port, server=server, primitives=primitives,
+                        log_dir=Path(opts["log_dir"]) if "log_dir" in opts else None)
+        try:
+            await player.start()
+            await player.reset(position=spawn, inventory=inventory)
+            events = await player.run(code, timeout=timeout, on_event=show)
+        finally:
+            await player.close()
+    errs = [e[1].get("onError") for e in events if e[0] == "onError"]
+    if errs:
+        print(f"pillagerbench try: the code failed: {errs[0]}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def main(argv: list[str]) -> int:
+    if argv and argv[0] in ("-h", "--help", "help"):
+        print(USAGE + "\n\n" + (__doc__ or ""))
+        return 0
+    try:
+        opts = parse_args(argv)
+    except ValueError as exc:
+        print(f"pillagerbench try: {exc}\n{USAGE}", file=sys.stderr)
+        return 2
+    try:
+        return asyncio.run(_main(opts))
+    except (OSError, json.JSONDecodeError, PlayerError) as exc:
+        print(f"pillagerbench try: {exc}", file=sys.stderr)
+        return 2

@@ -1,0 +1,165 @@
+"""The Player handle: observations, streaming, stop, timeouts, reset, primitive selection, `try`."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import subprocess
+import sys
+import time
+
+from pillagerbench.players import primitives as prim_docs
+from pillagerbench.players.events import chats_by, errors, last_observation, without_state
+
+STATUS_KEYS = {"health", "food", "saturation", "oxygen", "position", "velocity", "yaw", "pitch", "onGround",
+               "equipment", "name", "timeSinceOnGround", "isInWater", "isInLava", "isInWeb",
+               "isCollidedHorizontally", "isCollidedVertically", "biome", "entities", "timeOfDay",
+               "inventoryUsed", "elapsedTime"}
+
+
+async def test_observation_fields(server, area, make_player):
+    await area.blocks((3, 4, 0, "chest"), (2, 4, 2, "slime_block"))
+    p = await make_player(area, 0, 0, {"bread": 3, "iron_helmet": 1})
+    await server.request("summon", mob="pig", pos=area.at(6.5, 4, 3.5))
+    await p.reset(position=area.at(0, 4, 0), inventory={"bread": 3}, equipment=["iron_helmet", None, None, None, "bread", None])
+    events = await p.run("bot.chat('look'); bot.save('saved_it'); await bot.waitForTicks(2)")
+    assert [e[0] for e in events] == ["onSave", "onChat", "observe"]
+    for kind, data in events:
+        assert {"voxels", "status", "inventory", "nearbyChests", "blockRecords"} <= set(data)
+    assert events[0][1]["onSave"] == "saved_it" and events[1][1]["onChat"] == f"<{p.name}> look"
+    obs = last_observation(events)
+    status = obs["status"]
+    assert set(status) == STATUS_KEYS
+    assert status["name"] == p.name and status["health"] == 20
+    assert abs(status["position"]["x"] - (area.x0 + 0.5)) < 0.5 and status["position"]["y"] == 4
+    assert status["equipment"] == ["iron_helmet", None, None, None, "bread", None]
+    assert "pig" in status["entities"] and 5 < status["entities"]["pig"] < 8
+    assert status["timeOfDay"] in {"sunrise", "day", "noon", "sunset", "night", "midnight"}
+    assert status["inventoryUsed"] == 1 and status["elapsedTime"] >= 2
+    assert obs["inventory"] == {"bread": 3}
+    assert "slime_block" in obs["voxels"] and "chest" in obs["voxels"]
+    assert obs["nearbyChests"] == {f"({area.x0 + 3}, 4, 0)": "Unknown"}
+    assert "slime_block" in obs["blockRecords"]
+    assert (await p.observe())[0][0] == "observe"
+
+
+async def test_events_stream_while_code_runs(area, make_player):
+    p = await make_player(area)
+    seen: list[tuple[float, list]] = []
+    t0 = time.perf_counter()
+    events = await p.run("bot.chat('first'); await bot.waitForTicks(20); bot.chat('second')",
+                         on_event=lambda e: seen.append((time.perf_counter() - t0, e)))
+    end = time.perf_counter() - t0
+    first = next(t for t, e in seen if e[0] == "onChat" and e[1]["onChat"].endswith("first"))
+    assert first < end - 0.6  # delivered long before the run ended
+    assert [e for _, e in seen] == events
+
+
+async def test_chat_between_runs_is_delivered_with_the_next_run(server, area, make_player):
+    a = await make_player(area)
+    b = await make_player(area, 3, 0)
+    await b.run("bot.chat('while you were idle')")
+    await server.request("chat", message="Team 0 is clean!")
+    await asyncio.sleep(0.3)
+    events = await a.run("return 1")
+    lines = [e[1]["onChat"] for e in events if e[0] == "onChat"]
+    assert f"<{b.name}> while you were idle" in lines and "Team 0 is clean!" in lines
+    await a.reset()
+    events = await a.run("return 1")
+    assert [e[0] for e in events] == ["observe"]
+
+
+async def test_stop_settles_fast_and_stops_everything(server, area, make_player):
+    await area.blocks(*[(dx, 4, 6, "slime_block") for dx in range(0, 12)])
+    p = await make_player(area, 0, 0, {"wooden_pickaxe": 1})
+    run = asyncio.create_task(p.run(
+        "setInterval(() => bot.chat('tick'), 200)\n"
+        f"await bot.pathfinder.goto(new GoalNear({area.x0 + 60}, 4, 0, 1))"))
+    await asyncio.sleep(1.0)
+    t0 = time.perf_counter()
+    await p.stop()
+    events = await asyncio.wait_for(run, 2)
+    took = time.perf_counter() - t0
+    assert took < 0.5, took
+    assert events[-1][0] == "observe" and errors(events) == []
+    x1 = last_observation(await p.observe())["status"]["position"]["x"]
+    await asyncio.sleep(0.6)
+    obs = last_observation(await p.observe())
+    assert abs(obs["status"]["position"]["x"] - x1) < 0.3  # no longer walking
+    ticks = chats_by(events, p.name).count("tick")
+    events = await p.run("await bot.waitForTicks(10)")
+    assert "tick" not in chats_by(events, p.name)  # the interval died with the run
+    assert ticks >= 1
+    # a primitive in progress is stopped too
+    run = asyncio.create_task(p.run("await mineBlock(bot, 'slime_block', 12)"))
+    await asyncio.sleep(1.5)
+    t0 = time.perf_counter()
+    await p.stop()
+    events = await asyncio.wait_for(run, 2)
+    assert time.perf_counter() - t0 < 0.5
+
+    async def slime_left() -> int:
+        names = [(await server.request("get_block", pos=area.at(dx, 4, 6)))["name"] for dx in range(12)]
+        return names.count("slime_block")
+
+    left = await slime_left()
+    await asyncio.sleep(0.5)
+    assert left == await slime_left() > 0
+
+
+async def test_run_timeout(area, make_player):
+    p = await make_player(area)
+    t0 = time.perf_counter()
+    events = await p.run("await bot.waitForTicks(10000)", timeout=0.5)
+    assert time.perf_counter() - t0 < 1.5
+    assert "Timeout" in errors(events)[0]
+    assert events[-1][0] == "observe"
+
+
+async def test_reset_sets_inventory_and_position(server, area, make_player):
+    p = await make_player(area, 0, 0, {"bread": 1})
+    obs = await p.reset(position=area.at(5, 4, 5), inventory={"egg": 4, "wheat": 2})
+    data = obs[-1][1]
+    assert data["inventory"] == {"egg": 4, "wheat": 2}
+    assert abs(data["status"]["position"]["x"] - (area.x0 + 5.5)) < 0.01
+    assert abs(data["status"]["position"]["z"] - 5.5) < 0.01
+    inv = {s["name"]: s["count"] for s in await server.request("inventory", player=p.name)}
+    assert inv == {"egg": 4, "wheat": 2}
+
+
+async def test_primitive_selection(server, area, make_player):
+    p = await make_player(area, primitives=["mineBlock", "sendSignal"])
+    events = await p.run("if (typeof mineBlock !== 'function' || typeof blockExists !== 'function' ||"
+                         " typeof sendSignal !== 'function') throw new Error('missing')\n"
+                         "craftItem(bot, 'bread', 1)")
+    assert errors(events) == ["ReferenceError: craftItem is not defined\nat line 2: craftItem(bot, 'bread', 1)"]
+
+
+def test_primitive_docs_next_to_code():
+    text = prim_docs.docs(["mineBlock", "farm"])
+    assert "async function mineBlock(bot, name, count = 1" in text and "harvestWheat" in text
+    for module, fns in prim_docs.MODULES.items():
+        doc = prim_docs.doc(module)
+        for fn in fns:
+            if fn not in ("plantCrop", "harvest"):
+                assert fn in doc, (module, fn)
+    assert "bot.findBlocks" in prim_docs.doc("mineflayer")
+
+
+def test_try_command(tmp_path):
+    good = tmp_path / "good.js"
+    good.write_text("await mineBlock(bot, 'slime_block', 1)\nbot.chat('done')\n")
+    proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Ryn",
+                           f"code={good}"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    lines = [json.loads(line) for line in proc.stdout.splitlines()]
+    assert lines[-1][0] == "observe" and "<Ryn> done" in [v for k, v in lines if k == "onChat"]
+    bad = tmp_path / "bad.js"
+    bad.write_text("bot.chat('before')\nnotAFunction()\n")
+    proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Byte",
+                           f"code={bad}"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 1
+    assert "at line 2: notAFunction()" in proc.stderr
+    kinds = [json.loads(line)[0] for line in proc.stdout.splitlines()]
+    assert kinds == ["onChat", "onError", "observe"]
+    assert without_state  # helper import used by other tests
