@@ -5,7 +5,7 @@
 //   event:   {"event": "block_dug", ...}
 // The game master and the arena builder use only this. Every op validates its input; a bad request
 // gets an error reply and never affects players.
-const { ControlError, toPos, toBlockPos, stateIdOf, itemByName } = require('./util')
+const { ControlError, toPos, toBlockPos, stateIdOf, itemByName, blockByName } = require('./util')
 
 function playerNamed (serv, name) {
   const p = serv.players.find(pl => pl.username === name)
@@ -46,6 +46,26 @@ const OPS = {
         for (let z = Math.min(a.z, b.z); z <= Math.max(a.z, b.z); z++) {
           const blk = await serv.overworld.getBlock(a.clone().set(x, y, z))
           if (blk.name !== 'air') out.push([x, y, z, blk.name, blk.getProperties ? blk.getProperties() : {}])
+        }
+      }
+    }
+    return out
+  },
+  // Positions of blocks with one of `names` within `radius` (Euclidean, block to block) of `center`.
+  find_blocks: async (serv, { names, center, radius }) => {
+    if (!Array.isArray(names) || !names.length) throw new ControlError('names must be a non-empty list of block names')
+    const wanted = new Set(names.map(n => blockByName(serv.registry, n).id))
+    if (!(radius >= 0 && radius <= 32)) throw new ControlError(`radius must be within 0..32, got ${JSON.stringify(radius)}`)
+    const c = toBlockPos(center, 'center')
+    const r = Math.floor(radius)
+    const out = []
+    for (let x = c.x - r; x <= c.x + r; x++) {
+      for (let y = Math.max(0, c.y - r); y <= Math.min(255, c.y + r); y++) {
+        for (let z = c.z - r; z <= c.z + r; z++) {
+          const d2 = (x - c.x) ** 2 + (y - c.y) ** 2 + (z - c.z) ** 2
+          if (d2 > radius * radius) continue
+          const p = c.clone().set(x, y, z)
+          if (wanted.has(await serv.overworld.getBlockType(p))) out.push([x, y, z, serv.registry.blocks[await serv.overworld.getBlockType(p)].name])
         }
       }
     }

@@ -1,0 +1,198 @@
+"""One match: a series of episodes between two teams on one warm server.
+
+Per episode: put the arena back in place, reset every player (position, empty inventory), pre-game
+(not timed; duration recorded), game (wall clock, `episode_length` s: the game master's rules run
+and every team's score is sampled each second), whistle (all code stopped; the score at exactly
+the end is final), post-game. The record of each episode is written to the run directory.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import random
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from pillagerbench.players import Player
+from pillagerbench.scenarios import Scenario
+from pillagerbench.teams import Team, TeamContext
+
+STOP_GRACE_S = 3.0
+
+
+@dataclass
+class EpisodeRecord:
+    scenario: str
+    red: str
+    blue: str
+    episode: int
+    red_score: float | None = None
+    blue_score: float | None = None
+    winner: str | None = None
+    duration_s: float = 0.0          # wall time of the whole episode (reset .. post-game)
+    status: str = "ok"               # ok | failed
+    error: str | None = None
+    reset_s: float = 0.0
+    pre_game_s: dict[str, float] = field(default_factory=dict)
+    game_s: float = 0.0
+    iterations: dict[str, list[int]] = field(default_factory=dict)
+    seed: int = 0
+
+
+class RecordedPlayer:
+    """A player handle that also appends every event of its runs to the episode's log."""
+
+    def __init__(self, player: Player, sink: Callable[[str, list], None]):
+        self._player, self._sink = player, sink
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._player, name)
+
+    async def run(self, code: str, *, timeout: float | None = None, on_event=None) -> list:
+        def both(event):
+            self._sink(self._player.name, event)
+            if on_event:
+                on_event(event)
+        return await self._player.run(code, timeout=timeout, on_event=both)
+
+
+def winner_of(red: float, blue: float) -> str:
+    return "red" if red > blue else "blue" if blue > red else "tie"
+
+
+class Match:
+    def __init__(self, server, scenario: Scenario, teams: dict[str, Team], run_dir: Path, *,
+                 episode_length: float = 120.0, seed: int = 0, on_tick: Callable[[dict], None] | None = None):
+        self.server, self.scenario, self.teams = server, scenario, teams
+        self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
+        self.on_tick = on_tick or (lambda status: None)
+        self.players: dict[str, Player] = {}
+        self.last_records: dict[str, dict] = {}
+
+    async def setup(self) -> None:
+        """Log every player in (one at a time: the server handles logins best that way)."""
+        log_dir = self.run_dir / "logs"
+        for spec in self.scenario.all_players():
+            player = Player(spec.name, self.server.port, server=self.server, log_dir=log_dir,
+                            primitives=list(self.scenario.primitives))
+            await player.start()
+            self.players[spec.name] = player
+
+    async def close(self) -> None:
+        await asyncio.gather(*(p.close() for p in self.players.values()), return_exceptions=True)
+        self.players.clear()
+
+    async def play_episode(self, episode: int) -> EpisodeRecord:
+        sc = self.scenario
+        rec = EpisodeRecord(sc.key, self.teams["red"].name, self.teams["blue"].name, episode,
+                            seed=self.seed * 1000 + episode)
+        out = self.run_dir / f"episode_{episode:03d}"
+        out.mkdir(parents=True, exist_ok=True)
+        events_dir = out / "events"
+        events_dir.mkdir(exist_ok=True)
+        files: dict[str, Any] = {}
+
+        def sink(name: str, event: list) -> None:
+            f = files.get(name) or files.setdefault(name, open(events_dir / f"{name}.jsonl", "a"))
+            f.write(json.dumps(event, default=str) + "\n")
+
+        t_start = time.monotonic()
+        try:
+            await self._play(rec, out, sink)
+        except Exception as exc:  # one failed episode never ends the series
+            rec.status, rec.error = "failed", f"{type(exc).__name__}: {exc}"
+        finally:
+            for f in files.values():
+                f.close()
+            rec.duration_s = round(time.monotonic() - t_start, 3)
+            (out / "episode.json").write_text(json.dumps(asdict(rec), indent=1))
+        return rec
+
+    async def _play(self, rec: EpisodeRecord, out: Path, sink) -> None:
+        sc, rng = self.scenario, random.Random(rec.seed)
+        await self.server.request("seed", seed=rec.seed)
+        t0 = time.monotonic()
+        await sc.arena.build(self.server)
+        await self.server.request("crop_growth", chance=sc.crop_growth_chance)
+        observations = dict(zip(
+            [p.name for p in sc.all_players()],
+            await asyncio.gather(*(self.players[p.name].reset(position=p.spawn, inventory={}) for p in sc.all_players()))))
+        rec.reset_s = round(time.monotonic() - t0, 3)
+
+        contexts = {}
+        for side in sc.sides:
+            team_dir = out / side.key
+            team_dir.mkdir(exist_ok=True)
+            contexts[side.key] = TeamContext(
+                scenario=sc, side=side, episode=rec.episode, out_dir=team_dir,
+                players={n: RecordedPlayer(self.players[n], sink) for n in side.player_names},
+                observations={n: observations[n] for n in side.player_names},
+                episode_length=self.episode_length, seed=rec.seed,
+                last_episode=self.last_records.get(side.key, {}))
+
+        async def timed_pre_game(key):
+            t = time.monotonic()
+            await self.teams[key].pre_game(contexts[key])
+            rec.pre_game_s[key] = round(time.monotonic() - t, 3)
+        await asyncio.gather(*(timed_pre_game(k) for k in contexts))
+
+        timeline = await self._game(rec, contexts, rng, out)
+        rec.red_score, rec.blue_score = timeline[-1]["red"], timeline[-1]["blue"]
+        rec.winner = winner_of(rec.red_score, rec.blue_score)
+        rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
+        for key, ctx in contexts.items():
+            self.last_records[key] = {"record": asdict(rec), "events_dir": str(out / "events"), "timeline": timeline}
+            ctx.last_episode = self.last_records[key]
+        await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
+
+    async def _game(self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path) -> list[dict]:
+        gm = self.scenario.game_master(self.server, rng)
+        await gm.start()
+        length = self.episode_length
+        start = time.monotonic()
+        deadline = start + length
+        for ctx in contexts.values():
+            ctx.deadline = deadline
+            self.teams[ctx.side.key].iterations = []
+        timeline: list[dict] = []
+
+        async def rules():
+            while True:
+                await asyncio.sleep(gm.period_s)
+                await gm.step()
+
+        async def sample():
+            for second in range(int(length)):
+                await asyncio.sleep(max(0.0, start + second - time.monotonic()))
+                scores = await gm.scores()
+                timeline.append({"t": second, **scores})
+                self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
+
+        plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
+        background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
+        try:
+            done, _ = await asyncio.wait(background, timeout=max(0.0, deadline - time.monotonic()),
+                                         return_when=asyncio.FIRST_EXCEPTION)
+            for task in done:
+                if task.exception():
+                    raise task.exception()
+        finally:
+            # the whistle: stop every player's code, then nothing a player does counts any more
+            await asyncio.gather(*(p.stop() for p in self.players.values()), return_exceptions=True)
+            for task in plays + background:
+                task.cancel()
+            await asyncio.wait(plays + background, timeout=STOP_GRACE_S)
+        rec.game_s = round(time.monotonic() - start, 3)
+        await gm.step()
+        final = await gm.scores()
+        timeline.append({"t": length, **final})
+        self.on_tick({"episode": rec.episode, "t": length, "length": length, **final})
+        for task in plays:
+            if task.done() and not task.cancelled() and task.exception():
+                (out / f"{task.get_name()}.error.txt").write_text(repr(task.exception()))
+        (out / "timeline.json").write_text(json.dumps(timeline))
+        (out / "game_master.json").write_text(json.dumps(gm.log))
+        return timeline

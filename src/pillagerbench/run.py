@@ -1,0 +1,115 @@
+"""`pillagerbench run`: play a match and record it.
+
+    pillagerbench run scenario=mushroom_war red=passive blue=balanced episodes=3 episode_length=120
+
+The run directory (printed first and last) holds manifest.json, episodes.jsonl (one line per
+finished episode) and per episode its events, score timeline, game-master log and team artefacts.
+An episode that fails (a bot or the server dies) is recorded as failed and the series goes on;
+Ctrl-C ends the match cleanly, keeping every finished episode.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import platform
+import subprocess
+import time
+from dataclasses import asdict
+from pathlib import Path
+
+from omegaconf import OmegaConf
+
+from pillagerbench import __version__
+from pillagerbench.arena import ArenaServer
+from pillagerbench.config import load_config
+from pillagerbench.display import MatchDisplay
+from pillagerbench.match import Match
+from pillagerbench.scenarios import make_scenario
+from pillagerbench.teams import make_team
+
+
+def git_revision() -> str | None:
+    try:
+        return subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True, timeout=5,
+                              cwd=Path(__file__).parent).stdout.strip() or None
+    except (OSError, subprocess.SubprocessError):
+        return None
+
+
+def make_run_dir(cfg) -> Path:
+    if cfg.run_dir:
+        return Path(cfg.run_dir)
+    stamp = time.strftime("%Y-%m-%d_%H-%M-%S")
+    return Path("runs") / f"{stamp}_{cfg.scenario.name}_{cfg.red.name}_vs_{cfg.blue.name}"
+
+
+def write_manifest(run_dir: Path, cfg, scenario) -> None:
+    from pillagerbench.node import node_binary
+
+    node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
+    manifest = {
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "config": OmegaConf.to_container(cfg, resolve=True),
+        "scenario": {"key": scenario.key, "title": scenario.title, "version": scenario.version},
+        "versions": {"pillagerbench": __version__, "python": platform.python_version(), "node": node,
+                     "minecraft": "1.16.5"},
+        "seed": cfg.seed,
+        "git_revision": git_revision(),
+    }
+    (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
+
+
+def team_options(team_cfg) -> dict:
+    opts = OmegaConf.to_container(team_cfg, resolve=True)
+    opts.pop("name", None)
+    return opts
+
+
+async def play(cfg, run_dir: Path) -> list:
+    scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
+    teams = {"red": make_team(cfg.red.name, scenario.key, **team_options(cfg.red)),
+             "blue": make_team(cfg.blue.name, scenario.key, **team_options(cfg.blue))}
+    write_manifest(run_dir, cfg, scenario)
+    records = []
+    title = f"{scenario.title}: red {cfg.red.name} vs blue {cfg.blue.name}"
+    with MatchDisplay(title, cfg.display) as display:
+        server = ArenaServer.from_config(cfg.server, log_path=run_dir / "server.log")
+        await server.start()
+        match = Match(server, scenario, teams, run_dir, episode_length=cfg.episode_length, seed=cfg.seed,
+                      on_tick=display.tick)
+        try:
+            await match.setup()
+            for episode in range(int(cfg.episodes)):
+                rec = await match.play_episode(episode)
+                with open(run_dir / "episodes.jsonl", "a") as f:
+                    f.write(json.dumps(asdict(rec)) + "\n")
+                records.append(rec)
+                display.episode_done(rec)
+                if rec.status == "failed" and not server.alive:
+                    await match.close()
+                    await server.stop()
+                    await server.start()
+                    match.server = server
+                    await match.setup()
+        finally:
+            await match.close()
+            await server.stop()
+    return records
+
+
+def main(argv: list[str]) -> int:
+    cfg = load_config(argv)
+    run_dir = make_run_dir(cfg)
+    run_dir.mkdir(parents=True, exist_ok=True)
+    print(f"run directory: {run_dir}", flush=True)
+    try:
+        records = asyncio.run(play(cfg, run_dir))
+    except KeyboardInterrupt:
+        print("interrupted: finished episodes are kept in episodes.jsonl")
+        print(f"run directory: {run_dir}")
+        return 130
+    failed = sum(r.status != "ok" for r in records)
+    print(f"{len(records)} episode(s), {failed} failed")
+    print(f"run directory: {run_dir}")
+    return 1 if failed and failed == len(records) else 0

@@ -1,0 +1,208 @@
+"""Dash & Dine: teams farm, cook and craft food and give it to their team's server, a player that
+receives it. Only the first three food types a server receives count for its team (locked in by
+whoever gives them first, opponents included); the farms are shared.
+
+The farm builds are inferred from upstream's coordinates and scenario text (its region files are
+lost): rows of ripe crops at the stated positions, y + 64.
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+
+from pillagerbench.scenarios.arena import GROUND_Y, Arena
+from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
+
+Y = GROUND_Y + 1
+LOCK_IN_TYPES = 3
+SERVER_PERIOD_S = 2.0
+
+# Points per food item (hunger + saturation restored, as upstream). Raw beef and chicken use their
+# real item ids and score as the description says (upstream's keys never matched).
+REWARDS = {
+    "apple": 6.4, "baked_potato": 11, "beetroot": 2.2, "beetroot_soup": 13.2, "bread": 11, "cake": 16.8,
+    "carrot": 6.6, "chorus_fruit": 6.4, "cooked_beef": 20.8, "cooked_chicken": 13.2, "cooked_cod": 11,
+    "cooked_mutton": 15.6, "cooked_porkchop": 20.8, "cooked_rabbit": 11, "cooked_salmon": 15.6, "cookie": 2.4,
+    "dried_kelp": 1.6, "enchanted_golden_apple": 13.6, "golden_apple": 13.6, "golden_carrot": 20.4,
+    "honey_bottle": 7.2, "melon_slice": 3.2, "mushroom_stew": 13.2, "poisonous_potato": 3.2, "potato": 1.6,
+    "pufferfish": 1.2, "pumpkin_pie": 12.8, "rabbit_stew": 22, "beef": 4.8, "chicken": 3.2, "cod": 2.4,
+    "mutton": 3.2, "porkchop": 4.8, "rabbit": 4.8, "salmon": 2.4, "rotten_flesh": 4.8, "spider_eye": 5.2,
+    "suspicious_stew": 13.2, "sweet_berries": 2.4, "tropical_fish": 1.2,
+}
+
+# The food list shown to LLMs: item, how to get it.
+FOODS = [
+    ("baked_potato", "smelt a potato in a furnace"), ("beef", "dropped by a cow"), ("beetroot", "farmed"),
+    ("beetroot_soup", "craft 6 beetroot + 1 bowl"), ("bread", "craft 3 wheat"),
+    ("cake", "craft 3 milk_bucket + 2 sugar + 1 egg + 3 wheat (the buckets come back)"), ("carrot", "farmed"),
+    ("chicken", "dropped by a chicken"), ("cooked_beef", "smelt beef"), ("cooked_chicken", "smelt chicken"),
+    ("cookie", "craft 2 wheat + 1 cocoa_beans (makes 8)"), ("golden_carrot", "craft 8 gold_nugget + 1 carrot"),
+    ("melon_slice", "farmed (break a melon)"), ("potato", "farmed"), ("pumpkin_pie", "craft 1 pumpkin + 1 sugar + 1 egg"),
+    ("sweet_berries", "farmed (right-click a ripe bush)"), ("sugar", "craft 1 sugar_cane (not food, worth 0)"),
+]
+
+SERVERS = {"red": PlayerSpec("Red_Server", (-1, Y, -9)), "blue": PlayerSpec("Blue_Server", (-1, Y, 7))}
+PLAYERS = {"red": [("Ryn", (-5, Y, -10)), ("Raze", (-5, Y, -8))], "blue": [("Byte", (-5, Y, 6)), ("Blink", (-5, Y, 8))]}
+
+# Points of interest: (description, reference position, builder). Builders add to an Arena.
+FURNACES = [(2, Y + 1, -2), (2, Y + 1, -1), (2, Y + 1, 0)]
+BOWL_CHEST = (-3, Y + 1, -1)
+BUCKET_CHEST = (-7, Y, -7)
+EGG_CHEST = (-7, Y, 5)
+TOOL_CHEST = (-11, Y + 1, -1)
+
+
+def row(x0: int, width: int, z: int, depth: int = 2):
+    return [(x, z + dz) for x in range(x0, x0 + width) for dz in range(depth)]
+
+
+def crop_field(x0, width, z, crop, age):
+    cells = row(x0, width, z)
+    return [(x, GROUND_Y, zz, "farmland") for x, zz in cells] + [(x, Y, zz, crop, {"age": age}) for x, zz in cells]
+
+
+def build_arena() -> Arena:
+    blocks: list[tuple] = []
+    for p in FURNACES:
+        blocks += [(p[0], Y, p[2], "stone_bricks"), (*p, "furnace")]
+    blocks += [(BOWL_CHEST[0], Y, BOWL_CHEST[2], "stone_bricks"), (*BOWL_CHEST, "chest")]
+    blocks += [(*BUCKET_CHEST, "chest"), (*EGG_CHEST, "chest")]
+    # egg farm: chickens in a glass pen next to the egg chest
+    blocks += [(x, y, z, "glass") for x, z in [(-8, 6), (-6, 6), (-7, 7), (-8, 7), (-6, 7)] for y in (Y, Y + 1)]
+    blocks += [(TOOL_CHEST[0], Y, TOOL_CHEST[2], "stone_bricks"), (*TOOL_CHEST, "chest"),
+               (-12, Y, -1, "crafting_table"), (-10, Y, -1, "crafting_table")]
+    # sugar cane: 3 wide, 3 high, on sand beside water
+    for x in range(-12, -9):
+        blocks += [(x, GROUND_Y, -8, "sand"), (x, GROUND_Y, -9, "water")] + [(x, y, -8, "sugar_cane") for y in range(Y, Y + 3)]
+    blocks += [(x, Y, zz, "sweet_berry_bush", {"age": 3}) for x, zz in row(-12, 3, 6)]
+    # cocoa: 2-high jungle logs with ripe pods on both sides
+    for x in range(-16, -13):
+        for y in (Y, Y + 1):
+            blocks += [(x, y, -8, "jungle_log"), (x, y, -9, "cocoa", {"age": 2, "facing": "south"}),
+                       (x, y, -7, "cocoa", {"age": 2, "facing": "north"})]
+    # melons and pumpkins: 5 stems on farmland, fruit grown beside them
+    for i, x in enumerate(range(-17, -12)):
+        fruit, stem, facing, dz = (("melon", "attached_melon_stem", "north", -1) if i % 2 == 0
+                                   else ("pumpkin", "attached_pumpkin_stem", "south", 1))
+        blocks += [(x, GROUND_Y, -1, "farmland"), (x, Y, -1, stem, {"facing": facing}), (x, Y, -1 + dz, fruit)]
+    blocks += crop_field(-16, 3, 6, "beetroots", 3)
+    blocks += crop_field(-20, 3, -8, "carrots", 7)
+    blocks += crop_field(-21, 5, -1, "wheat", 7)
+    blocks += crop_field(-20, 3, 6, "potatoes", 7)
+    return Arena(
+        box=((-26, 1, -16), (6, Y + 8, 14)),
+        blocks=blocks,
+        chests={BOWL_CHEST: {"bowl": 64}, BUCKET_CHEST: {"bucket": 16}, EGG_CHEST: {},
+                TOOL_CHEST: {"gold_nugget": 64, "netherite_hoe": 1}},
+        furnaces={p: {"fuel": ["coal", 64]} for p in FURNACES},
+        mobs=[("cow", (-6.5, Y, -8.5))] + [("chicken", (-6.5, Y, 6.5))] * 4,
+        egg_farms=[(EGG_CHEST, 30.0)],
+    )
+
+
+# Points of interest: placeholder name for scripts, text for LLMs, reference position.
+POINTS_OF_INTEREST = [
+    ("furnace", "3 furnaces, each pre-loaded with 64 coal", FURNACES[1]),
+    ("bowl_chest", "chest with 64 bowls", BOWL_CHEST),
+    ("bucket_chest", "chest with 16 buckets, a cow next to it", BUCKET_CHEST),
+    ("egg_chest", "chest filled with eggs by an egg farm of chickens", EGG_CHEST),
+    ("tool_chest", "2 crafting tables and a chest with 64 gold nuggets and a netherite hoe", TOOL_CHEST),
+    ("sugar_cane_farm", "3-wide sugar cane farm", (-11, Y, -8)),
+    ("berry_farm", "3-wide sweet berry farm", (-11, Y, 6)),
+    ("cocoa_farm", "2-high cocoa bean farm on jungle logs", (-15, Y, -8)),
+    ("melon_pumpkin_farm", "5-wide melon and pumpkin farm", (-15, Y, -1)),
+    ("beetroot_farm", "3-wide beetroot farm", (-15, Y, 6)),
+    ("carrot_farm", "3-wide carrot farm", (-19, Y, -8)),
+    ("wheat_farm", "5-wide wheat farm", (-19, Y, -1)),
+    ("potato_farm", "3-wide potato farm", (-19, Y, 6)),
+]
+
+
+@dataclass
+class DashAndDine(Scenario):
+    key = "dash_and_dine"
+    title = "Dash and Dine"
+    primitives = ("mineBlock", "craftItem", "placeItem", "multiAgent", "farm", "smeltItem", "killMob",
+                  "giveToPlayer", "useChest")
+    crop_growth_chance: float = 0.3
+
+    @property
+    def sides(self) -> tuple[Side, Side]:
+        return tuple(Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in PLAYERS[key]),
+                          SERVERS[key].spawn) for key in ("red", "blue"))
+
+    @property
+    def extra_players(self) -> tuple[PlayerSpec, ...]:
+        return tuple(SERVERS.values())
+
+    @property
+    def arena(self) -> Arena:
+        return build_arena()
+
+    def placeholders(self, key: str) -> dict:
+        out = super().placeholders(key)
+        out.update(server_name=SERVERS[key].name, ground_y=GROUND_Y,
+                   **{key: vec(p) for key, _, p in POINTS_OF_INTEREST})
+        return out
+
+    def description(self) -> str:
+        r, b = self.sides
+        lines = [
+            f"Dash and Dine: two teams of two compete. The red team is {' and '.join(r.player_names)}; "
+            f"the blue team is {' and '.join(b.player_names)}.",
+            "Make food and give it to your team's server, a player, to earn points: "
+            f"the red team's server is {SERVERS['red'].name} at ({vec(SERVERS['red'].spawn)}), the blue team's is "
+            f"{SERVERS['blue'].name} at ({vec(SERVERS['blue'].spawn)}).",
+            f"Only {LOCK_IN_TYPES} different food types count for a team: the first {LOCK_IN_TYPES} types its server "
+            "receives are locked in, whoever gives them; any amount of a locked-in type scores. A server empties "
+            f"its inventory every {SERVER_PERIOD_S:g} s; anything else it received is lost.",
+            f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
+            "Points are the hunger and saturation a food restores (table below). The farms are shared by both "
+            "teams and crops grow back quickly. The game lasts an unknown amount of time: aim for the most points "
+            "in the long run. The team with the most points wins. Sabotage is allowed.",
+            "Points of interest:",
+            *[f"- {text}: ({vec(p)})" for _, text, p in POINTS_OF_INTEREST],
+            "Food (how to get it: points):",
+            *[f"- {item}: {how}: {REWARDS.get(item, 0):g}" for item, how in FOODS],
+        ]
+        return "\n".join(lines)
+
+    def game_master(self, server, rng: random.Random) -> "DashAndDineMaster":
+        return DashAndDineMaster(self, server, rng)
+
+
+class DashAndDineMaster(GameMaster):
+    period_s = SERVER_PERIOD_S
+
+    async def start(self) -> None:
+        self.locked: dict[str, list[str]] = {key: [] for key in SERVERS}
+        self.points: dict[str, float] = {key: 0.0 for key in SERVERS}
+
+    async def step(self) -> None:
+        for key, server_player in SERVERS.items():
+            try:
+                inventory = await self.server.request("inventory", player=server_player.name)
+            except Exception as exc:
+                self.log.append({"error": f"{server_player.name}: {exc}"})
+                continue
+            if not inventory:
+                continue
+            await self.server.request("clear", player=server_player.name)
+            gained = 0.0
+            for slot in inventory:
+                item = slot["name"]
+                if item not in REWARDS:
+                    continue
+                locked = self.locked[key]
+                if item not in locked and len(locked) < LOCK_IN_TYPES:
+                    locked.append(item)
+                    await self.say(f"Locked-in {item} as a submission item for {key}_team")
+                if item in locked:
+                    gained += slot["count"] * REWARDS[item]
+            if gained > 0:
+                self.points[key] += gained
+                await self.say(f"Scored {gained:g} points for {key}_team")
+
+    async def scores(self) -> dict[str, float]:
+        return {key: round(v, 4) for key, v in self.points.items()}

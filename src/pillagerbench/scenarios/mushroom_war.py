@@ -1,0 +1,143 @@
+"""Mushroom War: two teams harvest giant mushrooms of their colour in their own area, which regrow
+only while the area holds few slime blocks; slime keeps coming back; sabotage is allowed.
+
+Layout (upstream's exact positions, y + 64): each side has three giant mushrooms (a 2-high stem,
+4 cap blocks around its top and 1 above) and three plus-shaped patches of 5 slime blocks. Blue is
+red mirrored across z = -2.
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+
+from pillagerbench.scenarios.arena import GROUND_Y, Arena
+from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
+
+Y = GROUND_Y + 1  # the layer players stand in
+WASTE_CUTOFF = 7        # a team's mushrooms regrow only while its area holds at most this many slime blocks
+AREA_RADIUS = 7
+P_REGROW = 0.1          # per missing cap block per second, while clean
+P_SLIME = 0.02          # per original slime position per second, always
+
+RED = {"cap": "red_mushroom_block", "item": "red_mushroom", "center": (-9, Y, -10),
+       "mushrooms": [(-13, -8), (-5, -8), (-9, -12)], "slime": [(-9, -8), (-13, -12), (-5, -12)],
+       "players": [("Ryn", (-7, Y, -10)), ("Raze", (-11, Y, -10))]}
+
+
+def mirror(z: float) -> float:
+    return -4 - z
+
+
+BLUE = {"cap": "brown_mushroom_block", "item": "brown_mushroom", "center": (-9, Y, mirror(-10)),
+        "mushrooms": [(x, mirror(z)) for x, z in RED["mushrooms"]],
+        "slime": [(x, mirror(z)) for x, z in RED["slime"]],
+        "players": [("Byte", (-11, Y, mirror(-10))), ("Blink", (-7, Y, mirror(-10)))]}
+TEAMS = {"red": RED, "blue": BLUE}
+PLUS = [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)]
+
+
+def stems(data) -> list[tuple]:
+    return [(x, y, z) for x, z in data["mushrooms"] for y in (Y, Y + 1)]
+
+
+def caps(data) -> list[tuple]:
+    return [(x + dx, Y + 1, z + dz) for x, z in data["mushrooms"] for dx, dz in PLUS[1:]] + \
+           [(x, Y + 2, z) for x, z in data["mushrooms"]]
+
+
+def slime(data) -> list[tuple]:
+    return [(x + dx, Y, z + dz) for x, z in data["slime"] for dx, dz in PLUS]
+
+
+@dataclass
+class MushroomWar(Scenario):
+    key = "mushroom_war"
+    title = "Mushroom War"
+    primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
+
+    @property
+    def sides(self) -> tuple[Side, Side]:
+        return tuple(Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in d["players"]), d["center"])
+                     for key, d in TEAMS.items())
+
+    @property
+    def arena(self) -> Arena:
+        blocks = []
+        for d in TEAMS.values():
+            blocks += [(*p, "mushroom_stem") for p in stems(d)]
+            blocks += [(*p, d["cap"]) for p in caps(d)]
+            blocks += [(*p, "slime_block") for p in slime(d)]
+        return Arena(box=((-24, 1, -24), (6, Y + 8, 20)), blocks=blocks)
+
+    def placeholders(self, key: str) -> dict:
+        out = super().placeholders(key)
+        other = "blue" if key == "red" else "red"
+        out.update(team_block=TEAMS[key]["cap"], opponent_block=TEAMS[other]["cap"],
+                   area_radius=AREA_RADIUS)
+        return out
+
+    def description(self) -> str:
+        r, b = self.sides
+        return "\n".join([
+            f"Mushroom War: two teams of two compete. The red team is {' and '.join(r.player_names)}; "
+            f"the blue team is {' and '.join(b.player_names)}.",
+            f"The red team's area is centred at ({vec(r.center)}), the blue team's at ({vec(b.center)}). "
+            f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
+            f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas start "
+            f"polluted with slime blocks ({len(slime(RED))} in each).",
+            f"The red area holds {len(RED['mushrooms'])} giant mushrooms made of {len(caps(RED)) // len(RED['mushrooms'])} "
+            f"red_mushroom_block each; the blue area holds the same made of brown_mushroom_block.",
+            "Mining a mushroom block gives 0 to 2 mushrooms, most often none.",
+            f"Mined mushroom blocks grow back only while the team's area contains {WASTE_CUTOFF} slime blocks "
+            "or fewer. Removed slime blocks come back after a while.",
+            "The game lasts an unknown amount of time.",
+            "The red team scores 1 point for every red_mushroom its players hold; the blue team 1 point for every "
+            "brown_mushroom its players hold. Items given away or dropped no longer count. The team with the most "
+            "points at the end wins.",
+            "There are no chests. Sabotaging the other team is allowed.",
+        ])
+
+    def game_master(self, server, rng: random.Random) -> "MushroomWarMaster":
+        return MushroomWarMaster(self, server, rng)
+
+
+class MushroomWarMaster(GameMaster):
+    period_s = 1.0
+
+    async def start(self) -> None:
+        self.clean = {key: None for key in TEAMS}
+        self.original_slime = [p for d in TEAMS.values() for p in slime(d)]
+
+    async def step(self) -> None:
+        for key, d in TEAMS.items():
+            waste = await self.server.request("find_blocks", names=["slime_block"], center=list(d["center"]),
+                                              radius=AREA_RADIUS)
+            clean = len(waste) <= WASTE_CUTOFF
+            if clean != self.clean[key]:
+                self.clean[key] = clean
+                await self.say(f"Team {key} is clean!" if clean else f"Team {key} is too dirty!")
+            if clean:
+                present = {tuple(b[:3]) for b in await self.server.request(
+                    "find_blocks", names=[d["cap"]], center=list(d["center"]), radius=AREA_RADIUS)}
+                regrow = [p for p in caps(d) if p not in present and self.rng.random() < P_REGROW]
+                if regrow:
+                    await self.server.request("set_blocks", blocks=[[*p, d["cap"]] for p in regrow])
+                    self.log.append({"regrow": key, "blocks": len(regrow)})
+        respawn = [p for p in self.original_slime if self.rng.random() < P_SLIME]
+        if respawn:
+            await self.server.request("set_blocks", blocks=[[*p, "slime_block"] for p in respawn])
+
+    async def scores(self) -> dict[str, float]:
+        out = {}
+        for side in self.scenario.sides:
+            item = TEAMS[side.key]["item"]
+            total = 0
+            for name in side.player_names:
+                try:
+                    inv = await self.server.request("inventory", player=name)
+                except Exception:  # a player who is not connected holds nothing
+                    inv = []
+                total += sum(s["count"] for s in inv if s["name"] == item)
+            out[side.key] = float(total)
+        return out

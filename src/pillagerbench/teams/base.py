@@ -1,0 +1,81 @@
+"""The team API: the multi-agent system controlling one side.
+
+A team object persists across the episodes of a series (that is how teams learn). Per episode:
+`pre_game` (not timed; its duration is recorded), `play` (the game: returns when done or is
+cancelled at the whistle; all of its players' code is stopped then), `post_game`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, ClassVar
+
+from pillagerbench.scenarios import Scenario, Side
+
+
+@dataclass
+class TeamContext:
+    """What a team gets in each phase of an episode."""
+
+    scenario: Scenario
+    side: Side
+    players: dict[str, Any]              # player name -> Player handle (run/stop/observe/reset)
+    episode: int
+    out_dir: Path                        # this team's artefacts for this episode
+    observations: dict[str, list] = field(default_factory=dict)  # events from the players' reset
+    episode_length: float = 120.0
+    deadline: float | None = None        # time.monotonic() at the whistle (set when the game starts)
+    last_episode: dict[str, Any] = field(default_factory=dict)   # what the match recorded last episode
+    seed: int = 0
+    llm: Any = None                      # an LLM client for LLM teams (pillagerbench.llm)
+
+    def time_left(self) -> float:
+        return float("inf") if self.deadline is None else max(0.0, self.deadline - time.monotonic())
+
+    @property
+    def opponent(self) -> Side:
+        return self.scenario.opponent(self.side.key)
+
+
+class Team:
+    """Base class. `name` is the config name; `scenarios` the scenario keys it can play (None = all)."""
+
+    name: ClassVar[str] = "team"
+    scenarios: ClassVar[tuple[str, ...] | None] = None
+
+    def __init__(self, **options: Any):
+        self.options = options
+        self.iterations: list[int] = []  # code iterations per player per episode (the paper's I)
+
+    async def pre_game(self, ctx: TeamContext) -> None:
+        """Plan before the clock starts."""
+
+    async def play(self, ctx: TeamContext) -> None:
+        """Drive the players until the whistle (the match cancels this task then)."""
+        await asyncio.sleep(ctx.time_left())
+
+    async def post_game(self, ctx: TeamContext) -> None:
+        """Look back after the game (ctx.last_episode holds this episode's record)."""
+
+    def state(self) -> dict[str, Any]:
+        """What a checkpoint keeps (JSON-serialisable)."""
+        return {}
+
+    def load_state(self, state: dict[str, Any]) -> None:
+        pass
+
+    def save_checkpoint(self, directory: Path) -> Path:
+        directory.mkdir(parents=True, exist_ok=True)
+        path = directory / "team.json"
+        path.write_text(json.dumps({"team": self.name, "state": self.state()}, indent=1))
+        return path
+
+    def load_checkpoint(self, directory: Path) -> None:
+        data = json.loads((Path(directory) / "team.json").read_text())
+        if data.get("team") != self.name:
+            raise ValueError(f"checkpoint {directory} is of team {data.get('team')!r}, not {self.name!r}")
+        self.load_state(data.get("state", {}))

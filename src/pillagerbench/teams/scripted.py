@@ -1,0 +1,51 @@
+"""Built-in opponents: one JavaScript script per player, on the control primitives, with the
+scenario's data substituted for `$placeholders`. Each player runs its script until the whistle; a
+script that throws or ends is started again (at most `max_restarts` times, as upstream's 10 steps).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import string
+from pathlib import Path
+from typing import ClassVar
+
+from pillagerbench.players import events as ev
+from pillagerbench.teams.base import Team, TeamContext
+
+SCRIPTS = Path(__file__).parent / "scripts"
+
+
+def render(template: str, values: dict) -> str:
+    return string.Template(template).substitute(values)
+
+
+class ScriptedTeam(Team):
+    """Subclasses set `scenarios = (key,)` and `scripts`: one file name per player (under scripts/<scenario>/),
+    or `parts`: per player, a list of behaviour calls run in a loop after the scenario's behaviours.js."""
+
+    scripts: ClassVar[tuple[str, ...]] = ()
+    parts: ClassVar[tuple[tuple[str, ...], ...]] = ()
+    max_restarts: ClassVar[int] = 10
+
+    def code_for(self, ctx: TeamContext, index: int) -> str:
+        folder = SCRIPTS / ctx.scenario.key
+        values = ctx.scenario.placeholders(ctx.side.key)
+        if self.parts:
+            library = (folder / "behaviours.js").read_text()
+            calls = "\n".join(f"  await {call}" for call in self.parts[index])
+            return render(library, values) + f"\nwhile (true) {{\n  await bot.waitForTicks(20)\n{calls}\n}}\n"
+        return render((folder / self.scripts[index]).read_text(), values)
+
+    async def play(self, ctx: TeamContext) -> None:
+        await asyncio.gather(*(self._keep_running(ctx, i, player) for i, player in enumerate(ctx.players.values())))
+
+    async def _keep_running(self, ctx: TeamContext, index: int, player) -> None:
+        code = self.code_for(ctx, index)
+        runs = 0
+        while ctx.time_left() > 0 and runs <= self.max_restarts:
+            runs += 1
+            events = await player.run(code)  # the match stops it at the whistle
+            if ctx.time_left() > 0 and ev.errors(events):
+                await asyncio.sleep(min(0.5, ctx.time_left()))
+        self.iterations.append(runs)
