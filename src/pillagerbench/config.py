@@ -16,11 +16,21 @@ class ConfigError(ValueError):
     """Bad configuration or override; the message names the problem and the valid choices."""
 
 
+# `red=cot` chooses an option of the `team` group for the red side (Hydra spells it `team@red=cot`);
+# `red.llm.model=...` still sets a key inside it.
+GROUP_ALIASES = {"red": "team@red", "blue": "team@blue"}
+
+
+def _alias(override: str) -> str:
+    key, sep, value = override.partition("=")
+    return f"{GROUP_ALIASES[key]}={value}" if sep and key in GROUP_ALIASES else override
+
+
 def load_config(overrides: list[str] | None = None, config_name: str = "config") -> DictConfig:
     GlobalHydra.instance().clear()
     try:
         with initialize_config_module(config_module="pillagerbench.conf", version_base="1.3"):
-            cfg = compose(config_name=config_name, overrides=list(overrides or []))
+            cfg = compose(config_name=config_name, overrides=[_alias(o) for o in overrides or []])
     except HydraException as exc:  # unknown group option, bad override syntax, ...
         raise ConfigError(str(exc)) from None
     OmegaConf.set_readonly(cfg, False)

@@ -82,8 +82,11 @@ class ControlChannel:
                     fut.set_exception(ControlError(msg.get("error", "unknown error")))
         except (ConnectionError, asyncio.IncompleteReadError):
             pass
+        except Exception as exc:  # e.g. a line over the reader's limit: say so instead of dying silently
+            self._failure = f"control channel failed: {type(exc).__name__}: {exc}"
         finally:
-            self._closed_reason = (self._on_close() if self._on_close else None) or "control channel closed"
+            self._closed_reason = (getattr(self, "_failure", None) or (self._on_close() if self._on_close else None)
+                                   or "control channel closed")
             err = ChannelClosed(self._closed_reason)
             for fut in self._pending.values():
                 if not fut.done():

@@ -26,6 +26,7 @@ from pillagerbench.node import JS_DIR, node_binary, node_env
 MAIN_JS = JS_DIR / "server" / "main.js"
 MC_VERSION = "1.16.5"
 GROUND_Y = 3  # top of the grass layer; players stand at y = 4
+MAX_LINE = 2**28  # a control reply (e.g. a scan of a whole arena) is one JSON line
 
 
 class ArenaServerError(RuntimeError):
@@ -69,7 +70,7 @@ class ArenaServer:
                 pass_fds=(child_sock.fileno(),), env=env, start_new_session=True,
             )
         child_sock.close()
-        reader, writer = await asyncio.open_unix_connection(sock=parent_sock)
+        reader, writer = await asyncio.open_unix_connection(sock=parent_sock, limit=MAX_LINE)
         self.control = ControlChannel(reader, writer, on_close=self._death_reason)
         try:
             ready = await asyncio.wait_for(asyncio.shield(self.control.ready), timeout)

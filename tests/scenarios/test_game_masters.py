@@ -1,0 +1,88 @@
+"""The scenarios' rules, run by their game masters against the real server."""
+
+from __future__ import annotations
+
+from pillagerbench.scenarios import make_scenario
+from pillagerbench.scenarios.dash_and_dine import REWARDS
+from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime
+from tests.scenarios.conftest import Always
+from tests.support.bots import TestBot
+
+
+async def blocks_named(server, name, center):
+    return {tuple(b[:3]) for b in await server.request("find_blocks", names=[name], center=list(center), radius=AREA_RADIUS)}
+
+
+async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server):
+    sc = make_scenario("mushroom_war")
+    await sc.arena.build(server)
+    red_caps = caps(RED)
+    await server.request("set_blocks", blocks=[[*p, "air"] for p in red_caps[:5]])
+    gm = sc.game_master(server, Always(0.0))  # every chance happens
+    await gm.start()
+    # 15 slime blocks in the red area: too dirty, nothing regrows (slime respawn is a no-op: all present)
+    await gm.step()
+    assert len(await blocks_named(server, "red_mushroom_block", RED["center"])) == 10
+    assert {"chat": "Team red is too dirty!"} in gm.log
+    # clean 8 of them: 7 left, the area counts as clean and every missing cap regrows
+    gm_clean = sc.game_master(server, Always(0.99))  # no slime comes back while we check
+    await gm_clean.start()
+    await server.request("set_blocks", blocks=[[*p, "air"] for p in slime(RED)[:8]])
+    await gm_clean.step()
+    assert len(await blocks_named(server, "slime_block", RED["center"])) == 7
+    assert len(await blocks_named(server, "red_mushroom_block", RED["center"])) == 10  # p=0.99 draws: no regrowth
+    gm_sure = sc.game_master(server, Always(0.05))  # below P_REGROW (0.1), above P_SLIME (0.02)
+    await gm_sure.start()
+    await gm_sure.step()
+    assert {"chat": "Team red is clean!"} in gm_sure.log
+    assert await blocks_named(server, "red_mushroom_block", RED["center"]) == set(red_caps)
+    assert len(await blocks_named(server, "slime_block", RED["center"])) == 7  # 0.05 > P_SLIME: no respawn
+
+
+async def test_slime_respawns_at_its_original_positions(server):
+    sc = make_scenario("mushroom_war")
+    await sc.arena.build(server)
+    await server.request("set_blocks", blocks=[[*p, "air"] for p in slime(RED)])
+    gm = sc.game_master(server, Always(0.01))  # below P_SLIME
+    await gm.start()
+    await gm.step()
+    assert await blocks_named(server, "slime_block", RED["center"]) == set(slime(RED))
+
+
+async def test_mushroom_war_score_is_own_colour_mushrooms_held(server):
+    sc = make_scenario("mushroom_war")
+    async with TestBot(server.port, "Ryn") as ryn, TestBot(server.port, "Byte") as byte:
+        await server.request("set_inventory", player="Ryn", items={"red_mushroom": 3, "brown_mushroom": 5})
+        await server.request("set_inventory", player="Byte", items={"brown_mushroom": 2})
+        gm = sc.game_master(server, Always(0.99))
+        await gm.start()
+        assert await gm.scores() == {"red": 3.0, "blue": 2.0}
+        await server.request("take", player="Ryn", item="red_mushroom", count=2)
+        assert (await gm.scores())["red"] == 1.0  # giving away or dropping lowers the score
+
+
+async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
+    sc = make_scenario("dash_and_dine")
+    async with TestBot(server.port, "Red_Server"), TestBot(server.port, "Blue_Server"):
+        gm = sc.game_master(server, Always(0.99))
+        await gm.start()
+        # an opponent's gift locks potato into the red server; then three more types arrive
+        await server.request("set_inventory", player="Red_Server", items={"potato": 2, "stick": 5})
+        await gm.step()
+        assert gm.locked["red"] == ["potato"]
+        assert gm.points["red"] == 2 * REWARDS["potato"]
+        assert await server.request("inventory", player="Red_Server") == []  # emptied, sticks lost too
+        await server.request("set_inventory", player="Red_Server",
+                             items={"bread": 1, "beef": 2, "cake": 1})
+        await gm.step()
+        assert len(gm.locked["red"]) == 3 and gm.locked["red"][0] == "potato"
+        first_two = gm.locked["red"][1:]
+        assert set(first_two) < {"bread", "beef", "cake"}
+        expected = 2 * REWARDS["potato"] + sum({"bread": 1, "beef": 2, "cake": 1}[i] * REWARDS[i] for i in first_two)
+        assert abs(gm.points["red"] - expected) < 1e-9
+        assert any("Locked-in potato as a submission item for red_team" == e.get("chat") for e in gm.log)
+        # raw beef scores (upstream's keys never matched it)
+        await server.request("set_inventory", player="Blue_Server", items={"beef": 1})
+        await gm.step()
+        assert gm.points["blue"] == REWARDS["beef"] == 4.8
+        assert (await gm.scores())["blue"] == 4.8

@@ -1,0 +1,77 @@
+"""Short real episodes: every built-in opponent scores against do_nothing; a dying server fails
+one episode, not the series."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+
+import pytest
+
+from pillagerbench.arena import ArenaServer
+from pillagerbench.match import Match
+from pillagerbench.scenarios import make_scenario
+from pillagerbench.teams import TEAMS, make_team
+
+OPPONENTS = {name: cls.scenarios[0] for name, cls in TEAMS.items() if cls.scenarios}
+EPISODE_S = 45
+
+
+async def one_episode(scenario_key: str, red: str, blue: str, run_dir, length: float = EPISODE_S):
+    sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
+    teams = {"red": make_team(red, sc.key), "blue": make_team(blue, sc.key)}
+    async with ArenaServer(log_path=run_dir / "server.log") as server:
+        match = Match(server, sc, teams, run_dir, episode_length=length, seed=1)
+        try:
+            await match.setup()
+            return await match.play_episode(0)
+        finally:
+            await match.close()
+
+
+def test_every_builtin_opponent_has_a_scenario():
+    assert set(OPPONENTS) == {"aggressive", "balanced", "passive", "slimy", "berries", "cake_beetroot",
+                              "melon_pumpkin", "potato_cookie"}
+
+
+@pytest.mark.parametrize("pair", [("aggressive", "berries"), ("balanced", "cake_beetroot"),
+                                  ("passive", "melon_pumpkin"), ("slimy", "potato_cookie")])
+async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
+    # two matches at once (one per scenario), each on its own server
+    recs = await asyncio.gather(*(one_episode(OPPONENTS[name], name, "do_nothing", tmp_path / name) for name in pair))
+    for name, rec in zip(pair, recs):
+        assert rec.status == "ok", rec.error
+        assert rec.red_score > 0, f"{name} scored {rec.red_score} against do_nothing in {rec.scenario}"
+        assert rec.blue_score == 0
+        timeline = json.loads((tmp_path / name / "episode_000" / "timeline.json").read_text())
+        assert [p["t"] for p in timeline] == list(range(EPISODE_S)) + [EPISODE_S]
+        assert timeline[-1]["red"] == rec.red_score
+
+
+async def test_a_dead_server_fails_the_episode_and_the_series_goes_on(tmp_path):
+    sc = make_scenario("mushroom_war")
+    teams = {"red": make_team("passive", sc.key), "blue": make_team("do_nothing", sc.key)}
+    server = ArenaServer(log_path=tmp_path / "server.log")
+    await server.start()
+    match = Match(server, sc, teams, tmp_path, episode_length=20, seed=1)
+    try:
+        await match.setup()
+        episode = asyncio.create_task(match.play_episode(0))
+        await asyncio.sleep(8)
+        os.killpg(server.process.pid, signal.SIGKILL)
+        rec = await asyncio.wait_for(episode, 60)
+        assert rec.status == "failed"
+        assert "arena server process ended" in rec.error or "control channel" in rec.error
+        assert json.loads((tmp_path / "episode_000" / "episode.json").read_text())["status"] == "failed"
+        # the series restarts the server and plays on
+        await match.close()
+        await server.stop()
+        await server.start()
+        await match.setup()
+        rec = await match.play_episode(1)
+        assert rec.status == "ok", rec.error
+    finally:
+        await match.close()
+        await server.stop()
