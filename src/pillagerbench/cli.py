@@ -7,6 +7,7 @@ import sys
 
 # name -> ("module:function", help). Each function takes the remaining argv and returns an exit code.
 COMMANDS: dict[str, tuple[str, str]] = {
+    "run": ("pillagerbench.run:main", "play a match between two teams and record it"),
     "setup": ("pillagerbench.node:setup_main", "install the pinned Node packages into the cache"),
     "server": ("pillagerbench.arena.serve:main", "start an arena server to watch with a 1.16.5 client"),
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
