@@ -120,6 +120,12 @@ async def test_memory_bomb(pair):
     assert errs, events
     assert "memory" in errs[0] or "endless loop" in errs[0] or "blocked the bot" in errs[0]
     assert bad.alive
+    # allocating between awaits: the heap limit ends the process; it is restarted with its inventory
+    events = await bad.run("await bot.waitForTicks(1)\nconst a = []\n"
+                           "for (let i = 0; ; i++) { a.push(new Array(1e5).fill(i)); if (i % 20 === 0) await bot.waitForTicks(1) }")
+    assert "ran out of memory" in errors(events)[0]
+    assert last_observation(events)["inventory"] == {"bread": 1}
+    assert bad.alive and bad.restarts >= 1
     events = await bad.run("'x'.repeat(2 ** 30)")
     assert "Invalid string length" in errors(events)[0]
     await _bystander_ok(other)

@@ -50,6 +50,7 @@ def bot_command(settings: dict[str, Any]) -> list[str]:
         f"--allow-fs-read={JS_DIR / 'bot'}",
         f"--max-old-space-size={HEAP_LIMIT_MB}",
         "--stack-size=2000",
+        "--max-semi-space-size=4",  # a small young generation: ~25 MB less RSS per bot
         str(BOT_MAIN),
         json.dumps(settings),
     ]
@@ -192,10 +193,10 @@ class Player:
     def _exit_reason(self, code: int | None) -> str:
         tail = self.stderr_tail()
         if "heap out of memory" in tail or "Reached heap limit" in tail:
-            return f"the bot process ran out of memory (heap limit {HEAP_LIMIT_MB} MB) and was restarted"
+            return f"Error: the bot process ran out of memory (heap limit {HEAP_LIMIT_MB} MB) and was restarted"
         if "ERR_ACCESS_DENIED" in tail:
-            return "the bot process was denied a resource by the permission model and ended; it was restarted"
-        return f"the bot process ended (exit code {code}) and was restarted"
+            return "Error: the bot process was denied a resource by the permission model and ended; it was restarted"
+        return f"Error: the bot process ended (exit code {code}) and was restarted"
 
     def _dispatch(self, msg: dict) -> None:
         if "hb" in msg:
@@ -214,7 +215,7 @@ class Player:
                 self._spawned.set_result(msg["spawned"])
             return
         if "fatal" in msg:
-            self._fatal = f"the bot lost its connection ({msg['fatal']})"
+            self._fatal = f"Error: the bot lost its connection ({msg['fatal']}) and was restarted"
             return
         rid = msg.get("id")
         run = self._run
@@ -223,6 +224,9 @@ class Player:
                 run.done.set_result(msg)
             return
         fut = self._pending.pop(rid, None)
+        result = msg.get("result")
+        if isinstance(result, dict) and "status" in result and "inventory" in result:
+            self._last_obs = result
         if fut is not None and not fut.done():
             if msg.get("ok"):
                 fut.set_result(msg.get("result"))

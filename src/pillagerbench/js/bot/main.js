@@ -148,18 +148,27 @@ async function doRun (msg) {
   }
   clearTimeout(timer)
   const stopped = !run.active
+  if (process.env.PB_TRACE) log(`[trace] run settled ${Date.now() % 100000}`)
   halt(run, 'Stopped: the code has finished')
   await waitEchoes(stopped ? 100 : 1000)
+  if (process.env.PB_TRACE) log(`[trace] echoes ${Date.now() % 100000}`)
   emit('observe')
   current = null
+  if (process.env.PB_TRACE) log(`[trace] run reply ${Date.now() % 100000}`)
   out({ id: msg.id, ok: true, result: { stopped: stopped && !run.timedOut } })
 }
 
 // ---- requests --------------------------------------------------------------------------------
 const OPS = {
   ping: async () => 'pong',
+  memory: async ({ gc }) => {
+    if (gc && global.gc) global.gc()
+    const m = process.memoryUsage()
+    return Object.fromEntries(Object.entries(m).map(([k, v]) => [k, Math.round(v / 2 ** 20 * 10) / 10]))
+  },
   run: null, // handled by doRun (replies itself)
   stop: async () => {
+    if (process.env.PB_TRACE) log(`[trace] stop received ${Date.now() % 100000}`)
     if (current) halt(current, 'Stopped')
     return true
   },
@@ -224,6 +233,7 @@ bot.once('spawn', async () => {
   observer = new Observer(bot)
   bot.pathfinder.setMovements(sandbox.defaultMovements(bot))
   bot.pathfinder.thinkTimeout = 2000
+  bot.pathfinder.tickTimeout = 20 // ms of path search per tick: keeps the bot answering stop() quickly
   bot.on('physicsTick', () => { if (observer.ticks % CHAT_WINDOW_TICKS === 0) chatCount = 0 })
   bot.on('messagestr', (message, position) => {
     if (position === 'game_info') return
