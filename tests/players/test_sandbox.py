@@ -159,3 +159,10 @@ async def test_timers_and_listeners_end_with_the_run(pair):
     await asyncio.sleep(0.6)
     events = await bad.run("await bot.waitForTicks(4)")
     assert "tick" not in chats_by(events, bad.name) and "echo" not in chats_by(events, bad.name)
+
+
+async def test_bot_process_runs_under_the_permission_model(pair):
+    bad, _ = pair
+    perms = await bad._request("permissions")
+    assert perms == {"enabled": True, "fsWrite": False, "fsReadRoot": False, "childProcess": False,
+                     "worker": False, "addons": False}

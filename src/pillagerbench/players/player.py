@@ -274,7 +274,7 @@ class Player:
             if not self.alive or self._recover_lock.locked():
                 continue
             if time.monotonic() - self._last_line > self.watchdog_s:
-                await asyncio.sleep(0)  # let a pending read land first
+                await asyncio.sleep(0.1)  # if our own loop was late, let pending reads land first
                 if time.monotonic() - self._last_line > self.watchdog_s and self.alive:
                     await self._recover(
                         f"Error: the code blocked the bot for more than {self.watchdog_s:g} s "

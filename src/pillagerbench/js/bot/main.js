@@ -161,6 +161,11 @@ async function doRun (msg) {
 // ---- requests --------------------------------------------------------------------------------
 const OPS = {
   ping: async () => 'pong',
+  // What Node's permission model lets this process do (all false but fs.read of our own modules).
+  permissions: async () => {
+    const has = (scope, ref) => Boolean(process.permission && process.permission.has(scope, ref))
+    return { enabled: Boolean(process.permission), fsWrite: has('fs.write'), fsReadRoot: has('fs.read', '/etc/passwd'), childProcess: has('child'), worker: has('worker'), addons: has('addon') }
+  },
   memory: async ({ gc }) => {
     if (gc && global.gc) global.gc()
     const m = process.memoryUsage()
