@@ -195,3 +195,19 @@ async def test_explore_until(server, area, make_player):
     assert "Explore success." in chats_by(events, p.name)
     events = await p.run("await exploreUntil(bot, new Vec3(0, 0, 1), 0.5, () => false)")
     assert "Max exploration time reached" in chats_by(events, p.name)
+
+
+async def test_harvest_berries_and_destroy_crop(server, area, make_player):
+    await server.request("seed", seed=11)
+    await area.blocks((4, 4, 0, "sweet_berry_bush", {"age": 3}), (5, 4, 0, "sweet_berry_bush", {"age": 1}),
+                      (4, 3, 3, "farmland"), (4, 4, 3, "carrots", {"age": 2}), (5, 3, 3, "farmland"), (5, 4, 3, "carrots", {"age": 5}))
+    p = await make_player(area, 0, 0)
+    events = await p.run(f"await harvestBerries(bot, new Vec3({area.x0 + 4}, 4, 0))\nawait destroyCrop(bot, 'carrots')")
+    assert errors(events) == []
+    said = chats_by(events, p.name)
+    assert "Harvested 1 sweet_berry_bush" in said and "Destroying all carrots nearby" in said
+    assert await count(server, p.name, "sweet_berries") >= 2
+    bush = await server.request("get_block", pos=area.at(4, 4, 0))
+    assert bush["name"] == "sweet_berry_bush" and int(bush["properties"]["age"]) == 1  # picked, the bush stays
+    for x in (4, 5):
+        assert (await server.request("get_block", pos=area.at(x, 4, 3)))["name"] == "air"
