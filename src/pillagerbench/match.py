@@ -65,8 +65,10 @@ def winner_of(red: float, blue: float) -> str:
 
 class Match:
     def __init__(self, server, scenario: Scenario, teams: dict[str, Team], run_dir: Path, *,
-                 episode_length: float = 120.0, seed: int = 0, on_tick: Callable[[dict], None] | None = None):
+                 episode_length: float = 120.0, seed: int = 0, on_tick: Callable[[dict], None] | None = None,
+                 llms: dict[str, Any] | None = None):
         self.server, self.scenario, self.teams = server, scenario, teams
+        self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
         self.on_tick = on_tick or (lambda status: None)
         self.players: dict[str, Player] = {}
@@ -123,6 +125,8 @@ class Match:
         rec.reset_s = round(time.monotonic() - t0, 3)
 
         contexts = {}
+        for llm in self.llms.values():
+            llm.reset_episode()
         for side in sc.sides:
             team_dir = out / side.key
             team_dir.mkdir(exist_ok=True)
@@ -130,7 +134,7 @@ class Match:
                 scenario=sc, side=side, episode=rec.episode, out_dir=team_dir,
                 players={n: RecordedPlayer(self.players[n], sink) for n in side.player_names},
                 observations={n: observations[n] for n in side.player_names},
-                episode_length=self.episode_length, seed=rec.seed,
+                episode_length=self.episode_length, seed=rec.seed, llm=self.llms.get(side.key),
                 last_episode=self.last_records.get(side.key, {}))
 
         async def timed_pre_game(key):

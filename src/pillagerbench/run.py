@@ -61,9 +61,24 @@ def write_manifest(run_dir: Path, cfg, scenario) -> None:
 
 
 def team_options(team_cfg) -> dict:
+    """The team's constructor options: its config node without `name` and `llm`."""
     opts = OmegaConf.to_container(team_cfg, resolve=True)
     opts.pop("name", None)
+    opts.pop("llm", None)
     return opts
+
+
+def team_llm_config(cfg, side: str):
+    """The top-level `llm` settings with the side's own `llm` overrides (e.g. `red.llm.model=...`)."""
+    merged = OmegaConf.merge(cfg, {"llm": cfg[side].get("llm") or {}})
+    return merged
+
+
+def make_llms(cfg, teams: dict, run_dir: Path) -> dict:
+    from pillagerbench.llm import LLMClient
+
+    return {side: LLMClient.from_config(team_llm_config(cfg, side), team=side, run_dir=run_dir)
+            for side, team in teams.items() if team.uses_llm}
 
 
 async def play(cfg, run_dir: Path) -> list:
@@ -76,8 +91,9 @@ async def play(cfg, run_dir: Path) -> list:
     with MatchDisplay(title, cfg.display) as display:
         server = ArenaServer.from_config(cfg.server, log_path=run_dir / "server.log")
         await server.start()
+        llms = make_llms(cfg, teams, run_dir)
         match = Match(server, scenario, teams, run_dir, episode_length=cfg.episode_length, seed=cfg.seed,
-                      on_tick=display.tick)
+                      on_tick=display.tick, llms=llms)
         try:
             await match.setup()
             for episode in range(int(cfg.episodes)):
@@ -95,6 +111,8 @@ async def play(cfg, run_dir: Path) -> list:
         finally:
             await match.close()
             await server.stop()
+            for llm in llms.values():
+                await llm.aclose()
     return records
 
 

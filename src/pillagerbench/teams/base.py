@@ -46,6 +46,7 @@ class Team:
 
     name: ClassVar[str] = "team"
     scenarios: ClassVar[tuple[str, ...] | None] = None
+    uses_llm: ClassVar[bool] = False  # the match gives it an LLM client (ctx.llm) from the `llm` config
 
     def __init__(self, **options: Any):
         self.options = options
