@@ -1,0 +1,200 @@
+"""The Chain-of-Thought baseline (paper, Experiments): once per episode, in the pre-game, one LLM
+call writes every player's program from the scenario, the primitives' documentation, the team,
+what the players see, and last episode's code, errors and chat. During the game each player runs
+its program, started again whenever it ends or throws, until the whistle.
+
+An answer that cannot be used (no code, too few blocks, syntax errors, calls to primitives the
+scenario lacks, no entry point) is sent back to the LLM with the problems, up to `attempts` calls;
+after that, every player without a usable program does nothing this episode. Everything (prompt,
+answers, programs, problems, iterations) goes to `<team out_dir>/cot.json`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.agents import context as C
+from pillagerbench.agents.code import ProgramsResult, programs_from_answer
+from pillagerbench.agents.prompts import load_prompts
+from pillagerbench.llm import LLMError
+from pillagerbench.players import primitives as prim
+from pillagerbench.teams import register
+from pillagerbench.teams.base import Team, TeamContext
+
+PROMPTS = load_prompts(Path(__file__).parent)
+ROLE = "cot"
+
+
+def task_text(ctx: TeamContext) -> str:
+    return (f"Win the game for {ctx.side.team_name}: end with more points than {ctx.opponent.team_name}, "
+            "starting now and for as long as the game lasts.")
+
+
+@register
+class ChainOfThought(Team):
+    name = "cot"
+    uses_llm = True
+
+    def __init__(self, attempts: int = 3, temperature: float | None = None, max_tokens: int | None = 4096,
+                 restart_pause_s: float = 1.0, max_chat_lines: int = 80, **options: Any):
+        super().__init__(**options)
+        self.attempts = max(1, int(attempts))
+        self.temperature, self.max_tokens = temperature, max_tokens
+        self.restart_pause_s = float(restart_pause_s)
+        self.max_chat_lines = int(max_chat_lines)
+        self.programs: list = []
+        self.last_code: dict[str, str | None] = {}     # the block each player got last episode
+        self.last_problems: list[str] = []            # why last episode's code was not (all) used
+        self.record: dict[str, Any] = {}
+
+    # --- prompt -----------------------------------------------------------------------------
+
+    def messages(self, ctx: TeamContext) -> list[dict]:
+        players = ctx.side.player_names
+        docs = prim.docs([*ctx.scenario.primitives, "mineflayer"])
+        code_format = "\n".join(PROMPTS["code_format"].render(player=p) for p in players)
+        system = PROMPTS["system"].render(primitives=docs, code_format=code_format)
+        user = PROMPTS["user"].render(
+            last_code=self._last_code_text(players),
+            last_errors=self._last_errors_text(ctx),
+            last_chat=self._last_chat_text(ctx),
+            nearby_blocks=self._per_player(ctx, C.nearby_blocks),
+            nearby_entities=self._per_player(ctx, C.nearby_entities),
+            team_name=ctx.side.team_name,
+            team_players=", ".join(players),
+            scenario=ctx.scenario.description(),
+            task=task_text(ctx))
+        return [{"role": "system", "content": system}, {"role": "user", "content": user}]
+
+    def _per_player(self, ctx: TeamContext, fn) -> str:
+        return "\n".join(f"{name} (at {C.position_text(obs)}): {fn(obs)}"
+                         for name in ctx.side.player_names
+                         for obs in [C.last_observation(ctx.observations.get(name) or [])])
+
+    def _last_code_text(self, players: list[str]) -> str:
+        if not self.last_code:
+            return "No code yet: this is the first round."
+        parts = []
+        for name in players:
+            code = self.last_code.get(name)
+            parts.append(f"{name}:\n```javascript\n{code}\n```" if code else f"{name}: no code (the bot did nothing)")
+        return "\n".join(parts)
+
+    def _last_errors_text(self, ctx: TeamContext) -> str:
+        lines = [f"Your code was not used: {p}" for p in self.last_problems]
+        events = C.episode_events(ctx.last_episode, ctx.side.player_names)
+        for name, evs in events.items():
+            errs = C.error_lines(evs)
+            if errs:
+                lines.append(f"{name}:\n" + "\n".join(errs[:10]))
+        return "\n".join(lines) or C.NONE
+
+    def _last_chat_text(self, ctx: TeamContext) -> str:
+        players = ctx.side.player_names
+        events = C.episode_events(ctx.last_episode, players[:1])[players[0]] if players else []
+        agents = [p.name for s in ctx.scenario.sides for p in s.players]
+        return C.chat_log_text(events, agents, max_lines=self.max_chat_lines)
+
+    # --- phases -----------------------------------------------------------------------------
+
+    async def pre_game(self, ctx: TeamContext) -> None:
+        players = ctx.side.player_names
+        self.programs = [None] * len(players)
+        self.iterations = [0] * len(players)
+        messages = self.messages(ctx)
+        rec: dict[str, Any] = {"episode": ctx.episode, "team": ctx.side.team_name, "players": players,
+                               "messages": messages, "attempts": [], "programs": {}, "failures": {}, "status": "ok"}
+        self.record = rec
+        best: ProgramsResult | None = None
+        if ctx.llm is None:
+            rec["status"], rec["error"] = "failed", "no LLM client (the match gave this team none)"
+        else:
+            kw: dict[str, Any] = {}
+            if self.temperature is not None:
+                kw["temperature"] = float(self.temperature)
+            if self.max_tokens is not None:
+                kw["max_tokens"] = int(self.max_tokens)
+            for attempt in range(self.attempts):
+                t0 = time.monotonic()
+                try:
+                    answer = await ctx.llm.complete(messages, role=ROLE, **kw)
+                except LLMError as exc:
+                    rec["attempts"].append({"error": f"{type(exc).__name__}: {exc}",
+                                            "latency_s": round(time.monotonic() - t0, 3)})
+                    rec["error"] = f"{type(exc).__name__}: {exc}"
+                    break
+                result = programs_from_answer(answer.text, players, ctx.scenario.primitives)
+                problems = list(result.problems)
+                if answer.truncated:
+                    problems.insert(0, "the answer was cut off (too long): be shorter")
+                rec["attempts"].append({"answer": answer.text, "finish_reason": answer.finish_reason,
+                                        "latency_s": answer.latency_s, "output_tokens": answer.output_tokens,
+                                        "problems": problems})
+                if best is None or result.usable >= best.usable:
+                    best = result
+                if result.complete:
+                    break
+                if attempt + 1 < self.attempts:
+                    messages = messages + [
+                        {"role": "assistant", "content": answer.text},
+                        {"role": "user", "content": PROMPTS["retry"].render(
+                            problems="\n".join(f"- {p}" for p in problems), players=", ".join(players))}]
+                    rec["messages"] = messages
+        for k, name in enumerate(players):
+            program = best.programs[k] if best else None
+            self.programs[k] = program
+            if program is not None:
+                rec["programs"][name] = program.to_dict()
+            else:
+                reasons = [p for p in (best.problems if best else []) if p.startswith(f"{name}:")] or \
+                    (best.problems if best and best.problems else [rec.get("error") or "no usable answer"])
+                rec["failures"][name] = "; ".join(reasons)
+        if rec["failures"] and rec["status"] == "ok":
+            rec["status"] = "failed" if len(rec["failures"]) == len(players) else "partial"
+        self.last_code = {name: (best.blocks[k] if best and k < len(best.blocks) else None)
+                          for k, name in enumerate(players)}
+        self.last_problems = [f"{name}: {why}" if not why.startswith(f"{name}:") else why
+                              for name, why in rec["failures"].items()]
+        self._write(ctx)
+
+    async def play(self, ctx: TeamContext) -> None:
+        players = ctx.side.player_names
+        self.iterations = [0] * len(players)
+        await asyncio.gather(*(self._keep_running(ctx, k, ctx.players[name]) for k, name in enumerate(players)))
+
+    async def _keep_running(self, ctx: TeamContext, k: int, player) -> None:
+        program = self.programs[k] if k < len(self.programs) else None
+        if program is None:  # the fallback: this player does nothing this episode
+            await asyncio.sleep(ctx.time_left())
+            return
+        while ctx.time_left() > 0:
+            self.iterations[k] += 1
+            started = time.monotonic()
+            await player.run(program.exec_code)  # the match stops it at the whistle
+            quick = time.monotonic() - started
+            if ctx.time_left() > 0 and quick < self.restart_pause_s:
+                await asyncio.sleep(min(self.restart_pause_s - quick, ctx.time_left()))
+
+    async def post_game(self, ctx: TeamContext) -> None:
+        players = ctx.side.player_names
+        self.record["iterations"] = dict(zip(players, self.iterations))
+        events = C.episode_events(ctx.last_episode, players)
+        self.record["errors"] = {name: C.error_lines(evs)[:20] for name, evs in events.items()}
+        self._write(ctx)
+
+    def _write(self, ctx: TeamContext) -> None:
+        ctx.out_dir.mkdir(parents=True, exist_ok=True)
+        (ctx.out_dir / "cot.json").write_text(json.dumps(self.record, indent=1, default=str))
+
+    # --- checkpoint ---------------------------------------------------------------------------
+
+    def state(self) -> dict[str, Any]:
+        return {"last_code": self.last_code, "last_problems": self.last_problems}
+
+    def load_state(self, state: dict[str, Any]) -> None:
+        self.last_code = dict(state.get("last_code") or {})
+        self.last_problems = list(state.get("last_problems") or [])

@@ -1,0 +1,234 @@
+"""The Random baseline (paper, Experiments): every player keeps doing random actions until the
+whistle: a random primitive or raw mineflayer call from those the scenario allows, with arguments
+drawn from what the player sees (nearby blocks, mobs, its inventory, chests, its teammates and its
+team's server), pausing about a second every few actions.
+
+Each action is generated in Python from the player's latest observation by `RandomActions`, a
+generator seeded with the episode's seed, the side and the player's index, and run on its own
+(`player.run`), so its final observation feeds the next choice. The same seed and the same
+observations give the same actions. Simple checks keep every action executable: an action is
+only a candidate when what it needs is there (an item to place or give, a mob to attack, a hoe to
+till, seeds to plant, a chest to open ...). The actions of an episode go to `<out_dir>/random.json`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import random
+import time
+from dataclasses import dataclass
+from typing import Any, Callable, ClassVar, Sequence
+
+from pillagerbench.players import events as ev
+from pillagerbench.players import primitives as prim
+from pillagerbench.teams import register
+from pillagerbench.teams.base import Team, TeamContext
+
+UNMINABLE = {"air", "cave_air", "void_air", "bedrock", "barrier", "water", "lava", "fire"}
+SEEDS = {"plantWheatSeeds": "wheat_seeds", "plantPotatoes": "potato", "plantCarrots": "carrot",
+         "plantBeetrootSeeds": "beetroot_seeds", "plantMelonSeeds": "melon_seeds", "plantPumpkinSeeds": "pumpkin_seeds",
+         "plantSweetBerryBushes": "sweet_berries", "plantCocoaBeans": "cocoa_beans", "plantSugarCane": "sugar_cane"}
+HARVESTS = ("harvestWheat", "harvestPotatoes", "harvestCarrots", "harvestBeetroot", "harvestBerries", "harvestCocoa",
+            "harvestMelons", "harvestPumpkins")
+# Things worth trying to craft (craftItem explains what is missing when the recipe cannot be done).
+CRAFTABLE = ("bread", "cookie", "cake", "pumpkin_pie", "beetroot_soup", "golden_carrot", "sugar", "mushroom_stew",
+             "bowl", "stick", "crafting_table", "oak_planks", "chest", "furnace", "wooden_hoe")
+FUEL = "coal"
+
+
+def js(value: Any) -> str:
+    """A Python value as a JavaScript literal."""
+    return json.dumps(value)
+
+
+@dataclass(frozen=True)
+class Action:
+    kind: str   # the function or bot method it calls
+    code: str   # the JavaScript run for it
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "code": self.code}
+
+
+@dataclass(frozen=True)
+class Seen:
+    """The parts of an observation the choices depend on, in a fixed order."""
+
+    blocks: tuple[str, ...]
+    mobs: tuple[str, ...]
+    items: tuple[tuple[str, int], ...]
+    chests: tuple[tuple[tuple[int, int, int], tuple[tuple[str, int], ...]], ...]
+    pos: tuple[int, int, int]
+
+    @classmethod
+    def of(cls, obs: dict) -> "Seen":
+        status = obs.get("status") or {}
+        p = status.get("position") or {"x": 0, "y": 4, "z": 0}
+        chests = []
+        for key, content in sorted((obs.get("nearbyChests") or {}).items()):
+            try:
+                xyz = tuple(int(round(float(v))) for v in key.strip("()").split(","))
+            except ValueError:
+                continue
+            if content == "Invalid" or len(xyz) != 3:
+                continue
+            inside = tuple(sorted((k, int(v)) for k, v in content.items() if v)) if isinstance(content, dict) else ()
+            chests.append((xyz, inside))
+        return cls(blocks=tuple(sorted(set(obs.get("voxels") or []) - UNMINABLE)),
+                   mobs=tuple(sorted((status.get("entities") or {}))),
+                   items=tuple(sorted((k, int(v)) for k, v in (obs.get("inventory") or {}).items() if v)),
+                   chests=tuple(chests),
+                   pos=(int(p["x"] // 1), int(p["y"] // 1), int(p["z"] // 1)))
+
+    def has(self, item: str) -> bool:
+        return any(name == item for name, _ in self.items)
+
+    def has_like(self, part: str) -> bool:
+        return any(part in name for name, _ in self.items)
+
+
+Builder = Callable[["RandomActions", Seen], str]
+
+
+class RandomActions:
+    """Seeded random actions for one player. `next(obs)` -> Action."""
+
+    def __init__(self, seed: Any, primitives: Sequence[str], players: Sequence[str] = ()):
+        self.rng = random.Random(f"random-team/{seed}")
+        self.available = set(prim.functions(list(primitives)))
+        self.players = tuple(players)  # who the player can give to: teammates and its team's server
+
+    # --- helpers drawing arguments ----------------------------------------------------------
+
+    def offset(self, s: Seen, reach: int, dy: tuple[int, int] = (0, 0)) -> tuple[int, int, int]:
+        r = self.rng
+        return (s.pos[0] + r.randint(-reach, reach), s.pos[1] + r.randint(*dy), s.pos[2] + r.randint(-reach, reach))
+
+    def vec(self, p: tuple[int, int, int]) -> str:
+        return f"new Vec3({p[0]}, {p[1]}, {p[2]})"
+
+    def item(self, s: Seen) -> tuple[str, int]:
+        return self.rng.choice(s.items)
+
+    def at_random_block(self, name: str, body: str) -> str:
+        """Code running `body` with `block` = one of the nearby blocks called `name` (index drawn here)."""
+        k = self.rng.randrange(1000)
+        return (f"const ids = mcData.blocksByName[{js(name)}]\n"
+                f"const found = ids ? bot.findBlocks({{ matching: ids.id, maxDistance: 32, count: 16 }}) : []\n"
+                f"if (found.length) {{\n  const block = bot.blockAt(found[{k} % found.length])\n"
+                f"  if (block) {{\n    {body}\n  }}\n}}")
+
+    # --- the actions: name -> (check, builder) ----------------------------------------------
+
+    def candidates(self, s: Seen) -> list[tuple[str, Builder]]:
+        a = self.available
+        out: list[tuple[str, Builder]] = []
+
+        def add(kind: str, ok: bool, build: Builder) -> None:
+            if ok and (kind in a or kind.startswith("bot.")):
+                out.append((kind, build))
+
+        r = self.rng
+        add("mineBlock", bool(s.blocks), lambda g, s: (
+            f"await mineBlock(bot, {js(r.choice(s.blocks))}, {r.randint(1, 5)}, "
+            f"{g.vec(g.offset(s, 8, (-1, 1))) if r.random() < 0.5 else 'null'}, {r.randint(8, 32)})"))
+        add("placeItem", bool(s.items), lambda g, s: (lambda name: (
+            f"if (mcData.blocksByName[{js(name)}]) await placeItem(bot, {js(name)}, {g.vec(g.offset(s, 3, (0, 1)))})"))(
+            g.item(s)[0]))
+        add("killMob", bool(s.mobs), lambda g, s: f"await killMob(bot, {js(r.choice(s.mobs))}, {r.randint(5, 20)})")
+        add("giveToPlayer", bool(s.items and self.players), lambda g, s: (
+            f"await giveToPlayer(bot, {js(g.item(s)[0])}, {js(r.choice(self.players))}, {r.choice([-1, *range(1, 10)])})"))
+        add("goToPlayer", bool(self.players), lambda g, s: f"await goToPlayer(bot, {js(r.choice(self.players))}, {r.randint(1, 4)})")
+        add("sendSignal", bool(self.players), lambda g, s: f"await sendSignal(bot, {js(r.choice(self.players))})")
+        add("waitSignal", True, lambda g, s: f"await waitSignal(bot, null, {r.randint(1, 5) * 1000})")
+        add("craftItem", True, lambda g, s: f"await craftItem(bot, {js(r.choice(CRAFTABLE))}, {r.randint(1, 3)})")
+        add("smeltItem", bool(s.items), lambda g, s: (
+            f"await smeltItem(bot, {js(g.item(s)[0])}, {js(FUEL)}, {r.randint(1, 3)})"))
+        add("getItemFromChest", bool(s.chests), lambda g, s: (lambda chest: (
+            f"await getItemFromChest(bot, {g.vec(chest[0])}, {{ {js(r.choice(chest[1])[0])}: {r.randint(1, 9)} }})"
+            if chest[1] else f"await checkItemInsideChest(bot, {g.vec(chest[0])})"))(r.choice(s.chests)))
+        add("depositItemIntoChest", bool(s.chests and s.items), lambda g, s: (
+            f"await depositItemIntoChest(bot, {g.vec(r.choice(s.chests)[0])}, {{ {js(g.item(s)[0])}: {r.randint(1, 9)} }})"))
+        add("tillLand", s.has_like("_hoe"), lambda g, s: "await tillLand(bot, [\"dirt\", \"grass_block\"])")
+        for fn, seed_item in SEEDS.items():
+            add(fn, s.has(seed_item), lambda g, s, fn=fn: f"await {fn}(bot)")
+        for fn in HARVESTS:
+            add(fn, True, lambda g, s, fn=fn: f"await {fn}(bot, null)")
+        add("harvestSugarCane", True, lambda g, s: f"await harvestSugarCane(bot, {s.pos[1] - 1})")
+        add("milkCow", s.has("bucket") and "cow" in s.mobs, lambda g, s: "await milkCow(bot)")
+        add("equipBucket", s.has("bucket"), lambda g, s: "await equipBucket(bot)")
+        add("destroyCrop", bool(s.blocks), lambda g, s: f"await destroyCrop(bot, {js(r.choice(s.blocks))})")
+        # raw mineflayer actions
+        add("bot.pathfinder.goto", True, lambda g, s: (lambda p: (
+            f"await bot.pathfinder.goto(new GoalNear({p[0]}, {p[1]}, {p[2]}, {r.randint(1, 3)}))"))(g.offset(s, 12)))
+        add("bot.lookAt", True, lambda g, s: f"await bot.lookAt({g.vec(g.offset(s, 5, (-1, 2)))})")
+        add("bot.equip", bool(s.items), lambda g, s: (
+            f"{{ const it = bot.inventory.items().find(i => i.name === {js(g.item(s)[0])}); "
+            f"if (it) await bot.equip(it, \"hand\") }}"))
+        add("bot.activateBlock", bool(s.blocks), lambda g, s: g.at_random_block(
+            r.choice(s.blocks), "await bot.lookAt(block.position.offset(0.5, 0.5, 0.5)); await bot.activateBlock(block)"))
+        add("bot.activateItem", bool(s.items), lambda g, s: "await bot.activateItem()")
+        add("bot.useOn", bool(s.mobs), lambda g, s: (
+            f"{{ const e = bot.nearestEntity(e => e.name === {js(r.choice(s.mobs))}); if (e) bot.useOn(e) }}"))
+        return out
+
+    def next(self, obs: dict) -> Action:
+        seen = Seen.of(obs)
+        kind, build = self.rng.choice(self.candidates(seen))
+        return Action(kind, build(self, seen))
+
+
+@register
+class RandomTeam(Team):
+    name = "random"
+    uses_llm = False
+    max_actions: ClassVar[int] = 100_000
+
+    def __init__(self, pause_every: int = 5, pause_s: float = 1.0, action_timeout_s: float = 20.0, **options: Any):
+        super().__init__(**options)
+        self.pause_every = max(1, int(pause_every))
+        self.pause_s = float(pause_s)
+        self.action_timeout_s = float(action_timeout_s)
+        self.actions: dict[str, list[dict]] = {}
+
+    def generator(self, ctx: TeamContext, index: int) -> RandomActions:
+        others = [n for n in ctx.side.player_names if n != ctx.side.player_names[index]]
+        server = ctx.scenario.placeholders(ctx.side.key).get("server_name")  # Dash & Dine's team server
+        servers = [server] if server else []
+        return RandomActions(f"{ctx.seed}/{ctx.side.key}/{index}", ctx.scenario.primitives, [*others, *servers])
+
+    async def play(self, ctx: TeamContext) -> None:
+        names = ctx.side.player_names
+        self.iterations = [0] * len(names)
+        self.actions = {n: [] for n in names}
+        await asyncio.gather(*(self._act(ctx, k, name) for k, name in enumerate(names)))
+
+    async def _act(self, ctx: TeamContext, k: int, name: str) -> None:
+        player = ctx.players[name]
+        gen = self.generator(ctx, k)
+        obs = ev.last_observation(ctx.observations.get(name) or [])
+        start = ctx.deadline - ctx.episode_length if ctx.deadline else time.monotonic()
+        for n in range(self.max_actions):
+            if ctx.time_left() <= 0:
+                break
+            if n and n % self.pause_every == 0:
+                await asyncio.sleep(min(self.pause_s, ctx.time_left()))
+            action = gen.next(obs)
+            self.iterations[k] += 1
+            entry = {"t": round(time.monotonic() - start, 2), **action.to_dict()}
+            self.actions[name].append(entry)
+            try:
+                events = await player.run(action.code, timeout=min(self.action_timeout_s, max(0.1, ctx.time_left())))
+            except Exception as exc:  # a bot that cannot run code now: note it, wait a little, go on
+                entry["error"] = f"{type(exc).__name__}: {exc}"
+                await asyncio.sleep(min(1.0, ctx.time_left()))
+                continue
+            errors = ev.errors(events)
+            if errors:
+                entry["error"] = errors[0]
+            obs = ev.last_observation(events) or obs
+
+    async def post_game(self, ctx: TeamContext) -> None:
+        ctx.out_dir.mkdir(parents=True, exist_ok=True)
+        (ctx.out_dir / "random.json").write_text(json.dumps({"actions": self.actions}, indent=1))
