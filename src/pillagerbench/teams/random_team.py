@@ -42,6 +42,14 @@ def js(value: Any) -> str:
     return json.dumps(value)
 
 
+def compact(obs: dict) -> dict:
+    """The parts of an observation the random choices read (stored with each action in random.json)."""
+    status = obs.get("status") or {}
+    return {"voxels": sorted(obs.get("voxels") or []), "inventory": dict(obs.get("inventory") or {}),
+            "nearbyChests": dict(obs.get("nearbyChests") or {}),
+            "status": {"position": status.get("position"), "entities": dict(status.get("entities") or {})}}
+
+
 @dataclass(frozen=True)
 class Action:
     kind: str   # the function or bot method it calls
@@ -192,11 +200,19 @@ class RandomTeam(Team):
         self.action_timeout_s = float(action_timeout_s)
         self.actions: dict[str, list[dict]] = {}
 
-    def generator(self, ctx: TeamContext, index: int) -> RandomActions:
+    @staticmethod
+    def seed_of(ctx: TeamContext, index: int) -> str:
+        return f"{ctx.seed}/{ctx.side.key}/{index}"
+
+    @staticmethod
+    def recipients(ctx: TeamContext, index: int) -> list[str]:
+        """Whom player `index` may give to or signal: its teammates, then its team's server (Dash & Dine)."""
         others = [n for n in ctx.side.player_names if n != ctx.side.player_names[index]]
-        server = ctx.scenario.placeholders(ctx.side.key).get("server_name")  # Dash & Dine's team server
-        servers = [server] if server else []
-        return RandomActions(f"{ctx.seed}/{ctx.side.key}/{index}", ctx.scenario.primitives, [*others, *servers])
+        server = ctx.scenario.placeholders(ctx.side.key).get("server_name")
+        return [*others, *([server] if server else [])]
+
+    def generator(self, ctx: TeamContext, index: int) -> RandomActions:
+        return RandomActions(self.seed_of(ctx, index), ctx.scenario.primitives, self.recipients(ctx, index))
 
     async def play(self, ctx: TeamContext) -> None:
         names = ctx.side.player_names
@@ -216,7 +232,7 @@ class RandomTeam(Team):
                 await asyncio.sleep(min(self.pause_s, ctx.time_left()))
             action = gen.next(obs)
             self.iterations[k] += 1
-            entry = {"t": round(time.monotonic() - start, 2), **action.to_dict()}
+            entry = {"t": round(time.monotonic() - start, 2), **action.to_dict(), "saw": compact(obs)}
             self.actions[name].append(entry)
             try:
                 events = await player.run(action.code, timeout=min(self.action_timeout_s, max(0.1, ctx.time_left())))
@@ -231,4 +247,8 @@ class RandomTeam(Team):
 
     async def post_game(self, ctx: TeamContext) -> None:
         ctx.out_dir.mkdir(parents=True, exist_ok=True)
-        (ctx.out_dir / "random.json").write_text(json.dumps({"actions": self.actions}, indent=1))
+        names = ctx.side.player_names
+        (ctx.out_dir / "random.json").write_text(json.dumps({
+            "seeds": {n: self.seed_of(ctx, k) for k, n in enumerate(names)},
+            "recipients": {n: self.recipients(ctx, k) for k, n in enumerate(names)},
+            "primitives": list(ctx.scenario.primitives), "actions": self.actions}, indent=1))
