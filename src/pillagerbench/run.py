@@ -118,6 +118,10 @@ async def play(cfg, run_dir: Path) -> list:
 
 def main(argv: list[str]) -> int:
     cfg = load_config(argv)
+    if cfg.get("experiment") is not None or cfg.get("resume"):  # many series, parallel, resumable
+        from pillagerbench.experiments.runner import main_experiment
+
+        return main_experiment(cfg, argv)
     run_dir = make_run_dir(cfg)
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"run directory: {run_dir}", flush=True)

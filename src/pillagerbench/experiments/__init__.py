@@ -1,0 +1,5 @@
+"""Experiments: the paper's protocols as lists of series, run in parallel, resumable (docs/experiments.md)."""
+
+from pillagerbench.experiments.spec import SeriesSpec, build_series, builtin_teams
+
+__all__ = ["SeriesSpec", "build_series", "builtin_teams"]

@@ -1,0 +1,212 @@
+"""Run an experiment: its series in parallel (each its own match and arena server on a free
+port), series that start from another's checkpoint after it, and resume after a crash or kill.
+
+    pillagerbench run experiment=main_benchmark experiment.team=cot llm=openai parallel=4
+    pillagerbench run experiment=main_benchmark experiment.team=cot llm=openai resume=runs/...   # finish it
+
+Run directory:
+
+    experiment.json      name, the experiment config, the command's overrides, every series (with its config)
+    manifest.json        the top-level config, versions, git revision
+    calibration.json     if calibration=PATH was given (σ_blue for the report)
+    series/<id>/         one series directory each (experiments/series.py)
+
+A series runs all its episodes in one place (one task of this process, or one Ray task), so
+its team objects and what they learn persist from episode to episode.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import shutil
+import time
+import traceback
+from pathlib import Path
+from typing import Awaitable, Callable
+
+from omegaconf import OmegaConf
+
+from pillagerbench.config import ConfigError
+from pillagerbench.experiments.progress import ExperimentProgress
+from pillagerbench.experiments.series import count_finished, run_series
+from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
+
+CPUS_PER_MATCH = 1.0  # a built-in match uses about one core (benchmarks/experiments_throughput.py)
+IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
+
+
+def default_parallel() -> int:
+    return max(1, int((os.cpu_count() or 1) / CPUS_PER_MATCH))
+
+
+def make_experiment_dir(cfg) -> Path:
+    if cfg.get("run_dir"):
+        return Path(cfg.run_dir)
+    return Path("runs") / f"{time.strftime('%Y-%m-%d_%H-%M-%S')}_{cfg.experiment.name}"
+
+
+def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec]) -> None:
+    from pillagerbench import __version__
+    from pillagerbench.run import git_revision
+
+    run_dir.mkdir(parents=True, exist_ok=True)
+    top = OmegaConf.to_container(cfg, resolve=True)
+    data = {"name": cfg.experiment.name, "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+            "experiment": top["experiment"], "overrides": list(argv), "series": [s.to_dict() for s in specs]}
+    (run_dir / "experiment.json").write_text(json.dumps(data, indent=1, default=str))
+    manifest = {"created": data["created"], "config": top, "versions": {"pillagerbench": __version__},
+                "git_revision": git_revision(), "experiment": cfg.experiment.name}
+    (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
+
+
+def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Path]]:
+    """The series of a run directory: an experiment's, or the one series of a plain `pillagerbench run`."""
+    if (run_dir / "experiment.json").exists():
+        data = json.loads((run_dir / "experiment.json").read_text())
+        specs = [SeriesSpec.from_dict(s) for s in data["series"]]
+        return data["name"], specs, {s.id: run_dir / "series" / s.id for s in specs}
+    if (run_dir / "manifest.json").exists():
+        config = json.loads((run_dir / "manifest.json").read_text())["config"]
+        for k in RUNNER_KEYS:
+            config.pop(k, None)
+        spec = SeriesSpec(id=run_dir.name, index=0, protocol="run", scenario=config["scenario"]["name"],
+                          red=config["red"]["name"], blue=config["blue"]["name"], red_team=config["red"]["name"],
+                          blue_team=config["blue"]["name"], episodes=int(config["episodes"]),
+                          seed=int(config["seed"]), config=config)
+        return "run", [spec], {spec.id: run_dir}
+    raise ConfigError(f"resume={run_dir}: not a run directory (no experiment.json or manifest.json)")
+
+
+def _comparable(spec: SeriesSpec) -> dict:
+    d = spec.to_dict()
+    d["config"] = {k: v for k, v in d["config"].items() if k not in IGNORED_ON_RESUME}
+    return d
+
+
+def check_same(stored: list[SeriesSpec], rebuilt: list[SeriesSpec], run_dir: Path) -> None:
+    if [s.id for s in stored] != [s.id for s in rebuilt]:
+        raise ConfigError(f"resume={run_dir}: this command builds other series than the run has "
+                          f"({len(rebuilt)} vs {len(stored)}; first stored {stored[0].id}, first now {rebuilt[0].id}); "
+                          "run the same command as the first time, or leave out experiment=... to use the stored one")
+    for a, b in zip(stored, rebuilt):
+        da, db = _comparable(a), _comparable(b)
+        if da != db:
+            keys = sorted(k for k in set(da) | set(db) if da.get(k) != db.get(k))
+            if keys == ["config"]:
+                keys = ["config." + k for k in sorted(set(da["config"]) | set(db["config"]))
+                        if da["config"].get(k) != db["config"].get(k)]
+            raise ConfigError(f"resume={run_dir}: series {a.id} differs from the stored one in {', '.join(keys)}; "
+                              "run the same command as the first time")
+
+
+async def run_all(specs: list[SeriesSpec], dirs: dict[str, Path], parallel: int,
+                  launch: Callable[[SeriesSpec, Path], Awaitable[dict]]) -> dict[str, dict]:
+    """Run every unfinished series, at most `parallel` at once, each after the series it depends on."""
+    results: dict[str, dict] = {}
+    pending = {s.id: s for s in specs}
+    for s in specs:
+        if count_finished(dirs[s.id]) >= s.episodes:
+            results[s.id] = {"id": s.id, "status": "done", "played": 0}
+            pending.pop(s.id)
+    running: dict[asyncio.Future, SeriesSpec] = {}
+    try:
+        while pending or running:
+            for sid, s in list(pending.items()):
+                if len(running) >= parallel:
+                    break
+                blocked = [d for d in s.after if results.get(d, {}).get("status") in ("error", "skipped")
+                           or (d not in results and d not in pending and d not in {r.id for r in running.values()})]
+                if blocked:
+                    results[sid] = {"id": sid, "status": "skipped", "error": f"needs series {', '.join(blocked)}"}
+                    pending.pop(sid)
+                elif all(results.get(d, {}).get("status") == "done" for d in s.after):
+                    running[asyncio.ensure_future(launch(s, dirs[s.id]))] = pending.pop(sid)
+            if not running:
+                for sid in list(pending):  # nothing can start: a dependency that never finishes
+                    results[sid] = {"id": sid, "status": "skipped", "error": "its dependencies cannot finish"}
+                    pending.pop(sid)
+                break
+            done, _ = await asyncio.wait(running, return_when=asyncio.FIRST_COMPLETED)
+            for fut in done:
+                s = running.pop(fut)
+                exc = fut.exception()
+                if exc is None:
+                    results[s.id] = {**fut.result(), "status": "done"}
+                else:
+                    text = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))
+                    dirs[s.id].mkdir(parents=True, exist_ok=True)
+                    (dirs[s.id] / "series_error.txt").write_text(text)
+                    results[s.id] = {"id": s.id, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
+                    print(f"[{s.id}] series failed: {type(exc).__name__}: {exc} (see {dirs[s.id] / 'series_error.txt'})",
+                          flush=True)
+    finally:
+        for fut in running:
+            fut.cancel()
+        if running:
+            await asyncio.wait(running, timeout=30)
+    return results
+
+
+def local_launcher(run_dir: Path):
+    async def launch(spec: SeriesSpec, series_dir: Path) -> dict:
+        return await run_series(spec, series_dir, run_dir)
+    return launch
+
+
+async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict[str, Path], cfg) -> dict:
+    launcher = str(cfg.get("launcher") or "local")
+    closer = None
+    if launcher == "local":
+        parallel = int(cfg.get("parallel") or default_parallel())
+        launch = local_launcher(run_dir)
+    elif launcher == "ray":
+        from pillagerbench.experiments.ray_launcher import RayLauncher
+
+        ray_launcher = RayLauncher(cfg.get("ray_address"))
+        parallel = int(cfg.get("parallel") or ray_launcher.cpus())
+        launch, closer = ray_launcher.launch_factory(run_dir), ray_launcher.close
+    else:
+        raise ConfigError(f"launcher={launcher!r}: valid launchers are local, ray")
+    length = float(specs[0].config.get("episode_length", 120)) if specs else 120.0
+    print(f"{title}: {len(specs)} series, {sum(s.episodes for s in specs)} episodes, "
+          f"{parallel} at once ({launcher})", flush=True)
+    try:
+        with ExperimentProgress(run_dir, specs, title, parallel=parallel, mode=str(cfg.get("display") or "auto"),
+                                episode_length=length, dirs=dirs):
+            return await run_all(specs, dirs, parallel, launch)
+    finally:
+        if closer:
+            closer()
+
+
+def main_experiment(cfg, argv: list[str]) -> int:
+    """`pillagerbench run experiment=NAME ...` and `pillagerbench run resume=RUN_DIR ...`."""
+    if cfg.get("resume"):
+        run_dir = Path(cfg.resume)
+        title, specs, dirs = load_experiment(run_dir)
+        if cfg.get("experiment") is not None and title != "run":
+            check_same(specs, build_series(cfg, argv), run_dir)
+        print(f"resuming {run_dir}", flush=True)
+    else:
+        specs = build_series(cfg, argv)
+        run_dir = make_experiment_dir(cfg)
+        if (run_dir / "experiment.json").exists():
+            raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
+        write_experiment(run_dir, cfg, argv, specs)
+        if cfg.get("calibration"):
+            shutil.copyfile(cfg.calibration, run_dir / "calibration.json")
+        title, dirs = str(cfg.experiment.name), {s.id: run_dir / "series" / s.id for s in specs}
+    print(f"run directory: {run_dir}", flush=True)
+    try:
+        results = asyncio.run(execute(run_dir, title, specs, dirs, cfg))
+    except KeyboardInterrupt:
+        print(f"interrupted: finished episodes are kept; finish with resume={run_dir}")
+        return 130
+    errors = [r for r in results.values() if r["status"] in ("error", "skipped")]
+    episodes = sum(count_finished(dirs[s.id]) for s in specs)
+    print(f"{episodes}/{sum(s.episodes for s in specs)} episodes finished; "
+          f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else ""))
+    print(f"run directory: {run_dir}")
+    return 1 if errors else 0

@@ -1,0 +1,270 @@
+"""An experiment as a list of series, built from the `experiment` config group.
+
+A *series* is one match: a scenario, a red and a blue team (each with options), a number of
+consecutive episodes (the team objects persist between them, so teams learn), an optional
+checkpoint to start from and which checkpoints to keep. Every series carries its full resolved
+config (the same tree `pillagerbench run` uses), so a series can be played, resumed or shipped to
+another machine without composing configs again.
+
+Protocols (conf/experiment/*.yaml, key `protocol`):
+- round_robin: every red team of `red_teams` against every blue team of `blue_teams`
+- benchmark:   each variant (team + options + model) against every opponent of every scenario
+- self_play:   each variant against itself; optionally the red checkpoints then meet every opponent
+- adaptation:  train against one opponent, then from that checkpoint one episode against each
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from omegaconf import DictConfig, OmegaConf
+
+from pillagerbench.config import ConfigError, load_config
+
+PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation")
+# keys of the top-level config that belong to the experiment machinery, not to one series
+RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir")
+# command-line overrides an experiment chooses itself for each series
+SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario")
+
+
+@dataclass
+class SeriesSpec:
+    id: str                       # unique in the experiment, also the series' directory name
+    index: int
+    protocol: str
+    scenario: str
+    red: str                      # the red row label (team name or variant label)
+    blue: str                     # the blue column label
+    red_team: str
+    blue_team: str
+    episodes: int
+    seed: int
+    config: dict[str, Any]        # full resolved config for this match
+    checkpoint: dict[str, Any] = field(default_factory=dict)  # side -> {"series": id, "episode": k} | {"path": p}
+    checkpoint_every: int | None = None   # keep checkpoints after episodes every, 2·every, ... (1-based count)
+    checkpoint_at: list[int] = field(default_factory=list)    # keep checkpoints after these episode indices
+    variant: str | None = None
+    repetition: int = 0
+    group: str | None = None      # e.g. "same"/"different" (adaptation), "after 5" (self-play evaluation)
+    group_x: float | None = None  # a number for the group (episodes of experience), for plots
+    episode_offset: int = 0       # episodes of experience before this series (learning curves)
+
+    @property
+    def after(self) -> list[str]:
+        """Series that must finish first (their checkpoints are this one's start)."""
+        return sorted({c["series"] for c in self.checkpoint.values() if "series" in c})
+
+    def keeps_checkpoint(self, episode: int) -> bool:
+        every = self.checkpoint_every
+        return episode in self.checkpoint_at or bool(every and (episode + 1) % every == 0)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "SeriesSpec":
+        return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
+
+
+def builtin_teams(scenario: str) -> list[str]:
+    """do_nothing, then the scenario's built-in opponents, in the paper's order."""
+    from pillagerbench.teams import TEAMS
+    from pillagerbench.teams.scripted import ScriptedTeam
+
+    return ["do_nothing"] + [n for n, c in TEAMS.items()
+                             if issubclass(c, ScriptedTeam) and c.scenarios and scenario in c.scenarios]
+
+
+def slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "-", str(text)).strip("-") or "x"
+
+
+def override_key(override: str) -> str:
+    return override.partition("=")[0].lstrip("~+")
+
+
+def check_overrides(argv: list[str]) -> list[str]:
+    """The user's overrides that apply to every series; refuse those the experiment chooses itself."""
+    keep = []
+    for o in argv:
+        key = override_key(o)
+        top = key.split(".")[0]
+        if key in SERIES_GROUPS or top in ("red", "blue", "scenario"):
+            raise ConfigError(
+                f"{o!r}: an experiment chooses the scenario and both teams of each series itself; use "
+                "experiment.team=NAME, experiment.team_options.KEY=VALUE, experiment.scenarios=[...], "
+                "experiment.opponents=[...] (round robins: experiment.red_teams / experiment.blue_teams)")
+        if top in RUNNER_KEYS or key == "experiment":
+            continue
+        keep.append(o)
+    return keep
+
+
+class _Composer:
+    """Composes one series config per (scenario, red, blue, llm preset); cached."""
+
+    def __init__(self, overrides: list[str]):
+        self.overrides = overrides
+        self.cache: dict[tuple, DictConfig] = {}
+
+    def __call__(self, scenario: str, red: str, blue: str, llm: str | None) -> DictConfig:
+        key = (scenario, red, blue, llm)
+        if key not in self.cache:
+            own = [o for o in self.overrides if not (llm and override_key(o) == "llm")]
+            extra = [f"scenario={scenario}", f"team@red={red}", f"team@blue={blue}"] + ([f"llm={llm}"] if llm else [])
+            cfg = load_config(own + extra)
+            OmegaConf.set_struct(cfg, False)
+            for k in RUNNER_KEYS:
+                cfg.pop(k, None)
+            self.cache[key] = cfg
+        return self.cache[key].copy()
+
+
+def _variants(exp: DictConfig) -> dict[str, dict]:
+    base = {"team": exp.get("team"), "team_options": exp.get("team_options") or {},
+            "llm": exp.get("llm"), "llm_options": exp.get("llm_options") or {}}
+    raw = exp.get("variants")
+    if not raw:
+        if not base["team"]:
+            raise ConfigError(f"experiment {exp.get('name')!r} needs `team` (experiment.team=NAME)")
+        return {str(base["team"]): base}
+    out = {}
+    for label, v in raw.items():
+        v = v or {}
+        merged = dict(base)
+        merged.update({k: v[k] for k in ("team", "team_options", "llm", "llm_options") if k in v})
+        if not merged["team"]:
+            raise ConfigError(f"variant {label!r} of experiment {exp.get('name')!r} names no team")
+        out[str(label)] = merged
+    return out
+
+
+def _opponents(exp: DictConfig, key: str, scenario: str) -> list[str]:
+    chosen = exp.get(key)
+    return list(chosen) if chosen else builtin_teams(scenario)
+
+
+class _Builder:
+    def __init__(self, cfg: DictConfig, argv: list[str]):
+        self.cfg, self.exp = cfg, cfg.experiment
+        self.compose = _Composer(check_overrides(argv))
+        self.series: list[SeriesSpec] = []
+        self.seed = int(cfg.seed)
+
+    def add(self, scenario: str, red_team: str, blue_team: str, episodes: int, *, red: str | None = None,
+            blue: str | None = None, variant: dict | None = None, blue_variant: dict | None = None,
+            **extra) -> SeriesSpec:
+        llm = (variant or {}).get("llm")
+        cfg = self.compose(scenario, red_team, blue_team, llm)
+        if variant:
+            cfg.red = OmegaConf.merge(cfg.red, variant.get("team_options") or {})
+            cfg.llm = OmegaConf.merge(cfg.llm, variant.get("llm_options") or {})
+        if blue_variant:
+            cfg.blue = OmegaConf.merge(cfg.blue, blue_variant.get("team_options") or {})
+        extra["variant"] = extra.pop("variant_label", None)
+        index = len(self.series)
+        red, blue = red or red_team, blue or blue_team
+        parts = [f"{index:03d}", scenario, slug(red), "vs", slug(blue)]
+        if extra.get("group"):
+            parts.append(slug(extra["group"]))
+        if int(self.exp.get("repetitions", 1) or 1) > 1:
+            parts.append(f"r{extra.get('repetition', 0)}")
+        cfg.episodes = int(episodes)
+        seed = self.seed * 1000 + index
+        cfg.seed = seed
+        spec = SeriesSpec(id="_".join(parts), index=index, protocol=str(self.exp.protocol), scenario=scenario,
+                          red=red, blue=blue, red_team=red_team, blue_team=blue_team, episodes=int(episodes),
+                          seed=seed, config=OmegaConf.to_container(cfg, resolve=True), **extra)
+        self.series.append(spec)
+        return spec
+
+    # -- protocols -------------------------------------------------------------------------------
+    def round_robin(self) -> None:
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for sc in self.exp.scenarios:
+                for red in _opponents(self.exp, "red_teams", sc):
+                    for blue in _opponents(self.exp, "blue_teams", sc):
+                        self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+
+    def benchmark(self) -> None:
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for label, v in _variants(self.exp).items():
+                for sc in self.exp.scenarios:
+                    for blue in _opponents(self.exp, "opponents", sc):
+                        self.add(sc, v["team"], blue, self.exp.episodes, red=label, variant=v, variant_label=label,
+                                 repetition=rep, checkpoint_every=self.exp.get("checkpoint_every"))
+
+    def self_play(self) -> None:
+        every = self.exp.get("checkpoint_every")
+        episodes = int(self.exp.episodes)
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for label, v in _variants(self.exp).items():
+                for sc in self.exp.scenarios:
+                    play = self.add(sc, v["team"], v["team"], episodes, red=label, blue=label, variant=v,
+                                    blue_variant=v, variant_label=label, repetition=rep, checkpoint_every=every)
+                    if not self.exp.get("evaluate"):
+                        continue
+                    stages = [0] + ([k for k in range(every, episodes + 1, every)] if every else [episodes])
+                    for k in stages:
+                        ckpt = {"red": {"series": play.id, "episode": k - 1}} if k else {}
+                        play.checkpoint_at = sorted(set(play.checkpoint_at) | ({k - 1} if k else set()))
+                        for blue in _opponents(self.exp, "opponents", sc):
+                            self.add(sc, v["team"], blue, 1, red=label, variant=v, variant_label=label,
+                                     repetition=rep, checkpoint=ckpt, group=f"after {k}", group_x=k,
+                                     episode_offset=k)
+
+    def adaptation(self) -> None:
+        train = int(self.exp.get("train_episodes", 5))
+        from_run = self.exp.get("from_run")
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for label, v in _variants(self.exp).items():
+                for sc in self.exp.scenarios:
+                    opponents = _opponents(self.exp, "opponents", sc)
+                    for trained_on in opponents:
+                        if from_run:
+                            ckpt = {"red": {"path": str(find_checkpoint(Path(from_run), sc, label, trained_on, rep,
+                                                                         train - 1))}}
+                        else:
+                            t = self.add(sc, v["team"], trained_on, train, red=label, variant=v,
+                                         variant_label=label, repetition=rep, checkpoint_at=[train - 1],
+                                         group="training")
+                            ckpt = {"red": {"series": t.id, "episode": train - 1}}
+                        for blue in opponents:
+                            group = "same" if blue == trained_on else "different"
+                            self.add(sc, v["team"], blue, 1, red=label, variant=v, variant_label=label,
+                                     repetition=rep, checkpoint=ckpt, group=group, group_x=None,
+                                     episode_offset=train)
+
+
+def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:
+    """The red checkpoint after `episode` of the series (scenario, red, blue, repetition) of another run."""
+    from pillagerbench.experiments.series import checkpoint_dir, read_series_index
+
+    for spec in read_series_index(run_dir):
+        if (spec.scenario, spec.red, spec.blue, spec.repetition) == (scenario, red, blue, repetition) \
+                and spec.group is None:
+            path = checkpoint_dir(run_dir / "series" / spec.id, episode, "red")
+            if (path / "team.json").exists():
+                return path.resolve()
+            raise ConfigError(f"from_run: series {spec.id} of {run_dir} kept no checkpoint after episode {episode} "
+                              f"(expected {path}); run it with experiment.checkpoint_every or checkpoint_at")
+    raise ConfigError(f"from_run: {run_dir} has no series {scenario} {red} vs {blue} (repetition {repetition})")
+
+
+def build_series(cfg: DictConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
+    """The series of the experiment selected in cfg.experiment (argv: the user's overrides)."""
+    exp = cfg.get("experiment")
+    if not exp:
+        raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
+    protocol = exp.get("protocol")
+    if protocol not in PROTOCOLS:
+        raise ConfigError(f"experiment {exp.get('name')!r}: unknown protocol {protocol!r}; valid: {', '.join(PROTOCOLS)}")
+    builder = _Builder(cfg, list(argv or []))
+    getattr(builder, protocol)()
+    if not builder.series:
+        raise ConfigError(f"experiment {exp.get('name')!r} has no series (check scenarios/opponents)")
+    return builder.series
