@@ -35,6 +35,9 @@ HARVESTS = ("harvestWheat", "harvestPotatoes", "harvestCarrots", "harvestBeetroo
 CRAFTABLE = ("bread", "cookie", "cake", "pumpkin_pie", "beetroot_soup", "golden_carrot", "sugar", "mushroom_stew",
              "bowl", "stick", "crafting_table", "oak_planks", "chest", "furnace", "wooden_hoe")
 FUEL = "coal"
+# Furnace inputs (smelting anything else cannot work)
+SMELTABLE = ("potato", "beef", "chicken", "porkchop", "mutton", "rabbit", "cod", "salmon", "kelp", "sand",
+             "cobblestone", "iron_ore", "gold_ore", "cactus", "clay_ball", "oak_log", "wet_sponge")
 
 
 def js(value: Any) -> str:
@@ -151,8 +154,9 @@ class RandomActions:
         add("sendSignal", bool(self.players), lambda g, s: f"await sendSignal(bot, {js(r.choice(self.players))})")
         add("waitSignal", True, lambda g, s: f"await waitSignal(bot, null, {r.randint(1, 5) * 1000})")
         add("craftItem", True, lambda g, s: f"await craftItem(bot, {js(r.choice(CRAFTABLE))}, {r.randint(1, 3)})")
-        add("smeltItem", bool(s.items), lambda g, s: (
-            f"await smeltItem(bot, {js(g.item(s)[0])}, {js(FUEL)}, {r.randint(1, 3)})"))
+        smeltable = [name for name, _ in s.items if name in SMELTABLE]
+        add("smeltItem", bool(smeltable), lambda g, s: (
+            f"await smeltItem(bot, {js(r.choice(smeltable))}, {js(FUEL)}, {r.randint(1, 2)})"))
         add("getItemFromChest", bool(s.chests), lambda g, s: (lambda chest: (
             f"await getItemFromChest(bot, {g.vec(chest[0])}, {{ {js(r.choice(chest[1])[0])}: {r.randint(1, 9)} }})"
             if chest[1] else f"await checkItemInsideChest(bot, {g.vec(chest[0])})"))(r.choice(s.chests)))

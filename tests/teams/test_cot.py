@@ -1,0 +1,188 @@
+"""The Chain-of-Thought baseline with the fake LLM provider: prompt contents, bad answers and their
+fallback, and real episodes on the real server."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+
+from pillagerbench.llm.fake_server import Rule
+from pillagerbench.players import primitives as prim
+from pillagerbench.scenarios import make_scenario
+from pillagerbench.teams import TeamContext, make_team
+from pillagerbench.teams.cot.team import ChainOfThought
+from tests.teams.conftest import play_series
+
+RYN = """\
+async function clearSlime(bot, home) {
+  if (blockExists(bot, "slime_block", home, 7)) {
+    bot.chat("Removing slime from our area")
+    await mineBlock(bot, "slime_block", 3, home, 7)
+  }
+}
+
+async function mainRyn(bot) {
+  const home = new Vec3(-9, 4, -10)
+  while (true) {
+    await clearSlime(bot, home)
+    if (blockExists(bot, "red_mushroom_block", home, 7)) await mineBlock(bot, "red_mushroom_block", 4, home, 7)
+    await bot.waitForTicks(20)
+  }
+}"""
+
+RAZE = """\
+async function mainRaze(bot) {
+  const home = new Vec3(-9, 4, -10)
+  while (true) {
+    if (blockExists(bot, "red_mushroom_block", home, 7)) {
+      bot.chat("Harvesting red mushrooms")
+      await mineBlock(bot, "red_mushroom_block", 5, home, 7)
+    }
+    await bot.waitForTicks(20)
+  }
+}"""
+
+
+def answer(*blocks: str) -> str:
+    code = "\n".join(f"Code for bot {i}:\n```javascript\n{b}\n```" for i, b in enumerate(blocks))
+    return ("Explain: first round, nothing to learn from yet.\n"
+            "Plan: Ryn clears slime so the mushrooms regrow, then harvests; Raze harvests red mushrooms.\n" + code)
+
+
+SYNTAX_ERROR = "async function main(bot) {\n  await mineBlock(bot, 'red_mushroom_block', 3\n}"
+WRONG_PRIMITIVE = "async function main(bot) {\n  await craftItem(bot, 'bread', 1)\n}"
+
+
+def context(tmp_path, llm, last_episode=None, observations=None) -> TeamContext:
+    sc = make_scenario("mushroom_war")
+    side = sc.side("red")
+    return TeamContext(scenario=sc, side=side, players={}, episode=0, out_dir=tmp_path / "red",
+                       observations=observations or {}, last_episode=last_episode or {}, llm=llm)
+
+
+async def test_prompt_holds_everything_the_paper_lists(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply=answer(RYN, RAZE)))
+    team = make_team("cot", "mushroom_war")
+    obs = {"Ryn": [["observe", {"voxels": ["slime_block", "red_mushroom_block"],
+                                "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "entities": {"cow": 4.0}}}]]}
+    await team.pre_game(context(tmp_path, llm_client(), observations=obs))
+    assert fake_llm.count == 1
+    req = fake_llm.requests[-1]
+    system, user = req.messages[0]["content"], req.messages[1]["content"]
+    assert prim.doc("mineBlock") in system and prim.doc("mineflayer") in system
+    assert prim.doc("craftItem") not in system                     # not a Mushroom War primitive
+    assert "Code for Ryn:" in system and "Code for Raze:" in system
+    sc = make_scenario("mushroom_war")
+    assert sc.description() in user
+    assert "Team name: red_team" in user and "Team players: Ryn, Raze" in user
+    assert "Ryn (at x=-7.5, y=4, z=-9.5): red_mushroom_block, slime_block" in user
+    assert "cow (4 blocks away)" in user
+    assert "No code yet" in user
+    rec = json.loads((tmp_path / "red" / "cot.json").read_text())
+    assert rec["status"] == "ok" and set(rec["programs"]) == {"Ryn", "Raze"}
+    assert rec["programs"]["Ryn"]["entry"] == "mainRyn" and rec["messages"][1]["content"] == user
+
+
+async def test_last_episode_code_errors_and_chat_reach_the_next_prompt(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply=answer(RYN, SYNTAX_ERROR)))
+    team = make_team("cot", "mushroom_war", attempts=1)
+    client = llm_client()
+    await team.pre_game(context(tmp_path, client))
+    events_dir = tmp_path / "events"
+    events_dir.mkdir()
+    lines = [["onChat", {"onChat": "<Ryn> Removing slime"}]] * 3 + [
+        ["onChat", {"onChat": "Team red is clean!"}], ["onError", {"onError": "Error: No path\nat line 3: x"}],
+        ["observe", {}]]
+    (events_dir / "Ryn.jsonl").write_text("\n".join(json.dumps(e) for e in lines))
+    await team.pre_game(context(tmp_path, client, last_episode={"events_dir": str(events_dir)}))
+    user = fake_llm.requests[-1].messages[1]["content"]
+    assert "Ryn:\n```javascript\n" + RYN in user                       # last round's code
+    assert "Your code was not used: Raze: the code does not parse" in user
+    assert "Error: No path" in user
+    assert user.count("<Ryn> Removing slime") == 1 and "Team red is clean!" in user
+    assert team.state()["last_code"]["Raze"] == SYNTAX_ERROR
+    fresh = ChainOfThought()
+    fresh.load_state(json.loads(json.dumps(team.state())))
+    assert fresh.last_code == team.last_code and fresh.last_problems == team.last_problems
+
+
+async def test_bad_answers_are_retried_with_the_problems_then_recorded(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply="Explain: hmm.\nPlan: we will see.", times=1),
+                 Rule(role="cot", reply=answer(RYN), times=1),
+                 Rule(role="cot", reply=answer(RYN, WRONG_PRIMITIVE)))
+    team = make_team("cot", "mushroom_war", attempts=3)
+    await team.pre_game(context(tmp_path, llm_client()))
+    assert fake_llm.count == 3
+    retry = fake_llm.requests[1].messages
+    assert [m["role"] for m in retry] == ["system", "user", "assistant", "user"]
+    assert "no ```javascript code block" in retry[-1]["content"]
+    assert "Raze: no code block" in fake_llm.requests[2].messages[-1]["content"]
+    rec = json.loads((tmp_path / "red" / "cot.json").read_text())
+    assert rec["status"] == "partial" and len(rec["attempts"]) == 3
+    assert set(rec["programs"]) == {"Ryn"}
+    assert "craftItem" in rec["failures"]["Raze"] and "not available in this scenario" in rec["failures"]["Raze"]
+    assert team.programs[0] is not None and team.programs[1] is None
+
+
+async def test_a_good_retry_ends_the_attempts(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply=answer(SYNTAX_ERROR, RAZE), times=1), Rule(role="cot", reply=answer(RYN, RAZE)))
+    team = make_team("cot", "mushroom_war", attempts=5)
+    await team.pre_game(context(tmp_path, llm_client()))
+    assert fake_llm.count == 2 and all(team.programs)
+    assert "Ryn: the code does not parse: SyntaxError" in fake_llm.requests[1].messages[-1]["content"]
+
+
+async def test_provider_errors_and_budgets_fail_the_episode_not_the_team(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", status=500, message="overloaded"))
+    team = make_team("cot", "mushroom_war")
+    await team.pre_game(context(tmp_path, llm_client()))
+    rec = json.loads((tmp_path / "red" / "cot.json").read_text())
+    assert rec["status"] == "failed" and "overloaded" in rec["error"] and team.programs == [None, None]
+    assert "overloaded" in rec["failures"]["Ryn"]
+
+    fake_llm.reset()
+    fake_llm.add(Rule(role="cot", reply=answer(RYN, RAZE)))
+    client = llm_client("red", "llm.budget.max_calls=0")
+    await team.pre_game(context(tmp_path, client))
+    rec = json.loads((tmp_path / "red" / "cot.json").read_text())
+    assert rec["status"] == "failed" and "BudgetExceeded" in rec["error"] and fake_llm.count == 0
+
+    await team.pre_game(context(tmp_path, None))
+    assert json.loads((tmp_path / "red" / "cot.json").read_text())["error"].startswith("no LLM client")
+
+
+async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
+    """Two matches at once: (1) the scripted answer mines slime and harvests mushrooms and scores;
+    (2) a series whose first answer has no code (both players idle) and whose second has a syntax
+    error for Raze (Ryn plays, Raze idles) goes on."""
+    fake_llm.add(Rule(role="cot", regex=r"Your code was not used", reply=answer(RYN, SYNTAX_ERROR)),
+                 Rule(role="cot", model="scorer", reply=answer(RYN, RAZE)),
+                 Rule(role="cot", reply="Explain: no idea.\nPlan: none."))
+    good, series = llm_client("red", "llm.model=scorer"), llm_client("red")
+    scoring, fallback = await asyncio.gather(
+        play_series("mushroom_war", make_team("cot", "mushroom_war"), "do_nothing", tmp_path / "good",
+                    length=30, llms={"red": good}),
+        play_series("mushroom_war", make_team("cot", "mushroom_war", attempts=2), "do_nothing", tmp_path / "series",
+                    episodes=2, length=12, llms={"red": series}))
+
+    (rec,) = scoring
+    assert rec.status == "ok", rec.error
+    assert rec.red_score > 0 and rec.blue_score == 0
+    ryn, raze = rec.iterations["red"]
+    assert ryn >= 1 and raze >= 1
+    cot = json.loads((tmp_path / "good" / "episode_000" / "red" / "cot.json").read_text())
+    assert cot["status"] == "ok" and cot["iterations"] == {"Ryn": ryn, "Raze": raze}
+    events = [json.loads(line) for line in (tmp_path / "good" / "episode_000" / "events" / "Ryn.jsonl").open()]
+    chats = [e[1]["onChat"] for e in events if e[0] == "onChat"]
+    assert any(c.startswith("<Ryn> Mined") and "slime_block" in c for c in chats), chats[:20]
+
+    first, second = fallback
+    assert first.status == "ok" and second.status == "ok", (first.error, second.error)
+    assert first.red_score == 0 and first.iterations["red"] == [0, 0]
+    c0 = json.loads((tmp_path / "series" / "episode_000" / "red" / "cot.json").read_text())
+    assert c0["status"] == "failed" and len(c0["attempts"]) == 2
+    assert "no ```javascript code block" in c0["failures"]["Ryn"]
+    c1 = json.loads((tmp_path / "series" / "episode_001" / "red" / "cot.json").read_text())
+    assert c1["status"] == "partial" and set(c1["programs"]) == {"Ryn"}
+    assert "does not parse" in c1["failures"]["Raze"]
+    assert second.iterations["red"][0] >= 1 and second.iterations["red"][1] == 0
