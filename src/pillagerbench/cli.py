@@ -12,6 +12,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "server": ("pillagerbench.arena.serve:main", "start an arena server to watch with a 1.16.5 client"),
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
     "llm-ping": ("pillagerbench.llm.ping:main", "send one short request to an LLM provider"),
+    "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
+    "calibrate": ("pillagerbench.metrics.calibration:main", "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)"),
 }
 
 

@@ -1,0 +1,127 @@
+"""σ_blue, the reference for the sabotage metric S: the mean score of each built-in opponent (blue)
+when the red team is do_nothing, from real episodes stored with the results.
+
+    pillagerbench calibrate [key=value ...]        play experiment=calibration, write its calibration.json
+    pillagerbench calibrate RUN_DIR... [--out F]   compute it from runs that have do_nothing-red series
+                                                   (e.g. a round robin), write RUN_DIR/calibration.json
+
+calibration.json: {"created", "sources": [run dirs], "scenarios": {scenario: {"version", "episode_length",
+"opponents": {team: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them).
+`pillagerbench run experiment=... calibration=FILE` copies the file into the new run directory.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
+from pillagerbench.metrics.load import ReportError, Runs, load_runs
+
+CALIBRATION = "calibration.json"
+
+
+def calibration_from_runs(runs: Runs) -> dict:
+    df = runs.episodes
+    scenarios: dict[str, dict] = {}
+    if len(df):
+        ref = df[(df["red_team"] == "do_nothing") & df["group"].isna()]
+        for (scenario, blue), g in ref.groupby(["scenario", "blue_team"], sort=False):
+            e = mean_ci(g["blue_raw"])
+            entry = scenarios.setdefault(scenario, {"version": str(g["version"].iloc[0]),
+                                                    "episode_length": float(g["episode_length"].iloc[0]),
+                                                    "opponents": {}})
+            entry["opponents"][blue] = {"sigma_blue": e.mean, "ci": None if math.isnan(e.ci) else e.ci,
+                                        "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None, "n": e.n}
+    return {"created": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "sources": [str(r) for r in runs.runs],
+            "scenarios": scenarios}
+
+
+def read_calibration(path: Path) -> dict:
+    data = json.loads(Path(path).read_text())
+    if "scenarios" not in data:
+        raise ReportError(f"{path}: not a calibration file (no 'scenarios'; make one with pillagerbench calibrate)")
+    return data
+
+
+def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
+    """σ_blue per (scenario, opponent team) as scaled Estimates, and notes on where each came from.
+
+    Order: an explicit file (must match the runs' scenario versions and episode lengths), then
+    calibration.json files stored in the runs, then do_nothing-red episodes among the runs."""
+    df = runs.episodes
+    want = {} if not len(df) else {sc: (str(g["version"].iloc[0]), float(g["episode_length"].iloc[0]))
+                                   for sc, g in df.groupby("scenario")}
+    sources = ([(explicit, read_calibration(explicit), True)] if explicit else []) + \
+              [(p, read_calibration(p), False) for p in runs.calibration_files] + \
+              [("the do_nothing-red episodes of these runs", calibration_from_runs(runs), False)]
+    table: dict[tuple[str, str], Estimate] = {}
+    notes: list[str] = []
+    for where, cal, strict in sources:
+        for scenario, entry in cal["scenarios"].items():
+            if scenario not in want:
+                continue
+            have = (str(entry.get("version")), float(entry.get("episode_length", 0)))
+            if have != want[scenario]:
+                msg = (f"calibration {where} for {scenario} is of version {have[0]} with {have[1]:g} s episodes; "
+                       f"the runs are version {want[scenario][0]} with {want[scenario][1]:g} s episodes")
+                if strict:
+                    raise ReportError(msg)
+                notes.append(msg + ": not used")
+                continue
+            scale = SCORE_SCALE.get(scenario, 1.0)
+            used = []
+            for team, o in entry["opponents"].items():
+                if (scenario, team) in table or o.get("sigma_blue") is None:
+                    continue
+                ci = o.get("ci")
+                table[(scenario, team)] = Estimate(float(o["sigma_blue"]) * scale,
+                                                   float("nan") if ci is None else float(ci) * scale, int(o.get("n", 0)))
+                used.append(f"{team} (n={o.get('n')})")
+            if used:
+                notes.append(f"σ_blue for {scenario} from {where}: {', '.join(used)}")
+    return table, notes
+
+
+def main(argv: list[str]) -> int:
+    dirs = [a for a in argv if "=" not in a and not a.startswith("-")]
+    if dirs:
+        p = argparse.ArgumentParser(prog="pillagerbench calibrate")
+        p.add_argument("runs", nargs="+")
+        p.add_argument("--out", default=None, help="file to write (default: FIRST_RUN/calibration.json)")
+        a = p.parse_args(argv)
+        runs = load_runs(a.runs)
+        out = Path(a.out) if a.out else Path(a.runs[0]) / CALIBRATION
+    else:  # play the calibration experiment first
+        from pillagerbench.config import load_config
+        from pillagerbench.experiments.runner import main_experiment, make_experiment_dir
+
+        overrides = list(argv)
+        if not any(o.startswith(("experiment=", "resume=")) for o in overrides):
+            overrides.insert(0, "experiment=calibration")
+        cfg = load_config(overrides)
+        if not cfg.get("resume") and not cfg.get("run_dir"):
+            cfg.run_dir = str(make_experiment_dir(cfg))
+            overrides.append(f"run_dir={cfg.run_dir}")
+        code = main_experiment(cfg, overrides)
+        if code:
+            return code
+        run_dir = Path(cfg.get("resume") or cfg.run_dir)
+        runs = load_runs([run_dir])
+        out = run_dir / CALIBRATION
+    cal = calibration_from_runs(runs)
+    if not cal["scenarios"]:
+        raise ReportError("no finished do_nothing-red episodes in these runs: nothing to calibrate")
+    out.write_text(json.dumps(cal, indent=1))
+    for scenario, entry in cal["scenarios"].items():
+        for team, o in entry["opponents"].items():
+            print(f"{scenario:<14} {team:<14} σ_blue = {o['sigma_blue']:.2f} (n={o['n']})")
+    for where, why in runs.skipped:
+        print(f"skipped {where}: {why}")
+    print(f"calibration: {out}")
+    return 0

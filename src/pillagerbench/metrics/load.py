@@ -1,0 +1,180 @@
+"""Read run directories (experiments and plain `pillagerbench run` directories) into one table of
+finished episodes, with what was skipped and why.
+
+An episode is used when its line is in episodes.jsonl, its status is ok and its timeline.json
+reaches the episode length. Everything else is listed in `skipped` (failed episodes, half-written
+episodes of a killed run, series that did not finish). Runs of different versions of a scenario
+(or different episode lengths) are refused: their scores do not compare.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pillagerbench.metrics.formulas import SCORE_SCALE
+
+
+class ReportError(ValueError):
+    """Runs that cannot be reported together; the message says why."""
+
+
+@dataclass
+class SeriesInfo:
+    run: Path
+    dir: Path
+    id: str
+    scenario: str
+    version: str
+    episode_length: float
+    red: str
+    blue: str
+    red_team: str
+    blue_team: str
+    episodes: int
+    protocol: str = "run"
+    variant: str | None = None
+    repetition: int = 0
+    group: str | None = None
+    group_x: float | None = None
+    episode_offset: int = 0
+
+
+@dataclass
+class Runs:
+    episodes: pd.DataFrame                       # one row per usable episode
+    series: list[SeriesInfo]
+    ledger: list[dict]                           # red-team LLM calls, each with "label" (row) and "scenario"
+    skipped: list[tuple[str, str]] = field(default_factory=list)  # (where, why)
+    calibration_files: list[Path] = field(default_factory=list)
+    runs: list[Path] = field(default_factory=list)
+
+
+def _series_of(run: Path) -> list[SeriesInfo]:
+    def info(series_dir: Path, cfg: dict, manifest: dict, **extra) -> SeriesInfo:
+        sc = manifest.get("scenario", {})
+        return SeriesInfo(run=run, dir=series_dir, scenario=cfg["scenario"]["name"], version=str(sc.get("version", "?")),
+                          episode_length=float(cfg.get("episode_length", 120)), **extra)
+
+    if (run / "experiment.json").exists():
+        data = json.loads((run / "experiment.json").read_text())
+        out = []
+        for s in data["series"]:
+            d = run / "series" / s["id"]
+            manifest = json.loads((d / "manifest.json").read_text()) if (d / "manifest.json").exists() else {}
+            out.append(info(d, s["config"], manifest, id=s["id"], red=s["red"], blue=s["blue"], red_team=s["red_team"],
+                            blue_team=s["blue_team"], episodes=int(s["episodes"]), protocol=s["protocol"],
+                            variant=s.get("variant"), repetition=int(s.get("repetition", 0)), group=s.get("group"),
+                            group_x=s.get("group_x"), episode_offset=int(s.get("episode_offset", 0))))
+        return out
+    if (run / "manifest.json").exists():
+        manifest = json.loads((run / "manifest.json").read_text())
+        cfg = manifest["config"]
+        red = cfg["red"]["name"]
+        return [info(run, cfg, manifest, id=run.name, red=red, blue=cfg["blue"]["name"], red_team=red,
+                     blue_team=cfg["blue"]["name"], episodes=int(cfg.get("episodes", 1)))]
+    raise ReportError(f"{run}: not a run directory (no experiment.json or manifest.json)")
+
+
+def _read_lines(path: Path, skipped: list, where: str) -> dict[int, dict]:
+    finished: dict[int, dict] = {}
+    if not path.exists():
+        return finished
+    for n, line in enumerate(path.read_text().splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            rec = json.loads(line)
+        except ValueError:
+            skipped.append((f"{where}/episodes.jsonl:{n}", "a line cut short (the run was killed while writing it)"))
+            continue
+        finished.setdefault(int(rec["episode"]), rec)
+    return finished
+
+
+def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
+    where = str(s.dir)
+    if not s.dir.exists():
+        skipped.append((where, f"series not started ({s.episodes} episode(s) missing)"))
+        return
+    finished = _read_lines(s.dir / "episodes.jsonl", skipped, where)
+    for d in sorted(s.dir.glob("episode_*")):
+        try:
+            i = int(d.name.split("_", 1)[1])
+        except ValueError:
+            continue
+        if i not in finished:
+            skipped.append((str(d), "half-written: no line in episodes.jsonl (killed mid-episode; "
+                                    "resume=RUN_DIR plays it again)"))
+    missing = s.episodes - len(finished)
+    if missing > 0:
+        skipped.append((where, f"{missing} of {s.episodes} episode(s) not played (unfinished run? resume=RUN_DIR)"))
+    scale = SCORE_SCALE.get(s.scenario, 1.0)
+    for i in sorted(finished):
+        rec = finished[i]
+        ep = s.dir / f"episode_{i:03d}"
+        if rec.get("status") != "ok":
+            skipped.append((str(ep), f"failed: {rec.get('error')}"))
+            continue
+        try:
+            timeline = json.loads((ep / "timeline.json").read_text())
+        except FileNotFoundError:
+            skipped.append((str(ep), "half-written: no timeline.json"))
+            continue
+        except ValueError:
+            skipped.append((str(ep), "half-written: timeline.json cut short"))
+            continue
+        if not timeline or float(timeline[-1]["t"]) < s.episode_length:
+            end = timeline[-1]["t"] if timeline else None
+            skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
+            continue
+        red_it = (rec.get("iterations") or {}).get("red") or []
+        rows.append({
+            "run": str(s.run), "series": s.id, "scenario": s.scenario, "version": s.version,
+            "episode_length": s.episode_length, "red": s.red, "blue": s.blue, "red_team": s.red_team,
+            "blue_team": s.blue_team, "protocol": s.protocol, "variant": s.variant, "repetition": s.repetition,
+            "group": s.group, "group_x": s.group_x, "episode": i, "index": i + s.episode_offset,
+            "red_raw": float(rec["red_score"]), "blue_raw": float(rec["blue_score"]), "scale": scale,
+            "red_score": float(rec["red_score"]) * scale, "blue_score": float(rec["blue_score"]) * scale,
+            "iterations": float(np.mean(red_it)) if red_it else np.nan,
+            "t": np.array([p["t"] for p in timeline], dtype=float),
+            "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
+            "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
+        })
+
+
+def _check_comparable(series: list[SeriesInfo]) -> None:
+    for attr, what in (("version", "versions"), ("episode_length", "episode lengths")):
+        seen: dict[str, dict] = {}
+        for s in series:
+            if s.dir.exists():
+                seen.setdefault(s.scenario, {}).setdefault(getattr(s, attr), s.run)
+        for scenario, values in seen.items():
+            if len(values) > 1:
+                detail = "; ".join(f"{v} in {run}" for v, run in values.items())
+                raise ReportError(f"refusing to mix {what} of {scenario}: {detail}. Their scores do not compare; "
+                                  "report them separately")
+
+
+def load_runs(paths: list[str | Path]) -> Runs:
+    series, skipped, rows, ledger, cals = [], [], [], [], []
+    runs = [Path(p) for p in paths]
+    for run in runs:
+        series += _series_of(run)
+        if (run / "calibration.json").exists():
+            cals.append(run / "calibration.json")
+    _check_comparable(series)
+    for s in series:
+        _load_series(s, rows, skipped)
+        path = s.dir / "llm_calls.jsonl"
+        if path.exists():
+            from pillagerbench.llm.ledger import read_ledger
+
+            ledger += [{**r, "label": s.red, "scenario": s.scenario, "series": s.id}
+                       for r in read_ledger(path) if r.get("team") == "red"]
+    df = pd.DataFrame(rows)
+    return Runs(episodes=df, series=series, ledger=ledger, skipped=skipped, calibration_files=cals, runs=runs)

@@ -1,0 +1,78 @@
+"""`pillagerbench report RUN_DIR... [--out DIR] [--calibration FILE]`: the paper's tables and
+figures from run directories (experiments or plain runs), as Markdown, CSV, PNG and one HTML page.
+
+Dash & Dine scores are scaled ×0.1 as in the paper. σ_blue (for S) comes from --calibration, else
+from calibration.json files stored in the runs, else from do_nothing-red episodes among the runs;
+where none exists, S is left empty. Skipped episodes are listed with the reason in skipped.md and
+on the page; runs of different scenario versions are refused.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from pillagerbench.metrics import calibration as calib
+from pillagerbench.metrics.load import ReportError, load_runs
+from pillagerbench.report import html, plots, tables
+
+
+def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None = None) -> dict:
+    runs = load_runs(run_dirs)
+    sigma, notes = calib.resolve(runs, calibration)
+    if not sigma:
+        notes.append("no σ_blue for these runs (pillagerbench calibrate): S is left empty")
+    df = runs.episodes
+    out.mkdir(parents=True, exist_ok=True)
+    main = tables.main_episodes(df)
+    t = {
+        "summary": (tables.summary(main, sigma, runs.ledger), "Summary per red team (all scenarios and opponents)"),
+        "per_scenario": (tables.summary(main, sigma, runs.ledger, by_scenario=True), "Per red team and scenario"),
+        "pairings": (tables.pairings(main, sigma), "Per pairing (heatmap values)"),
+        "groups": (tables.groups(df, sigma), "Groups (adaptation: same/different opponent; self-play: after k episodes)"),
+        "learning_curve": (tables.learning_curve(main), "Points difference per episode index"),
+        "calibration": (tables.calibration(sigma), "σ_blue used for the sabotage metric"),
+        "skipped": (tables.skipped(runs.skipped), "Skipped"),
+    }
+    files = []
+    for name, (frame, title) in t.items():
+        files += tables.write(frame, out, name, title)
+    scenarios = tables.scenario_order(df) if len(df) else []
+    figures = []
+    for sc in scenarios:
+        figures.append((f"Heatmaps: {plots._title(sc)}", plots.heatmaps(t["pairings"][0], sc, out / f"heatmaps_{sc}.png")))
+        figures.append((f"Points over time: {plots._title(sc)}", plots.timeline(main, sc, out / f"timeline_{sc}.png")))
+    figures.append(("Points difference per episode", plots.learning_curve(t["learning_curve"][0], out / "learning_curve.png")))
+    figures.append(("Groups", plots.groups(t["groups"][0], out / "groups.png")))
+    figures.append(("Self-play series", plots.series_scores(df, out / "series_scores.png")))
+    files += [p for _, p in figures]
+    notes.insert(0, f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
+                    "± is the 95 % confidence interval")
+    sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups")]
+    sections += [(title, "image", path) for title, path in figures]
+    sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "skipped")]
+    page = out / "report.html"
+    page.write_text(html.page("PillagerBench report", runs.runs, notes, sections))
+    files.append(page)
+    return {"files": files, "notes": notes, "skipped": runs.skipped, "episodes": len(df), "out": out}
+
+
+def main(argv: list[str]) -> int:
+    p = argparse.ArgumentParser(prog="pillagerbench report", description=__doc__.split("\n\n")[0])
+    p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs)")
+    p.add_argument("--out", default=None, help="output directory (default: FIRST_RUN/report)")
+    p.add_argument("--calibration", default=None, help="a calibration.json (pillagerbench calibrate)")
+    a = p.parse_args(argv)
+    out = Path(a.out) if a.out else Path(a.runs[0]) / "report"
+    try:
+        result = build_report(a.runs, out, Path(a.calibration) if a.calibration else None)
+    except ReportError as exc:
+        print(f"pillagerbench report: {exc}", file=sys.stderr)
+        return 2
+    for note in result["notes"]:
+        print(note)
+    for where, why in result["skipped"]:
+        print(f"skipped {where}: {why}")
+    print(f"report: {out / 'report.html'} ({len(result['files'])} files)")
+    return 0

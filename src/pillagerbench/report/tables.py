@@ -1,0 +1,190 @@
+"""The report's tables as DataFrames (numbers with separate 95 % CI columns), written as CSV and
+Markdown ("mean ± ci").
+
+- summary:       per red team (row label) over every scenario and opponent: P S D W, T_resp N_out R_tps, I
+                 (the paper's main table, model ablation and module ablation)
+- per_scenario:  the same per red team and scenario
+- pairings:      per scenario, red team and opponent, plus "all": P S D W (the heatmaps' numbers)
+- groups:        per red team, scenario (and "all") and group: adaptation same/different, self-play
+                 evaluation "after k" (paper's adaptation table and self-play figure)
+- learning_curve: D per episode index (experience) per red team (paper's D-per-episode figure)
+- calibration:   σ_blue used per scenario and opponent
+- skipped:       what was left out and why
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pillagerbench.metrics.formulas import Estimate, iterations, llm_metrics, mean_ci, over_opponents, pairing
+
+METRICS = ("P", "S", "D", "W")
+ALL = "all"
+
+
+def scenario_order(df: pd.DataFrame) -> list[str]:
+    known = ["mushroom_war", "dash_and_dine"]
+    present = list(dict.fromkeys(df["scenario"])) if len(df) else []
+    return [s for s in known if s in present] + [s for s in present if s not in known]
+
+
+def opponent_order(df: pd.DataFrame, scenario: str | None = None) -> list[str]:
+    from pillagerbench.experiments.spec import builtin_teams
+
+    sub = df if scenario is None else df[df["scenario"] == scenario]
+    present = list(dict.fromkeys(sub["blue"])) if len(sub) else []
+    canon: list[str] = []
+    for sc in ([scenario] if scenario else scenario_order(df)):
+        canon += [t for t in builtin_teams(sc) if t not in canon]
+    return [t for t in canon if t in present] + [t for t in present if t not in canon]
+
+
+def red_order(df: pd.DataFrame) -> list[str]:
+    return list(dict.fromkeys(df["red"])) if len(df) else []
+
+
+def main_episodes(df: pd.DataFrame) -> pd.DataFrame:
+    """Episodes of ordinary series (not evaluation groups such as adaptation's same/different)."""
+    if not len(df):
+        return df
+    return df[df["group"].isna() | (df["group"] == "training")]
+
+
+def _row(estimates: dict[str, Estimate], n: int) -> dict:
+    row: dict = {"episodes": n}
+    for m in METRICS:
+        e = estimates[m]
+        row[m], row[f"{m}_ci"] = e.mean, e.ci
+    return row
+
+
+def _groups_by_opponent(df: pd.DataFrame, sigma: dict) -> list:
+    out = []
+    for (scenario, blue_team), g in df.groupby(["scenario", "blue_team"], sort=False):
+        s = sigma.get((scenario, blue_team))
+        out.append((g["red_score"].to_numpy(), g["blue_score"].to_numpy(), s.mean if s else None, s))
+    return out
+
+
+def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
+    rows = []
+    for scenario in scenario_order(df):
+        sd = df[df["scenario"] == scenario]
+        for red in red_order(sd):
+            rd = sd[sd["red"] == red]
+            for blue in opponent_order(rd, scenario):
+                g = rd[rd["blue"] == blue]
+                s = sigma.get((scenario, g["blue_team"].iloc[0]))
+                rows.append({"scenario": scenario, "red": red, "blue": blue,
+                             **_row(pairing(g["red_score"], g["blue_score"], s.mean if s else None, s), len(g))})
+            rows.append({"scenario": scenario, "red": red, "blue": ALL,
+                         **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd))})
+    return pd.DataFrame(rows, columns=["scenario", "red", "blue", "episodes"] + [c for m in METRICS for c in (m, f"{m}_ci")])
+
+
+def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool = False) -> pd.DataFrame:
+    rows = []
+    keys = [(r, None) for r in red_order(df)]
+    if by_scenario:
+        keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df["scenario"] == sc])]
+    for red, scenario in keys:
+        rd = df[(df["red"] == red) & ((df["scenario"] == scenario) if scenario else True)]
+        calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
+        llm = llm_metrics(calls)
+        it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
+        row = {"red": red, **({"scenario": scenario} if by_scenario else {}),
+               **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd)),
+               "T_resp": llm["T_resp"], "N_out": llm["N_out"], "R_tps": llm["R_tps"], "llm_calls": llm["calls"],
+               "I": it.mean, "I_ci": it.ci}
+        rows.append(row)
+    cols = ["red"] + (["scenario"] if by_scenario else []) + ["episodes"] + \
+        [c for m in METRICS for c in (m, f"{m}_ci")] + ["T_resp", "N_out", "R_tps", "llm_calls", "I", "I_ci"]
+    return pd.DataFrame(rows, columns=cols)
+
+
+def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
+    gd = df[df["group"].notna() & (df["group"] != "training")] if len(df) else df
+    rows = []
+    if len(gd):
+        order = sorted(dict.fromkeys(gd["group"]), key=lambda g: (_group_x(gd, g), g))
+        for red in red_order(gd):
+            for scenario in scenario_order(gd) + [ALL]:
+                sd = gd[(gd["red"] == red) & ((gd["scenario"] == scenario) if scenario != ALL else True)]
+                for group in order:
+                    g = sd[sd["group"] == group]
+                    if len(g):
+                        rows.append({"red": red, "scenario": scenario, "group": group, "group_x": _group_x(gd, group),
+                                     **_row(over_opponents(_groups_by_opponent(g, sigma)), len(g))})
+    return pd.DataFrame(rows, columns=["red", "scenario", "group", "group_x", "episodes"] +
+                        [c for m in METRICS for c in (m, f"{m}_ci")])
+
+
+def _group_x(df: pd.DataFrame, group: str) -> float:
+    x = df.loc[df["group"] == group, "group_x"].dropna()
+    return float(x.iloc[0]) if len(x) else math.inf
+
+
+def learning_curve(df: pd.DataFrame) -> pd.DataFrame:
+    rows = []
+    for red in red_order(df):
+        rd = df[df["red"] == red]
+        for index in sorted(rd["index"].unique()):
+            g = rd[rd["index"] == index]
+            d = mean_ci(g["red_score"] - g["blue_score"])
+            rows.append({"red": red, "episode": int(index), "episodes": d.n, "D": d.mean, "D_ci": d.ci})
+    return pd.DataFrame(rows, columns=["red", "episode", "episodes", "D", "D_ci"])
+
+
+def calibration(sigma: dict) -> pd.DataFrame:
+    rows = [{"scenario": sc, "opponent": team, "sigma_blue": e.mean, "sigma_blue_ci": e.ci, "episodes": e.n}
+            for (sc, team), e in sigma.items()]
+    return pd.DataFrame(rows, columns=["scenario", "opponent", "sigma_blue", "sigma_blue_ci", "episodes"])
+
+
+def skipped(items: list[tuple[str, str]]) -> pd.DataFrame:
+    return pd.DataFrame([{"where": w, "why": y} for w, y in items], columns=["where", "why"])
+
+
+# -- output -------------------------------------------------------------------------------------
+def _fmt(v) -> str:
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "–"
+    if isinstance(v, (float, np.floating)):
+        return f"{v:.2f}"
+    return str(v)
+
+
+def display_frame(df: pd.DataFrame) -> pd.DataFrame:
+    """Merge `X` and `X_ci` into "mean ± ci" strings for Markdown and HTML."""
+    out = {}
+    for c in df.columns:
+        if c.endswith("_ci") and c[:-3] in df.columns:
+            continue
+        if f"{c}_ci" in df.columns:
+            out[c] = [_fmt(m) if (ci is None or (isinstance(ci, float) and math.isnan(ci))) or _fmt(m) == "–"
+                      else f"{_fmt(m)} ± {_fmt(ci)}" for m, ci in zip(df[c], df[f"{c}_ci"])]
+        else:
+            out[c] = [_fmt(v) for v in df[c]]
+    return pd.DataFrame(out, columns=list(out))
+
+
+def to_markdown(df: pd.DataFrame) -> str:
+    shown = display_frame(df)
+    cols = list(shown.columns)
+    lines = ["| " + " | ".join(cols) + " |", "|" + "|".join("---" for _ in cols) + "|"]
+    for _, r in shown.iterrows():
+        lines.append("| " + " | ".join(str(r[c]).replace("|", "\\|") for c in cols) + " |")
+    if not len(shown):
+        lines.append("| " + " | ".join("" for _ in cols) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def write(df: pd.DataFrame, out_dir: Path, name: str, title: str) -> list[Path]:
+    csv, md = out_dir / f"{name}.csv", out_dir / f"{name}.md"
+    df.to_csv(csv, index=False)
+    md.write_text(f"## {title}\n\n" + to_markdown(df))
+    return [csv, md]
