@@ -29,8 +29,8 @@ module.exports = {
     async function tillLand (_bot, lands = ['dirt']) {
       const hoe = h.items().find(i => i.name.endsWith('_hoe'))
       if (!hoe) { ctx.chat('No hoe in inventory.'); run.fail('farm', TOO_MANY); return }
-      const ids = new Set(lands.map(blockId))
-      const targets = bot.findBlocks({ matching: b => ids.has(b.type), maxDistance: 32, count: 1000 })
+      const ids = lands.map(blockId) // ids, not a function: findBlocks can then skip whole chunk sections
+      const targets = h.scanBlocks(bot.entity.position, ids)
         .filter(p => isAir(bot.blockAt(p.offset(0, 1, 0)))).slice(0, MAX_BLOCKS)
       for (const pos of targets) {
         if (!await walkTo(pos)) continue
@@ -47,10 +47,10 @@ module.exports = {
       checkString(crop, 'crop for plantCrop')
       if (!mcData.itemsByName[crop]) throw new Error(`No item named ${crop}`)
       if (h.itemCount(crop) === 0) { ctx.chat(`No ${crop} in inventory.`); run.fail('farm', TOO_MANY); return }
-      const ids = new Set(lands.map(blockId))
+      const ids = lands.map(blockId)
       const dirs = directions.map(d => h.toVec3(d, 'direction'))
       const spots = []
-      for (const pos of bot.findBlocks({ matching: b => ids.has(b.type), maxDistance: 32, count: 1000 })) {
+      for (const pos of h.scanBlocks(bot.entity.position, ids)) {
         for (const d of dirs) if (isAir(bot.blockAt(pos.plus(d)))) { spots.push([pos, d]); break }
         if (spots.length >= MAX_BLOCKS) break
       }
@@ -83,7 +83,8 @@ module.exports = {
       checkString(crop, 'crop for harvest')
       const id = blockId(crop)
       const center = pos ? h.toVec3(pos, 'position for harvest') : bot.entity.position
-      const targets = bot.findBlocks({ matching: (b) => b.type === id && matching(b), useExtraInfo: true, maxDistance: 25, count: 20, point: center })
+      const targets = bot.findBlocks({ matching: id, maxDistance: 25, count: 1000, point: center })
+        .filter(p => matching(bot.blockAt(p))).slice(0, 20)
       if (targets.length === 0) {
         ctx.chat(`No ${crop} nearby`)
         run.fail('farm', TOO_MANY)

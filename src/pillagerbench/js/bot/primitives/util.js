@@ -56,7 +56,27 @@ function helpers (ctx) {
     return true
   }
 
-  return { toVec3, items, itemCount, findItem, waitTicks, goto, near, collectDrops, equipItem, isStop }
+  // Blocks with one of `ids` within `radius` (horizontally) and `dy` layers of `center`, nearest first.
+  // Faster than findBlocks for blocks that fill whole layers (dirt under the ground).
+  function scanBlocks (center, ids, { radius = 32, dy = 4 } = {}) {
+    const c = center.floored()
+    const want = new Set(ids)
+    const out = []
+    const p = new Vec3(0, 0, 0)
+    for (let y = Math.max(0, c.y - dy); y <= Math.min(255, c.y + dy); y++) {
+      for (let x = c.x - radius; x <= c.x + radius; x++) {
+        for (let z = c.z - radius; z <= c.z + radius; z++) {
+          if ((x - c.x) ** 2 + (z - c.z) ** 2 > radius * radius) continue
+          const sid = bot.world.getBlockStateId(p.set(x, y, z))
+          const b = sid === undefined ? null : bot.registry.blocksByStateId[sid]
+          if (b && want.has(b.id)) out.push(new Vec3(x, y, z))
+        }
+      }
+    }
+    return out.sort((a, b) => a.distanceSquared(c) - b.distanceSquared(c))
+  }
+
+  return { toVec3, items, itemCount, findItem, waitTicks, goto, near, collectDrops, equipItem, isStop, scanBlocks }
 }
 
 function checkString (value, what) {
