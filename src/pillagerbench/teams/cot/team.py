@@ -174,7 +174,10 @@ class ChainOfThought(Team):
         while ctx.time_left() > 0:
             self.iterations[k] += 1
             started = time.monotonic()
-            await player.run(program.exec_code)  # the match stops it at the whistle
+            try:
+                await player.run(program.exec_code)  # the match stops it at the whistle
+            except Exception as exc:  # the bot cannot run code right now: note it and try again
+                self.record.setdefault("run_errors", []).append(f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}")
             quick = time.monotonic() - started
             if ctx.time_left() > 0 and quick < self.restart_pause_s:
                 await asyncio.sleep(min(self.restart_pause_s - quick, ctx.time_left()))
