@@ -96,3 +96,18 @@ async def test_drop_key_and_click_outside_window_spawn_items(arena, bots, area):
     # alice may pick her stick up again after the pickup delay; in any case nothing was duplicated
     total = await count(arena, "alice", "stick") + sum(i["count"] for i in await arena.request("items") if i["item"] == "stick")
     assert total == 4
+
+
+async def test_a_new_player_sees_the_players_who_logged_in_before_it(arena, bots, area):
+    from tests.support.bots import TestBot
+
+    alice, bob = bots
+    await area.put(alice, 2, 2)
+    await area.put(bob, 4, 2)
+    async with TestBot(arena.port, "carol") as carol:
+        await area.put(carol, 3, 4)
+        seen = await carol.eval(
+            "for (let i = 0; i < 40; i++) { if (bot.players.alice?.entity && bot.players.bob?.entity) break; await sleep(50) }"
+            "return ['alice', 'bob'].filter(n => bot.players[n] && bot.players[n].entity)")
+        assert seen == ["alice", "bob"]
+        assert await bob.eval("return !!(bot.players.carol && bot.players.carol.entity)")
