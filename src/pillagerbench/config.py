@@ -23,7 +23,12 @@ GROUP_ALIASES = {"red": "team@red", "blue": "team@blue"}
 
 def _alias(override: str) -> str:
     key, sep, value = override.partition("=")
-    return f"{GROUP_ALIASES[key]}={value}" if sep and key in GROUP_ALIASES else override
+    if sep and key in GROUP_ALIASES:
+        return f"{GROUP_ALIASES[key]}={value}"
+    side, _, rest = key.partition(".")
+    if sep and side in GROUP_ALIASES and rest.startswith("llm."):
+        return f"++{override}"  # a side's LLM overrides may name keys its team config leaves out
+    return override
 
 
 def load_config(overrides: list[str] | None = None, config_name: str = "config") -> DictConfig:
