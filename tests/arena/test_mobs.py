@@ -74,3 +74,17 @@ async def test_egg_farm_fills_its_chest_only_while_a_chicken_lives_nearby(arena,
     eggs = (await arena.request("get_chest", pos=with_chicken)).get("egg", 0)
     assert 3 <= eggs <= 7
     assert await arena.request("get_chest", pos=without) == {}
+
+
+async def test_login_near_a_mob_and_a_killed_mob_vanishes_for_late_comers(arena, bots, area):
+    from tests.support.bots import TestBot
+
+    alice, _ = bots
+    await arena.request("summon", mob="pig", pos=area.at(3.5, 4, 2.5))
+    async with TestBot(arena.port, "dave") as dave:  # logging in while a mob exists must not kick
+        await area.put(dave, 5, 5)
+        await area.put(alice, 2, 2, {"diamond_sword": 1})  # alice arrives after the pig spawned
+        await wait_mob(alice, "pig")
+        assert await alice.eval(ATTACK % ("pig", "pig", "diamond_sword")) is True
+        assert await dave.eval("await sleep(300); return Object.values(bot.entities).filter(e => e.name === 'pig').length") == 0
+        assert not dave.kicked

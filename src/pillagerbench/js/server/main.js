@@ -13,7 +13,7 @@ const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
 const PLUGINS = ['guard', 'interact', 'player_list', 'teleport', 'inventory', 'windows', 'blocks', 'crafting', 'furnace', 'chest', 'drops',
-  'farming', 'crops', 'mobs', 'fill', 'no_commands', 'events']
+  'farming', 'crops', 'entities', 'mobs', 'fill', 'no_commands', 'events']
 
 function main () {
   const mc = require('flying-squid')

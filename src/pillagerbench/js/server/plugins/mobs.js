@@ -43,7 +43,8 @@ module.exports.server = function (serv) {
   // Our animals stand still (no mob AI; flying-squid's physics lifted them off the ground), have
   // their real health and die into their loot.
   function farmAnimal (e) {
-    e.velocity = null
+    e.velocity = new Vec3(0, 0, 0)
+    e.size = null // no physics tick for it (flying-squid's lifted mobs off the ground); spawn packets still work
     e.health = MOBS[e.name].health
     e.takeDamage = serv.guarded('mob damage', ({ damage = 1, attacker } = {}) => {
       if (e.dead) return
@@ -60,7 +61,7 @@ module.exports.server = function (serv) {
         event: 'mob_killed', mob: e.name, player: attacker || null,
         drops: drops.map(d => [reg.items[d.id].name, d.count])
       })
-      setTimeout(() => serv.destroyEntity(e), 800)
+      setTimeout(() => serv.destroyEntity(e), 800) // entities.js tells every player
     })
   }
 
