@@ -93,7 +93,7 @@ def build_arena() -> Arena:
     return Arena(
         box=((-26, 1, -16), (6, Y + 8, 14)),
         blocks=blocks,
-        chests={BOWL_CHEST: {"bowl": 64}, BUCKET_CHEST: {"bucket": 16}, EGG_CHEST: {},
+        chests={BOWL_CHEST: {"bowl": 64}, BUCKET_CHEST: {"bucket": 16}, EGG_CHEST: {"egg": 16},  # eggs laid before the game
                 TOOL_CHEST: {"gold_nugget": 64, "netherite_hoe": 1}},
         furnaces={p: {"fuel": ["coal", 64]} for p in FURNACES},
         mobs=[("cow", (-6.5, Y, -8.5))] + [("chicken", (-6.5, Y, 6.5))] * 4,
