@@ -1,0 +1,34 @@
+"""Crash recovery of a series directory, without a server: what is kept, what is moved aside."""
+
+from __future__ import annotations
+
+import json
+
+from pillagerbench.experiments.series import recover, state_dir
+
+
+def test_recover_keeps_finished_and_discards_the_rest(tmp_path):
+    s = tmp_path / "series"
+    for i in range(3):
+        (s / f"episode_{i:03d}").mkdir(parents=True)
+        (s / f"episode_{i:03d}" / "episode.json").write_text("{}")
+    lines = [json.dumps({"episode": 0, "status": "ok"}), json.dumps({"episode": 1, "status": "ok"})]
+    (s / "episodes.jsonl").write_text(lines[0] + "\n" + lines[1] + "\n" + '{"episode": 2, "st')
+    ledger = b'{"team": "red", "call": 1}\n{"team": "red", "call": 2}\n'
+    (s / "llm_calls.jsonl").write_bytes(ledger + b'{"team": "red", "call": 3}\n')
+    for i in (1, 2):
+        state_dir(s, i).mkdir(parents=True)
+    (state_dir(s, 1) / "ledger_offset").write_text(str(len(ledger)))
+    (s / "live.json").write_text("{}")
+
+    finished, note = recover(s)
+
+    assert sorted(finished) == [0, 1]
+    assert (s / "episodes.jsonl").read_text() == lines[0] + "\n" + lines[1] + "\n"
+    assert (s / "episode_001").exists() and not (s / "episode_002").exists()
+    assert [p.name.split(".")[0] for p in (s / "discarded").iterdir() if p.is_dir()] == ["episode_002"]
+    assert (s / "llm_calls.jsonl").read_bytes() == ledger
+    assert state_dir(s, 1).exists() and not state_dir(s, 2).exists()
+    assert not (s / "live.json").exists()
+    assert len(note) == 3  # torn line, episode_002, one ledger call
+    assert recover(s) == (finished, [])  # idempotent
