@@ -32,3 +32,4 @@ def make_team(name: str, scenario_key: str, **options) -> Team:
 __all__ = ["TEAMS", "Team", "TeamContext", "make_team", "register"]
 
 from pillagerbench.teams import cot, random_team  # noqa: E402,F401  (baselines; they register themselves)
+from pillagerbench.teams import tacticrafter  # noqa: E402,F401  (the paper's TactiCrafter; registers itself)

@@ -1,0 +1,141 @@
+"""Asking an LLM until the answer is usable, with per-role model settings.
+
+    llm = RoleLLM(ctx.llm, {"critic": {"temperature": 0.0}, "action": {"model": "big-model"}})
+    result = await ask(llm, messages, role="critic", parse=parse_critique, attempts=3,
+                       retry=lambda problem: f"That answer could not be used: {problem}. Answer again.")
+    result.value      # what `parse` returned, or None
+    result.record     # every attempt (answer or error, latency, tokens, problem) for the artefacts
+
+`RoleLLM` wraps one team's LLMClient. A role's overrides (`model`, `temperature`, `max_tokens`)
+replace the team's `llm` settings for that role only; anything not overridden is the team's.
+A role with its own model gets a client that shares the team's connection, ledger, cache and
+budget (so budgets and the ledger stay per team), with the model swapped in.
+
+`ask` sends the messages; when `parse` raises ValueError (the reason is its message) the answer
+and a retry note are appended to the conversation and the model is asked again, up to `attempts`
+calls. An LLMError ends the asking at once (the client has already retried what can be retried);
+`BudgetExceeded` is reported as such so a team can stop calling for the rest of the episode.
+With `deadline` (a time.monotonic() value) no call starts after it and a call still running then
+is abandoned.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import dataclasses
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping
+
+from pillagerbench.llm import BudgetExceeded, LLMClient, LLMError
+
+ROLE_KEYS = ("model", "temperature", "max_tokens")
+
+
+class RoleLLM:
+    """One team's LLM client with per-role overrides of model, temperature and max_tokens."""
+
+    def __init__(self, client: Any, roles: Mapping[str, Mapping[str, Any]] | None = None):
+        self.client = client
+        self.roles: dict[str, dict[str, Any]] = {}
+        for role, over in (roles or {}).items():
+            over = dict(over or {})
+            unknown = sorted(set(over) - set(ROLE_KEYS))
+            if unknown:
+                raise ValueError(f"role {role!r}: unknown setting(s) {unknown}; valid: {list(ROLE_KEYS)}")
+            self.roles[role] = {k: v for k, v in over.items() if v is not None}
+        self._clients: dict[str, Any] = {}
+
+    def client_for(self, role: str) -> Any:
+        model = self.roles.get(role, {}).get("model")
+        if model is None or not isinstance(self.client, LLMClient) or model == self.client.settings.model:
+            return self.client
+        if model not in self._clients:
+            base = self.client
+            self._clients[model] = LLMClient(dataclasses.replace(base.settings, model=model), team=base.team,
+                                             ledger=base.ledger, cache=base.cache, budget=base.budget,
+                                             _sdk=base._sdk)
+        return self._clients[model]
+
+    def settings_for(self, role: str) -> dict[str, Any]:
+        """The effective model/temperature/max_tokens of a role (for the record)."""
+        s = getattr(self.client, "settings", None)
+        out = {"model": getattr(s, "model", None), "temperature": getattr(s, "temperature", None),
+               "max_tokens": getattr(s, "max_tokens", None)}
+        out.update(self.roles.get(role, {}))
+        return out
+
+    async def complete(self, messages: Any, *, role: str, **kw: Any) -> Any:
+        over = self.roles.get(role, {})
+        for key in ("temperature", "max_tokens"):
+            if key in over and key not in kw:
+                kw[key] = over[key]
+        return await self.client_for(role).complete(messages, role=role, **kw)
+
+
+@dataclass
+class Asked:
+    """The outcome of `ask`: the parsed value (or None) and what happened on the way."""
+
+    value: Any = None
+    attempts: list[dict] = field(default_factory=list)
+    messages: list[dict] = field(default_factory=list)
+    error: str | None = None          # why there is no value (last problem or the LLM error)
+    budget_exceeded: bool = False
+    llm_failed: bool = False          # an LLMError (not a bad answer) ended the asking
+    out_of_time: bool = False
+
+    @property
+    def ok(self) -> bool:
+        return self.value is not None
+
+    @property
+    def record(self) -> dict:
+        return {"ok": self.ok, "error": self.error, "attempts": self.attempts, "messages": self.messages}
+
+
+async def ask(llm: Any, messages: list[dict], *, role: str, parse: Callable[[Any], Any], attempts: int = 3,
+              retry: Callable[[str], str] | None = None, deadline: float | None = None) -> Asked:
+    """Call until `parse(answer)` returns a value (it raises ValueError with the problem otherwise)."""
+    out = Asked(messages=list(messages))
+    if llm is None:
+        out.error, out.llm_failed = "no LLM client", True
+        return out
+    msgs = list(messages)
+    for n in range(max(1, attempts)):
+        left = None if deadline is None else deadline - time.monotonic()
+        if left is not None and left <= 0:
+            out.error, out.out_of_time = out.error or "no time left for another call", True
+            break
+        t0 = time.monotonic()
+        try:
+            call = llm.complete(msgs, role=role)
+            answer = await (call if left is None else asyncio.wait_for(call, timeout=left))
+        except asyncio.TimeoutError:
+            out.attempts.append({"error": "the game ended before the answer came",
+                                 "latency_s": round(time.monotonic() - t0, 3)})
+            out.error, out.out_of_time = "the game ended before the answer came", True
+            break
+        except LLMError as exc:
+            out.attempts.append({"error": f"{type(exc).__name__}: {exc}", "latency_s": round(time.monotonic() - t0, 3)})
+            out.error, out.llm_failed = f"{type(exc).__name__}: {exc}", True
+            out.budget_exceeded = isinstance(exc, BudgetExceeded)
+            break
+        entry = {"answer": answer.text, "finish_reason": answer.finish_reason, "latency_s": answer.latency_s,
+                 "input_tokens": answer.input_tokens, "output_tokens": answer.output_tokens}
+        out.attempts.append(entry)
+        try:
+            out.value = parse(answer)
+        except ValueError as exc:
+            problem = str(exc)
+            if answer.truncated:
+                problem += " (the answer was cut off by the token limit: be shorter)"
+            entry["problem"] = out.error = problem
+            if n + 1 < attempts:
+                note = retry(problem) if retry else f"Your answer could not be used: {problem}. Answer again."
+                msgs = msgs + [{"role": "assistant", "content": answer.text}, {"role": "user", "content": note}]
+                out.messages = list(msgs)
+            continue
+        out.error = None
+        break
+    return out

@@ -1,0 +1,294 @@
+"""TactiCrafter (paper §Methodology): the tactics module, the causal model, the opponent model and
+one base agent per player, learning across the episodes of a series.
+
+Per episode:
+- pre-game (not timed): the causal model makes its first graph, or adds what last episode's chat
+  and inventories show; from the second episode the opponent model guesses the opponent's
+  tactics from its chat; the tactics module writes the team's tactics (first episode, unless
+  preset) or updates them from last episode's events; each base agent writes its first code.
+- game: the base agents run, criticise and rewrite their code in parallel (base_agent.py).
+- post-game: every player's events are deduplicated and kept as a digest; the tactics, opponent
+  tactics, causal graph and last good code are written to the team's episode directory
+  (memory.py) with `tacticrafter.json` (every LLM call, iteration and deduplication count).
+
+Whatever an LLM gets wrong (no tags, bad JSON, no code, an error, a timeout, the budget) is
+recorded and the team goes on with what it has: last good tactics, graph, code.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.agents import context as C
+from pillagerbench.agents.asking import Asked, RoleLLM
+from pillagerbench.teams import register
+from pillagerbench.teams.base import Team, TeamContext
+
+from . import causal, opponent, tactics
+from .base_agent import BaseAgent
+from .events import (DedupStats, agent_names, dedupe, digest, inventories_text, longest_chat, nearby_blocks_text,
+                     opponent_chat, own_chat_with_inventory, tail)
+from .memory import Memory
+from .opponent import UNKNOWN
+
+ROLES = ("tactics", "causal", "opponent", "action", "critic")
+
+
+@register
+class TactiCrafter(Team):
+    name = "tacticrafter"
+    uses_llm = True
+
+    def __init__(self, iterations: int = 10, causal: bool = True, opponent: bool = True,
+                 preset_tactics: str | None = None, update_tactics: bool = True, checkpoint: str | None = None,
+                 roles: dict | None = None, attempts: int = 3, min_llm_time_s: float = 5.0,
+                 quick_fail_s: float = 3.0, restart_pause_s: float = 1.0, max_llm_failures: int = 3,
+                 max_chat_lines: int = 60, max_tactics: int = 6, keep_messages: bool = True,
+                 enable_causal: bool | None = None, enable_opponent: bool | None = None, **options: Any):
+        super().__init__(**options)
+        self.max_iterations = max(1, int(iterations))
+        self.causal_enabled = bool(causal if enable_causal is None else enable_causal)
+        self.opponent_enabled = bool(opponent if enable_opponent is None else enable_opponent)
+        self.preset_tactics = preset_tactics.strip() if isinstance(preset_tactics, str) and preset_tactics.strip() else None
+        self.update_tactics = bool(update_tactics)
+        self.roles = {k: dict(v or {}) for k, v in (roles or {}).items()}
+        unknown = sorted(set(self.roles) - set(ROLES))
+        if unknown:
+            raise ValueError(f"tacticrafter: unknown role(s) {unknown}; valid: {list(ROLES)}")
+        RoleLLM(None, self.roles)  # validates the keys of each role
+        self.attempts = max(1, int(attempts))
+        self.min_llm_time_s, self.quick_fail_s = float(min_llm_time_s), float(quick_fail_s)
+        self.restart_pause_s, self.max_llm_failures = float(restart_pause_s), max(1, int(max_llm_failures))
+        self.max_chat_lines, self.max_tactics = int(max_chat_lines), max(1, int(max_tactics))
+        self.keep_messages = bool(keep_messages)
+        self.memory = Memory()
+        self.agents: list[BaseAgent] = []
+        self.agent_names: list[str] = []
+        self.llm: RoleLLM | None = None
+        self.llm_off: str | None = None       # why LLM calls stopped for this episode
+        self.latency: dict[str, list[float]] = {}
+        self.record: dict[str, Any] = {}
+        if checkpoint:
+            self.load_checkpoint(Path(checkpoint))
+
+    # --- helpers ---------------------------------------------------------------------------------
+
+    def objective(self, ctx: TeamContext) -> str:
+        return (f"You play for {ctx.side.team_name} with {', '.join(ctx.side.player_names)}. Win the game: when it "
+                f"ends, {ctx.side.team_name} must have more points than {ctx.opponent.team_name}.")
+
+    def tactics_text(self) -> str:
+        return self.memory.tactics or "No team tactics: play the scenario as well as you can."
+
+    def expected_latency(self, role: str) -> float:
+        seen = self.latency.get(role) or []
+        return sum(seen[-5:]) / len(seen[-5:]) if seen else 0.0
+
+    def note_call(self, role: str, asked: Asked) -> None:
+        for a in asked.attempts:
+            if "answer" in a and a.get("latency_s") is not None:
+                self.latency.setdefault(role, []).append(float(a["latency_s"]))
+        stats = self.record.setdefault("llm", {}).setdefault(role, {"calls": 0, "failed_calls": 0, "unusable": 0,
+                                                                   "input_tokens": 0, "output_tokens": 0,
+                                                                   "latency_s": 0.0})
+        for a in asked.attempts:
+            stats["calls"] += 1
+            if "error" in a:
+                stats["failed_calls"] += 1
+            if "problem" in a:
+                stats["unusable"] += 1
+            stats["input_tokens"] += a.get("input_tokens") or 0
+            stats["output_tokens"] += a.get("output_tokens") or 0
+            stats["latency_s"] = round(stats["latency_s"] + (a.get("latency_s") or 0.0), 3)
+        if asked.budget_exceeded and not self.llm_off:
+            self.llm_off = f"budget: {asked.error}"
+            self.record["llm_off"] = self.llm_off
+
+    def _module_record(self, name: str, asked: Asked | None, **extra: Any) -> dict:
+        rec: dict[str, Any] = dict(extra)
+        if asked is not None:
+            self.note_call(name if name in ROLES else "tactics", asked)
+            rec.update(ok=asked.ok, error=asked.error, attempts=asked.attempts)
+            if self.keep_messages:
+                rec["messages"] = asked.messages
+        self.record.setdefault("modules", {})[name] = rec
+        return rec
+
+    # --- pre-game ----------------------------------------------------------------------------------
+
+    async def pre_game(self, ctx: TeamContext) -> None:
+        players = ctx.side.player_names
+        self.agent_names = agent_names(ctx.scenario)
+        self.llm = RoleLLM(ctx.llm, self.roles) if ctx.llm is not None else None
+        self.llm_off = None if self.llm is not None else "no LLM client (the match gave this team none)"
+        self.iterations = [0] * len(players)
+        mem = self.memory
+        digests = {name: mem.events.get(name, []) for name in players}
+        has_events = any(digests.values())
+        self.record = {"episode": ctx.episode, "team": ctx.side.team_name, "players": players,
+                       "options": {"iterations": self.max_iterations, "causal": self.causal_enabled,
+                                   "opponent": self.opponent_enabled, "preset_tactics": self.preset_tactics is not None,
+                                   "update_tactics": self.update_tactics},
+                       "roles": {r: self.llm.settings_for(r) for r in ROLES} if self.llm else {},
+                       "memory_from_episodes": mem.episodes, "modules": {}, "llm": {}}
+        if self.llm_off:
+            self.record["llm_off"] = self.llm_off
+        graph_text = mem.graph.text() if self.causal_enabled else "(causal model disabled)"
+        t0 = time.monotonic()
+
+        # 1. causal model
+        if self.causal_enabled:
+            if not len(mem.graph):
+                if self._llm_ok():
+                    graph, asked = await causal.initial(self.llm, ctx.scenario, attempts=self.attempts)
+                    rec = self._module_record("causal", asked, step="initial")
+                    if graph is not None:
+                        mem.graph = graph
+                        rec["relations"] = len(graph)
+                        rec["missing_modules"] = graph.missing_modules(list(ctx.scenario.primitives))
+                else:
+                    self._module_record("causal", None, step="initial", skipped=self.llm_off)
+            elif has_events:
+                if self._llm_ok():
+                    evidence = own_chat_with_inventory(digests, max_lines=self.max_chat_lines)
+                    new, asked = await causal.update(self.llm, ctx.scenario, mem.graph, evidence,
+                                                     attempts=self.attempts)
+                    rec = self._module_record("causal", asked, step="update")
+                    if new is not None:
+                        rec["merge"] = mem.graph.merge(new)
+                else:
+                    self._module_record("causal", None, step="update", skipped=self.llm_off)
+            graph_text = mem.graph.text()
+
+        # 2. opponent model
+        opp = ctx.opponent
+        if self.opponent_enabled and has_events:
+            if self._llm_ok():
+                asked = await opponent.update(
+                    self.llm, opponent_team=opp.team_name, opponent_players=opp.player_names,
+                    objective=f"{opp.team_name} ({', '.join(opp.player_names)}) wants to end the game with more "
+                              f"points than {ctx.side.team_name}.",
+                    scenario=ctx.scenario.description(), graph=graph_text,
+                    chat_log=opponent_chat(digests, ctx.scenario, opp, max_lines=self.max_chat_lines),
+                    previous=mem.opponent_tactics or UNKNOWN, attempts=self.attempts, max_items=3)
+                self._module_record("opponent", asked, step="update")
+                if asked.ok:
+                    mem.opponent_tactics, mem.opponent_source = asked.value, "inferred"
+                else:
+                    mem.opponent_source = "kept"
+            else:
+                self._module_record("opponent", None, step="update", skipped=self.llm_off)
+
+        # 3. tactics
+        if mem.tactics is None and self.preset_tactics:
+            mem.tactics, mem.tactics_source = self.preset_tactics, "preset"
+            self._module_record("tactics", None, step="preset")
+        elif mem.tactics is None:
+            if self._llm_ok():
+                asked = await tactics.initial(self.llm, team_name=ctx.side.team_name, players=players,
+                                              objective=self.objective(ctx), scenario=ctx.scenario.description(),
+                                              graph=graph_text, attempts=self.attempts, max_items=self.max_tactics)
+                self._module_record("tactics", asked, step="initial")
+                if asked.ok:
+                    mem.tactics, mem.tactics_source = asked.value, "generated"
+                else:
+                    mem.tactics_source = "none"
+            else:
+                self._module_record("tactics", None, step="initial", skipped=self.llm_off)
+        elif has_events and self.update_tactics:
+            if self._llm_ok():
+                asked = await tactics.update(
+                    self.llm, team_name=ctx.side.team_name, players=players, objective=self.objective(ctx),
+                    scenario=ctx.scenario.description(), graph=graph_text,
+                    chat_log=tail(longest_chat(digests), self.max_chat_lines),
+                    nearby_blocks=nearby_blocks_text(digests), inventories=inventories_text(digests),
+                    previous=mem.tactics, opponent=mem.opponent_tactics if self.opponent_enabled else
+                    "(opponent model disabled)", attempts=self.attempts, max_items=self.max_tactics)
+                self._module_record("tactics", asked, step="update")
+                if asked.ok:
+                    mem.previous_tactics, mem.tactics, mem.tactics_source = mem.tactics, asked.value, "updated"
+                else:
+                    mem.tactics_source = "kept"
+            else:
+                mem.tactics_source = "kept"
+                self._module_record("tactics", None, step="update", skipped=self.llm_off)
+        else:
+            mem.tactics_source = "kept"
+            self._module_record("tactics", None, step="kept")
+        self.record["modules_s"] = round(time.monotonic() - t0, 3)
+
+        # 4. base agents: first code of the episode, in parallel
+        self.agents = [BaseAgent(self, name, k) for k, name in enumerate(players)]
+        for agent in self.agents:
+            chat = tail([str(e[1].get("onChat")) for e in digests.get(agent.name, []) if e and e[0] == "onChat"],
+                        self.max_chat_lines) if digests.get(agent.name) else "No chat yet: the game has not started."
+            agent.start_episode(ctx, mem.code.get(agent.name, {}), chat)
+        await asyncio.gather(*(a.pre_game(ctx) for a in self.agents))
+        self._write(ctx)
+
+    def _llm_ok(self) -> bool:
+        return self.llm is not None and not self.llm_off
+
+    # --- game --------------------------------------------------------------------------------------
+
+    async def play(self, ctx: TeamContext) -> None:
+        self.iterations = [0] * len(self.agents)
+        try:
+            await asyncio.gather(*(a.play(ctx) for a in self.agents))
+        finally:
+            self.record["iterations"] = {a.name: self.iterations[a.k] for a in self.agents}
+
+    # --- post-game ---------------------------------------------------------------------------------
+
+    async def post_game(self, ctx: TeamContext) -> None:
+        players = ctx.side.player_names
+        events = C.episode_events(ctx.last_episode, players)
+        total = DedupStats()
+        dedup: dict[str, Any] = {}
+        for name in players:
+            deduped, stats = dedupe(events.get(name, []), self.agent_names or agent_names(ctx.scenario))
+            total = total.add(stats)
+            dedup[name] = stats.to_dict()
+            self.memory.events[name] = digest(deduped)
+        dedup["total"] = total.to_dict()
+        self.record["dedup"] = dedup
+        self.record["iterations"] = {a.name: self.iterations[a.k] if a.k < len(self.iterations) else 0
+                                     for a in self.agents}
+        for agent in self.agents:
+            self.memory.code[agent.name] = agent.summary()
+            self.record.setdefault("agents", {})[agent.name] = {**agent.record, "dedup_in_game": agent.stats.to_dict()}
+        self.memory.episodes += 1
+        self._write(ctx)
+
+    def _write(self, ctx: TeamContext) -> None:
+        ctx.out_dir.mkdir(parents=True, exist_ok=True)
+        iters = {a.name: self.iterations[a.k] for a in self.agents if a.k < len(self.iterations)}
+        self.memory.write(ctx.out_dir, episode=ctx.episode, iterations=iters)
+        if not self.record.get("agents"):
+            self.record["agents"] = {a.name: a.record for a in self.agents}
+        (ctx.out_dir / "tacticrafter.json").write_text(json.dumps(self.record, indent=1, default=str))
+
+    # --- checkpoint --------------------------------------------------------------------------------
+
+    def state(self) -> dict[str, Any]:
+        return self.memory.to_dict()
+
+    def load_state(self, state: dict[str, Any]) -> None:
+        self.memory = Memory.from_dict(state)
+
+    def save_checkpoint(self, directory: Path) -> Path:
+        path = super().save_checkpoint(directory)
+        self.memory.write(Path(directory))
+        return path
+
+    def load_checkpoint(self, directory: Path) -> None:
+        directory = Path(directory)
+        team_json = directory / "team.json"
+        if team_json.exists():
+            super().load_checkpoint(directory)
+        else:
+            self.memory = Memory.read(directory)
