@@ -128,7 +128,7 @@ def groups(table: pd.DataFrame, path: Path) -> Path:
     fig, axes = plt.subplots(1, len(scenarios), figsize=(4.5 * len(scenarios), 4), squeeze=False)
     for ax, scenario in zip(axes[0], scenarios):
         sd = table[table["scenario"] == scenario]
-        numeric = sd["group_x"].apply(lambda x: x is not None and math.isfinite(x)).all()
+        numeric = sd["group_x"].apply(lambda x: x is not None and not math.isnan(x)).all()
         for red in red_order(sd):
             r = sd[sd["red"] == red]
             x = r["group_x"] if numeric else np.arange(len(r))

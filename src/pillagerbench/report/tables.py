@@ -110,7 +110,7 @@ def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     gd = df[df["group"].notna() & (df["group"] != "training")] if len(df) else df
     rows = []
     if len(gd):
-        order = sorted(dict.fromkeys(gd["group"]), key=lambda g: (_group_x(gd, g), g))
+        order = sorted(dict.fromkeys(gd["group"]), key=lambda g: (_sort_x(_group_x(gd, g)), g))
         for red in red_order(gd):
             for scenario in scenario_order(gd) + [ALL]:
                 sd = gd[(gd["red"] == red) & ((gd["scenario"] == scenario) if scenario != ALL else True)]
@@ -125,7 +125,11 @@ def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
 
 def _group_x(df: pd.DataFrame, group: str) -> float:
     x = df.loc[df["group"] == group, "group_x"].dropna()
-    return float(x.iloc[0]) if len(x) else math.inf
+    return float(x.iloc[0]) if len(x) else math.nan
+
+
+def _sort_x(x: float) -> float:
+    return math.inf if math.isnan(x) else x
 
 
 def learning_curve(df: pd.DataFrame) -> pd.DataFrame:
