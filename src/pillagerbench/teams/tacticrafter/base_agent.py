@@ -8,7 +8,8 @@ from the critique, until the iteration cap or the whistle.
   the cap the last good code is run again without LLM calls (`reruns`, not counted).
 - Code is good when it parsed and its run did not fail at once (an error within `quick_fail_s`).
   When a new answer has no usable code after its retries, or the LLM fails, the agent runs its
-  last good code (or, if it has none, the code it has unless that failed at once).
+  last good code (or, if it has none, the code it has unless that failed at once). After
+  `max_llm_failures` failed code requests in an episode the agent stops asking.
 - No LLM call starts unless the time left exceeds both `min_llm_time_s` and the role's expected
   latency; a call still running at the whistle is abandoned. BudgetExceeded stops every LLM call
   of the team for the rest of the episode.
