@@ -49,6 +49,7 @@ async def test_first_episode_prompts_hold_what_the_paper_lists(tmp_path, fake_ll
     actions = requests_of(fake_llm, "action")
     assert len(actions) == 2
     ryn = next(r for r in actions if "You are Ryn" in r.prompt)
+    assert len({r.messages[0]["content"] for r in actions}) == 1          # one shared system prompt (caching)
     assert "1. Ryn removes slime blocks in the red area." in ryn.prompt      # the tactics
     assert "cow (4 blocks away)" in ryn.prompt and "red_mushroom_block, slime_block" in ryn.prompt
     assert "Inventory: dirt: 2" in ryn.prompt and prim.doc("mineflayer") in ryn.prompt

@@ -120,8 +120,8 @@ class BaseAgent:
 
     def action_messages(self, ctx) -> list[dict]:
         t = self.team
-        system = PROMPTS["action_system"].render(
-            username=self.name, primitives=prim.docs([*ctx.scenario.primitives, "mineflayer"]))
+        # the system prompt is the same for every player (a shared prefix: provider prompt caches)
+        system = PROMPTS["action_system"].render(primitives=prim.docs([*ctx.scenario.primitives, "mineflayer"]))
         user = PROMPTS["action_user"].render(
             tactics=t.tactics_text(), previous_tactics=t.memory.previous_tactics or C.NONE,
             last_code=f"```javascript\n{self.last_source}\n```" if self.last_source else "No code yet.",
