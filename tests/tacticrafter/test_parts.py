@@ -148,3 +148,28 @@ def test_memory_files_round_trip(tmp_path):
     assert Memory.from_dict(json.loads(json.dumps(mem.to_dict()))).to_dict() == mem.to_dict()
     with pytest.raises(FileNotFoundError):
         Memory.read(tmp_path / "nothing")
+
+
+def test_a_cut_off_graph_keeps_its_complete_relations():
+    from pillagerbench.teams.tacticrafter.causal import _parse_answer, _Text, complete_items
+    cut = 'Here:\n```json\n[\n  ["mineBlock(bot, \'slime_block\', 3)", [], ["slime_block"]],\n  ["sendSignal(bot, \'Raze\')", [], []],\n  ["placeItem(bot, \'slime'
+    assert complete_items(cut) == [["mineBlock(bot, 'slime_block', 3)", [], ["slime_block"]], ["sendSignal(bot, 'Raze')", [], []]]
+    assert [r.action for r in _parse_answer(_Text(cut, truncated=True))] == ["mineBlock(bot, 'slime_block', 3)",
+                                                                           "sendSignal(bot, 'Raze')"]
+    with pytest.raises(ValueError, match="relation 1 is neither"):
+        _parse_answer(_Text(cut, truncated=False))      # only an answer the token limit cut is salvaged
+    assert complete_items("no list") == [] and complete_items("[") == []
+
+
+def test_code_answers_checked_with_acorn_and_an_empty_main_is_refused():
+    from pillagerbench.teams.tacticrafter.base_agent import parse_code
+    from .conftest import LOOP, code_answer
+    sc = make_scenario("mushroom_war")
+    assert parse_code(code_answer(LOOP), sc.primitives).entry == "keepFarming"
+    template = "```javascript\n// helper functions first, then the main function last\nasync function main(bot) {\n  // ...\n}\n```"
+    with pytest.raises(ValueError, match="does nothing"):
+        parse_code(template, sc.primitives)
+    with pytest.raises(ValueError, match="no ```javascript"):
+        parse_code("Plan: mine.", sc.primitives)
+    with pytest.raises(ValueError, match="does not parse"):
+        parse_code("```js\nasync function main(bot) { await mineBlock(bot, 'x', 1\n}\n```", sc.primitives)

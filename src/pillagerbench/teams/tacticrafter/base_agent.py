@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, ask
-from pillagerbench.agents.code import CodeError, Program, check_program, extract_code_blocks
+from pillagerbench.agents.code import CodeError, Program, check_program, extract_code_blocks, parse_js
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
@@ -45,9 +45,13 @@ def parse_code(text: str, allowed) -> Program:
     if not blocks:
         raise ValueError("the answer has no ```javascript code block")
     try:
-        return check_program("\n\n".join(blocks), allowed)
+        program = check_program("\n\n".join(blocks), allowed)
     except CodeError as exc:
         raise ValueError(str(exc)) from None
+    parsed = parse_js(program.code)
+    if not parsed.calls and not parsed.members:  # e.g. the answer format's empty `main` copied as it is
+        raise ValueError(f"the code does nothing: `{program.entry}` calls no function at all")
+    return program
 
 
 def parse_critique(text: str) -> dict:

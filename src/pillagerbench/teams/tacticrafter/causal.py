@@ -17,6 +17,7 @@ is shown to the model when it is asked again).
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import dataclass, field
 from typing import Any, Iterable, Sequence
@@ -142,12 +143,35 @@ class CausalGraph:
         return [m for m in modules if m in prim.MODULES and not calls & set(prim.MODULES[m])]
 
 
+def complete_items(text: str) -> list:
+    """The complete elements at the start of a JSON list that was cut off (a truncated answer):
+    `[[a], [b], [c` gives `[[a], [b]]`."""
+    start = text.find("[")
+    if start < 0:
+        return []
+    decoder, items, i = json.JSONDecoder(), [], start + 1
+    while True:
+        while i < len(text) and text[i] in " \t\r\n,":
+            i += 1
+        try:
+            value, i = decoder.raw_decode(text, i)
+        except ValueError:
+            return items
+        items.append(value)
+
+
 def _parse_answer(answer: Any, allow_empty: bool = False) -> list[Relation]:
     try:
-        value = parse_json(answer.text)
-    except ValueError as exc:
-        raise ValueError(f"no valid JSON in the answer ({exc})") from None
-    rels = parse_relations(value)
+        try:
+            value = parse_json(answer.text)
+        except ValueError as exc:
+            raise ValueError(f"no valid JSON in the answer ({exc})") from None
+        rels = parse_relations(value)
+    except ValueError:
+        salvaged = complete_items(answer.text) if getattr(answer, "truncated", False) else []
+        if not salvaged:
+            raise
+        rels = parse_relations(salvaged)  # the relations written before the token limit cut the answer
     if not rels and not allow_empty:
         raise ValueError("the graph is empty")
     return rels
@@ -177,7 +201,7 @@ async def initial(llm: Any, scenario: Any, *, attempts: int = 3, deadline: float
         for entry in reversed(asked.attempts):
             if "answer" in entry:
                 try:
-                    return CausalGraph(_parse_answer(_Text(entry["answer"]))), asked
+                    return CausalGraph(_parse_answer(_Text(entry["answer"], entry.get("finish_reason") == "length"))), asked
                 except ValueError:
                     continue
     return asked.value, asked
@@ -197,3 +221,4 @@ async def update(llm: Any, scenario: Any, graph: CausalGraph, evidence: str, *, 
 @dataclass
 class _Text:
     text: str
+    truncated: bool = False
