@@ -65,3 +65,16 @@ async def test_budgets_are_per_team(fake_llm, make_client):
 def test_unknown_limit_is_rejected():
     with pytest.raises(ValueError, match="max_tokens"):
         Budget.from_limits({"max_tokens": 3})
+
+
+async def test_concurrent_calls_cannot_overshoot_the_call_budget(fake_llm, make_client):
+    import asyncio
+
+    from pillagerbench.llm.fake_server import Rule
+
+    fake_llm.add(Rule(delay=0.3))
+    client = make_client("llm.budget.max_calls=2")
+    results = await asyncio.gather(*(client.complete(f"q{i}", role="action") for i in range(3)),
+                                   return_exceptions=True)
+    assert sum(isinstance(r, BudgetExceeded) for r in results) == 1
+    assert fake_llm.count == 2

@@ -72,3 +72,17 @@ def test_reader_skips_a_torn_last_line(tmp_path):
     path = tmp_path / "llm_calls.jsonl"
     path.write_text(json.dumps({"role": "a"}) + "\n" + '{"role": "b", "lat')
     assert [r["role"] for r in read_ledger(path)] == ["a"]
+
+
+async def test_a_cancelled_call_is_still_one_ledger_record(fake_llm, make_client, ledger_of):
+    import asyncio
+
+    from pillagerbench.llm.fake_server import Rule
+
+    fake_llm.add(Rule(delay=1.0))
+    client = make_client()
+    with pytest.raises(asyncio.TimeoutError):
+        await asyncio.wait_for(client.complete("slow", role="action"), 0.2)
+    rec = ledger_of()[-1]
+    assert rec["error_type"] == "Cancelled" and rec["role"] == "action"
+    assert client.budget.in_flight == 0

@@ -28,6 +28,7 @@ class Budget:
     input_tokens: int = 0
     output_tokens: int = 0
     cost_usd: float = 0.0
+    in_flight: int = 0  # calls checked and not finished: they count against max_calls
 
     @classmethod
     def from_limits(cls, limits: Mapping[str, Any] | None, price_input_per_1m: float = 0.0,
@@ -45,7 +46,7 @@ class Budget:
 
     def exceeded(self) -> str | None:
         """Why no further call is allowed, or None."""
-        for used, limit, what in ((self.calls, self.max_calls, "calls"),
+        for used, limit, what in ((self.calls + self.in_flight, self.max_calls, "calls"),
                                   (self.input_tokens, self.max_input_tokens, "input tokens"),
                                   (self.output_tokens, self.max_output_tokens, "output tokens"),
                                   (self.cost_usd, self.max_cost_usd, "cost (USD)")):
@@ -58,6 +59,14 @@ class Budget:
         if reason is not None:
             raise BudgetExceeded(reason, **context)
 
+    def reserve(self, **context: Any) -> None:
+        """check(), then hold a call slot until release(): concurrent calls cannot overshoot max_calls."""
+        self.check(**context)
+        self.in_flight += 1
+
+    def release(self) -> None:
+        self.in_flight = max(0, self.in_flight - 1)
+
     def charge(self, input_tokens: int, output_tokens: int) -> float:
         """Count one call; returns its cost."""
         cost = self.cost(input_tokens, output_tokens)
@@ -68,5 +77,5 @@ class Budget:
         return cost
 
     def reset(self) -> None:
-        self.calls = self.input_tokens = self.output_tokens = 0
+        self.calls = self.input_tokens = self.output_tokens = self.in_flight = 0
         self.cost_usd = 0.0

@@ -152,8 +152,10 @@ class LLMClient:
         request = self.build_request(messages, temperature=temperature, max_tokens=max_tokens, **params)
         start = time.perf_counter()
         key, sample = "", 0
+        reserved = False
         try:
-            self.budget.check(**ctx)
+            self.budget.reserve(**ctx)
+            reserved = True
             key, sample = self.cache.key(s.provider, request)
             entry = self.cache.get(key) if self.cache.reads else None
             if entry is not None:
@@ -169,6 +171,13 @@ class LLMClient:
         except E.LLMError as err:
             self._log(role, request, None, start, getattr(err, "retries", 0), False, key, sample, err)
             raise
+        except asyncio.CancelledError:
+            # cancelled by the caller (a deadline, the whistle): still one ledger record
+            self._log(role, request, None, start, 0, False, key, sample, E.Cancelled("call cancelled", **ctx))
+            raise
+        finally:
+            if reserved:
+                self.budget.release()
 
     def _answer(self, role: str, request: dict, response: dict, start: float, retries: int,
                 cache_hit: bool, key: str, sample: int) -> LLMResponse:

@@ -77,6 +77,11 @@ class InvalidJSON(LLMError):
     """`complete_json`: no attempt produced valid JSON."""
 
 
+class Cancelled(LLMError):
+    """The caller cancelled the call (a deadline, the whistle); recorded in the ledger, then re-raised
+    as asyncio.CancelledError."""
+
+
 class BudgetExceeded(LLMError):
     """This team's per-episode budget (calls, tokens or cost) is used up; no request was sent."""
 
