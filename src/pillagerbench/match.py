@@ -148,9 +148,22 @@ class Match:
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
         for key, ctx in contexts.items():
-            self.last_records[key] = {"record": asdict(rec), "events_dir": str(out / "events"), "timeline": timeline}
+            self.last_records[key] = {"record": asdict(rec), "events_dir": str(out / "events"), "timeline": timeline,
+                                      "chat": (out / "chat.txt").read_text().splitlines()}
             ctx.last_episode = self.last_records[key]
         await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
+
+    @staticmethod
+    def _write_world_events(queue: asyncio.Queue, out: Path) -> None:
+        """world_events.jsonl: every event the server pushed during the game; chat.txt: the chat log
+        everyone could read ("<player> message", game-master lines plain)."""
+        events = [queue.get_nowait() for _ in range(queue.qsize())]
+        with open(out / "world_events.jsonl", "w") as f:
+            for e in events:
+                f.write(json.dumps(e) + "\n")
+        lines = [(f"<{e['player']}> " if e.get("player") else "") + str(e.get("message", ""))
+                 for e in events if e.get("event") == "chat"]
+        (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
 
     async def _game(self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path) -> list[dict]:
         gm = self.scenario.game_master(self.server, rng)
@@ -175,6 +188,7 @@ class Match:
                 timeline.append({"t": second, **scores})
                 self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
 
+        world = self.server.control.subscribe()  # what happened in the world, as the server saw it
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
         try:
@@ -192,6 +206,8 @@ class Match:
         rec.game_s = round(time.monotonic() - start, 3)
         await gm.step()
         final = await gm.scores()
+        self.server.control.unsubscribe(world)
+        self._write_world_events(world, out)
         timeline.append({"t": length, **final})
         self.on_tick({"episode": rec.episode, "t": length, "length": length, **final})
         for task in plays:

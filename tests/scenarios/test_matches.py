@@ -48,6 +48,11 @@ async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
         timeline = json.loads((tmp_path / name / "episode_000" / "timeline.json").read_text())
         assert [p["t"] for p in timeline] == list(range(EPISODE_S)) + [EPISODE_S]
         assert timeline[-1]["red"] == rec.red_score
+        chat = (tmp_path / name / "episode_000" / "chat.txt").read_text().splitlines()
+        red_players = make_scenario(rec.scenario).side("red").player_names
+        assert any(line.startswith(f"<{p}>") for line in chat for p in red_players)  # the server's chat log
+        world = [json.loads(line) for line in open(tmp_path / name / "episode_000" / "world_events.jsonl")]
+        assert any(e["event"] == "item_picked_up" for e in world)
 
 
 async def test_a_dead_server_fails_the_episode_and_the_series_goes_on(tmp_path):

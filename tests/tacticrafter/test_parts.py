@@ -173,3 +173,14 @@ def test_code_answers_checked_with_acorn_and_an_empty_main_is_refused():
         parse_code("Plan: mine.", sc.primitives)
     with pytest.raises(ValueError, match="does not parse"):
         parse_code("```js\nasync function main(bot) { await mineBlock(bot, 'x', 1\n}\n```", sc.primitives)
+
+
+def test_opponent_chat_falls_back_to_the_worlds_chat_log_when_our_players_heard_less():
+    from pillagerbench.scenarios import make_scenario
+    from pillagerbench.teams.tacticrafter.events import opponent_chat
+
+    sc = make_scenario("mushroom_war")
+    blue = sc.side("blue")
+    world = ["<Byte> Harvesting brown_mushroom_block in the blue_team area", "<Ryn> hello", "Team blue is clean!"]
+    text = opponent_chat({"Ryn": [], "Raze": []}, sc, blue, world_chat=world)
+    assert "<Byte> Harvesting" in text and "Team blue is clean!" in text and "<Ryn>" not in text

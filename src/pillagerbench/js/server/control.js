@@ -95,7 +95,11 @@ const OPS = {
     playerNamed(serv, player).setGameMode(GAME_MODES[mode])
     return true
   },
-  chat: async (serv, { message }) => { serv.broadcast(String(message)); return true },
+  chat: async (serv, { message }) => {
+    serv.broadcast(String(message))
+    serv.emit('control_event', { event: 'chat', player: null, message: String(message) })
+    return true
+  },
   tell: async (serv, { player, message }) => { playerNamed(serv, player).chat(String(message)); return true },
   tick_rate: async (serv, { tps }) => {
     if (!(tps >= 1 && tps <= 200)) throw new ControlError(`tps must be between 1 and 200, got ${JSON.stringify(tps)}`)

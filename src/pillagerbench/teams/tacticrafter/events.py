@@ -131,12 +131,17 @@ def opponent_speakers(scenario: Scenario, opponent: Side) -> set[str]:
 
 
 def opponent_chat(digests: Mapping[str, Sequence[list]], scenario: Scenario, opponent: Side,
-                  *, max_lines: int = 60) -> str:
-    """What the opponent team said (and the game said about it), as heard by our players."""
+                  *, max_lines: int = 60, world_chat: Sequence[str] | None = None) -> str:
+    """What the opponent team said (and the game said about it), as heard by our players, or as the
+    server logged it (`world_chat`, the match's chat log) when our players heard less (their bots
+    only hear chat while they run code)."""
     speakers = opponent_speakers(scenario, opponent)
     about = (opponent.team_name.lower(), f"team {opponent.key.lower()}")
+    heard = longest_chat(digests)
+    if world_chat and len(world_chat) > len(heard):
+        heard = list(world_chat)
     out = []
-    for line in longest_chat(digests):
+    for line in heard:
         who = _speaker(line)
         if who in speakers or (who is None and any(a in line.lower() for a in about)):
             out.append(line)

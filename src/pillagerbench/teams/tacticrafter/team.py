@@ -173,7 +173,8 @@ class TactiCrafter(Team):
                     objective=f"{opp.team_name} ({', '.join(opp.player_names)}) wants to end the game with more "
                               f"points than {ctx.side.team_name}.",
                     scenario=ctx.scenario.description(), graph=graph_text,
-                    chat_log=opponent_chat(digests, ctx.scenario, opp, max_lines=self.max_chat_lines),
+                    chat_log=opponent_chat(digests, ctx.scenario, opp, max_lines=self.max_chat_lines,
+                                           world_chat=ctx.last_episode.get("chat")),
                     previous=mem.opponent_tactics or UNKNOWN, attempts=self.attempts, max_items=3)
                 self._module_record("opponent", asked, step="update")
                 if asked.ok:
