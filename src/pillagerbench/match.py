@@ -87,6 +87,18 @@ class Match:
         await asyncio.gather(*(p.close() for p in self.players.values()), return_exceptions=True)
         self.players.clear()
 
+    async def play_episodes(self, episodes, on_episode: Callable[[EpisodeRecord], None]) -> None:
+        """Play the given episode indices in order; after each, `on_episode(record)`. An episode that
+        failed because the server died is followed by a fresh server and fresh logins."""
+        for episode in episodes:
+            rec = await self.play_episode(episode)
+            on_episode(rec)
+            if rec.status == "failed" and not self.server.alive:
+                await self.close()
+                await self.server.stop()
+                await self.server.start()
+                await self.setup()
+
     async def play_episode(self, episode: int) -> EpisodeRecord:
         sc = self.scenario
         rec = EpisodeRecord(sc.key, self.teams["red"].name, self.teams["blue"].name, episode,

@@ -96,18 +96,14 @@ async def play(cfg, run_dir: Path) -> list:
                       on_tick=display.tick, llms=llms)
         try:
             await match.setup()
-            for episode in range(int(cfg.episodes)):
-                rec = await match.play_episode(episode)
+
+            def done(rec) -> None:
                 with open(run_dir / "episodes.jsonl", "a") as f:
                     f.write(json.dumps(asdict(rec)) + "\n")
                 records.append(rec)
                 display.episode_done(rec)
-                if rec.status == "failed" and not server.alive:
-                    await match.close()
-                    await server.stop()
-                    await server.start()
-                    match.server = server
-                    await match.setup()
+
+            await match.play_episodes(range(int(cfg.episodes)), done)
         finally:
             await match.close()
             await server.stop()

@@ -61,22 +61,21 @@ async def test_a_dead_server_fails_the_episode_and_the_series_goes_on(tmp_path):
     server = ArenaServer(log_path=tmp_path / "server.log")
     await server.start()
     match = Match(server, sc, teams, tmp_path, episode_length=20, seed=1)
-    try:
-        await match.setup()
-        episode = asyncio.create_task(match.play_episode(0))
+    records = []
+
+    async def kill_during_first_episode():
         await asyncio.sleep(8)
         os.killpg(server.process.pid, signal.SIGKILL)
-        rec = await asyncio.wait_for(episode, 60)
-        assert rec.status == "failed"
-        assert "arena server process ended" in rec.error or "control channel" in rec.error
-        assert json.loads((tmp_path / "episode_000" / "episode.json").read_text())["status"] == "failed"
-        # the series restarts the server and plays on
-        await match.close()
-        await server.stop()
-        await server.start()
+
+    try:
         await match.setup()
-        rec = await match.play_episode(1)
-        assert rec.status == "ok", rec.error
+        killer = asyncio.create_task(kill_during_first_episode())
+        await match.play_episodes([0, 1], records.append)  # restarts the server after the failure
+        await killer
+        assert [r.status for r in records] == ["failed", "ok"], records[-1].error
+        assert "arena server process ended" in records[0].error or "control channel" in records[0].error
+        assert json.loads((tmp_path / "episode_000" / "episode.json").read_text())["status"] == "failed"
+        assert server.alive
     finally:
         await match.close()
         await server.stop()

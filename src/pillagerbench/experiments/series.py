@@ -228,17 +228,13 @@ async def _play(spec, cfg, series_dir, scenario, teams, finished, remaining, on_
                                         "timeline": timeline}
     try:
         await match.setup()
-        for episode in remaining:
-            rec = await match.play_episode(episode)
-            _commit(spec, series_dir, teams, episode, rec)
+
+        def done(rec) -> None:
+            _commit(spec, series_dir, teams, rec.episode, rec)
             if on_episode:
                 on_episode(rec)
-            if rec.status == "failed" and not server.alive:
-                await match.close()
-                await server.stop()
-                await server.start()
-                match.server = server
-                await match.setup()
+
+        await match.play_episodes(remaining, done)
     finally:
         live.unlink(missing_ok=True)
         await match.close()
