@@ -132,10 +132,14 @@ async def test_till_and_plant_potatoes(server, area, make_player):
     assert planted.count("potatoes") == 1
 
 
+# the mob was summoned a moment ago: let its spawn packet reach the bot before the primitive looks
+SEE = "for (let i = 0; i < 40 && !bot.nearestEntity(e => e.name === '%s'); i++) await bot.waitForTicks(1)\n"
+
+
 async def test_milk_cow(server, area, make_player):
     p = await make_player(area, 0, 0, {"bucket": 1})  # log in first: see the note in conftest
     await server.request("summon", mob="cow", pos=area.at(5.5, 4, 0.5))
-    events = await p.run("await milkCow(bot)")
+    events = await p.run(SEE % "cow" + "await milkCow(bot)")
     assert errors(events) == []
     assert "Milked cow" in chats_by(events, p.name)
     assert await count(server, p.name, "milk_bucket") == 1
@@ -147,7 +151,7 @@ async def test_kill_mob(server, area, make_player):
     await server.request("seed", seed=3)
     p = await make_player(area, 0, 0, {"wooden_sword": 1})
     mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
-    events = await p.run("await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)")
+    events = await p.run(SEE % "chicken" + "await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)")
     assert errors(events) == []
     assert "Killed chicken!" in chats_by(events, p.name)
     assert saves(events) == ["chicken_killed"]
