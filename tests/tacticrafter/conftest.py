@@ -6,15 +6,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import pytest
-
 from pillagerbench.arena import ArenaServer
-from pillagerbench.config import load_config
-from pillagerbench.llm import LLMClient
-from pillagerbench.llm.fake_server import FakeLLMServer, Rule
+from pillagerbench.llm.fake_server import Rule
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import TeamContext, make_team
+from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 (fixtures)
 
 # --- scripted answers (Mushroom War, red team) ---------------------------------------------------
 
@@ -82,27 +79,7 @@ def good_rules(model: str | None = None, *, first_action: str = ONE_PASS) -> lis
     ]
 
 
-@pytest.fixture
-def fake_llm():
-    with FakeLLMServer() as server:
-        yield server
-
-
-@pytest.fixture
-async def llm_client(fake_llm, tmp_path):
-    """llm_client("red", "llm.model=x", ...) -> an LLMClient on the fake server."""
-    made: list[LLMClient] = []
-
-    def make(team: str = "red", *overrides: str) -> LLMClient:
-        cfg = load_config(["llm=fake", f"llm.base_url={fake_llm.url}", "llm.timeout=10", "llm.max_tokens=2000",
-                           *overrides])
-        client = LLMClient.from_config(cfg, team=team, run_dir=tmp_path / "llm")
-        made.append(client)
-        return client
-
-    yield make
-    for client in made:
-        await client.aclose()
+llm_client = llm_client_fixture("llm.max_tokens=2000")
 
 
 def context(tmp_path: Path, llm, *, episode: int = 0, scenario: str = "mushroom_war", observations=None,

@@ -5,37 +5,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-
 from pillagerbench.arena import ArenaServer
-from pillagerbench.config import load_config
-from pillagerbench.llm import LLMClient
-from pillagerbench.llm.fake_server import FakeLLMServer
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import make_team
+from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 (fixtures)
 
 
-@pytest.fixture
-def fake_llm():
-    with FakeLLMServer() as server:
-        yield server
-
-
-@pytest.fixture
-async def llm_client(fake_llm, tmp_path):
-    """llm_client(team="red") -> an LLMClient on the fake server (ledger in tmp_path/llm)."""
-    made: list[LLMClient] = []
-
-    def make(team: str = "red", *overrides: str) -> LLMClient:
-        cfg = load_config(["llm=fake", f"llm.base_url={fake_llm.url}", "llm.timeout=10", *overrides])
-        client = LLMClient.from_config(cfg, team=team, run_dir=tmp_path / "llm")
-        made.append(client)
-        return client
-
-    yield make
-    for client in made:
-        await client.aclose()
+llm_client = llm_client_fixture()
 
 
 async def play_series(scenario_key: str, red, blue, run_dir: Path, *, episodes: int = 1, length: float = 20,
