@@ -21,6 +21,7 @@ const mineflayer = require('mineflayer')
 const { pathfinder } = require('mineflayer-pathfinder')
 const { Vec3 } = require('vec3')
 const { Run, isStop } = require('./run')
+const { waitTicks } = require('./ticks')
 const { Observer } = require('./observe')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
@@ -206,7 +207,7 @@ const OPS = {
       const here = bot.entity.position
       const below = bot.blockAt(here.offset(0, -1, 0))
       if ((!target || here.distanceTo(target) < 1.5) && below) return true
-      await bot.waitForTicks(1)
+      await waitTicks(bot, 1)
     }
     const p = bot.entity.position
     return { x: p.x, y: p.y, z: p.z }

@@ -7,6 +7,7 @@
 const vm = require('vm')
 const { goals, Movements } = require('mineflayer-pathfinder')
 const { isStop } = require('./run')
+const { waitTicks } = require('./ticks')
 
 const FILENAME = 'agent.js'
 const SYNC_TIMEOUT_MS = 1000
@@ -113,7 +114,7 @@ function makeFacade (bot, run, { chat, save, report }) {
     inventoryUsed: sync(() => bot.inventory.slots.slice(9, 45).filter(Boolean).length),
     chat: sync((m) => chat(m)),
     save: sync((name) => save(String(name))),
-    waitForTicks: async((n) => bot.waitForTicks(n)),
+    waitForTicks: async((n) => waitTicks(bot, n)),
     waitForChunksToLoad: async(() => bot.waitForChunksToLoad()),
     equip: async((i, d) => bot.equip(i, d)),
     unequip: async((d) => bot.unequip(d)),

@@ -1,6 +1,7 @@
 'use strict'
 // Helpers shared by the primitives. `helpers(ctx)` binds them to one run.
 const { isStop } = require('../run')
+const ticks = require('../ticks')
 
 function helpers (ctx) {
   const { bot, run, Vec3, goals } = ctx
@@ -15,7 +16,7 @@ function helpers (ctx) {
   const items = () => bot.inventory.items()
   const itemCount = (name) => items().filter(i => i.name === name).reduce((a, i) => a + i.count, 0)
   const findItem = (name) => items().find(i => i.name === name) || null
-  const waitTicks = (n) => run.race(bot.waitForTicks(n))
+  const waitTicks = (n) => run.race(ticks.waitTicks(bot, n))
 
   // Walk to a goal; gives up quietly (returns false) when there is no path.
   async function goto (goal, { quiet = true } = {}) {
