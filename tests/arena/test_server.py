@@ -75,3 +75,22 @@ async def test_clean_shutdown(tmp_path):
     await server.stop()
     assert proc.returncode is not None
     assert not server.alive
+
+
+async def test_request_to_a_peer_gone_before_the_read_loop_noticed_names_why():
+    """A write that fails because the server just died is a ChannelClosed with the death reason,
+    not a bare ConnectionResetError (seen under load: the kill raced the reader)."""
+    import socket
+
+    from pillagerbench.arena.control import ControlChannel
+
+    ours, theirs = socket.socketpair()
+    theirs.close()
+    reader, writer = await asyncio.open_connection(sock=ours)
+    channel = ControlChannel(reader, writer, on_close=lambda: "arena server process ended (exit code -9)")
+    with pytest.raises(ChannelClosed, match="exit code -9"):
+        for _ in range(50):  # the first writes may still be buffered by the kernel
+            await channel.request("ping", timeout=1)
+    with pytest.raises(ChannelClosed):  # it closed before the server said it was ready
+        await channel.ready
+    await channel.close()
