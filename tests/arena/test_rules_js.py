@@ -2,10 +2,7 @@
 
 from __future__ import annotations
 
-import json
-import subprocess
-
-from pillagerbench.node import JS_DIR, node_binary, node_env
+from tests.support.node_script import run_node_script
 
 SCRIPT = r"""
 const { indexRecipes } = require(process.argv[1] + '/server/recipes.js')
@@ -34,9 +31,7 @@ console.log(JSON.stringify(out))
 
 
 def run_js():
-    proc = subprocess.run([str(node_binary()), "-e", SCRIPT, str(JS_DIR)], capture_output=True, text=True, env=node_env(), timeout=60)
-    assert proc.returncode == 0, proc.stderr
-    return json.loads(proc.stdout)
+    return run_node_script(SCRIPT)
 
 
 def test_recipe_matching_shaped_shifted_mirrored_and_shapeless():

@@ -7,10 +7,7 @@ bot.waitForTicks then rejects after 5 s; a teleport into a chunk the server is s
 
 from __future__ import annotations
 
-import json
-import subprocess
-
-from pillagerbench.node import JS_DIR, node_binary, node_env
+from tests.support.node_script import run_node_script
 
 SCRIPT = r"""
 const { EventEmitter } = require('events')
@@ -33,10 +30,7 @@ async function timed (bot, n) { const t = Date.now(); await waitTicks(bot, n); r
 
 
 def test_wait_ticks_ends_without_physics_ticks_and_early_with_them():
-    proc = subprocess.run([str(node_binary()), "-e", SCRIPT, str(JS_DIR)], capture_output=True, text=True,
-                          env=node_env(), timeout=60)
-    assert proc.returncode == 0, proc.stderr
-    out = json.loads(proc.stdout)
+    out = run_node_script(SCRIPT)
     assert 4 * 50 <= out["silent_ms"] < 5000  # wall-clock fallback, not mineflayer's 5 s rejection
     assert out["ticking_ms"] < out["silent_ms"]  # 4 ticks at 5 ms each end it before the fallback
     assert out["zero_ms"] < 50

@@ -41,17 +41,16 @@ class ControlChannel:
         fut = asyncio.get_running_loop().create_future()
         self._pending[rid] = fut
         try:
-            try:
-                self._writer.write((json.dumps({"id": rid, "op": op, "args": args}) + "\n").encode())
-                await self._writer.drain()
-            except ConnectionError:
-                # The server went away before our read loop noticed; let it record why, then say that.
-                self._pending.pop(rid, None)
-                await asyncio.wait({self._task}, timeout=2)
-                raise ChannelClosed(self._closed_reason or "control channel closed") from None
+            self._writer.write((json.dumps({"id": rid, "op": op, "args": args}) + "\n").encode())
+            await self._writer.drain()
             return await asyncio.wait_for(fut, timeout)
         except asyncio.TimeoutError:
             raise ControlError(f"control op {op!r} got no reply within {timeout} s") from None
+        except ConnectionError:
+            # The server went away before our read loop noticed; let it record why, then say that.
+            self._pending.pop(rid, None)
+            await asyncio.wait({self._task}, timeout=2)
+            raise ChannelClosed(self._closed_reason or "control channel closed") from None
         finally:
             self._pending.pop(rid, None)
 
