@@ -65,3 +65,10 @@ async def area(arena):
 async def count(arena: ArenaServer, player: str, item: str) -> int:
     """How many of `item` the server says the player holds."""
     return sum(s["count"] for s in await arena.request("inventory", player=player) if s["name"] == item)
+
+
+async def held_or_on_ground(arena: ArenaServer, player: str, item: str) -> int:
+    """`item`s the player holds plus those lying in the world: what a drop made, whether or not the
+    player has picked it up yet (pickup waits for the item's delay and the server's next pass)."""
+    on_ground = sum(i["count"] for i in await arena.request("items") if i["item"] == item)
+    return await count(arena, player, item) + on_ground
