@@ -40,6 +40,7 @@ class EpisodeRecord:
     game_s: float = 0.0
     iterations: dict[str, list[int]] = field(default_factory=dict)
     seed: int = 0
+    player_order: list[str] = field(default_factory=list)  # the server's player order this episode
 
 
 class RecordedPlayer:
@@ -74,10 +75,23 @@ class Match:
         self.players: dict[str, Player] = {}
         self.last_records: dict[str, dict] = {}
 
+    def player_order(self, episode: int) -> list[str]:
+        """The order the server visits players in during an episode: the sides' players interleaved,
+        the side that goes first alternating by episode (red first in even episodes), then the
+        scenario's extra players. No side is always first (see docs/fidelity.md, side symmetry)."""
+        sides = list(self.scenario.sides)
+        if episode % 2:
+            sides.reverse()
+        width = max(len(s.players) for s in sides)
+        names = [s.players[i].name for i in range(width) for s in sides if i < len(s.players)]
+        return names + [p.name for p in self.scenario.extra_players]
+
     async def setup(self) -> None:
-        """Log every player in (one at a time: the server handles logins best that way)."""
+        """Log every player in (one at a time: the server handles logins best that way), sides
+        interleaved."""
         log_dir = self.run_dir / "logs"
-        for spec in self.scenario.all_players():
+        specs = {p.name: p for p in self.scenario.all_players()}
+        for spec in (specs[n] for n in self.player_order(0)):
             player = Player(spec.name, self.server.port, server=self.server, log_dir=log_dir,
                             primitives=list(self.scenario.primitives))
             await player.start()
@@ -128,6 +142,7 @@ class Match:
     async def _play(self, rec: EpisodeRecord, out: Path, sink) -> None:
         sc, rng = self.scenario, random.Random(rec.seed)
         await self.server.request("seed", seed=rec.seed)
+        rec.player_order = await self.server.request("player_order", names=self.player_order(rec.episode))
         t0 = time.monotonic()
         await sc.arena.build(self.server)
         await self.server.request("crop_growth", chance=sc.crop_growth_chance)

@@ -8,6 +8,7 @@ red mirrored across z = -2.
 
 from __future__ import annotations
 
+import asyncio
 import random
 from dataclasses import dataclass
 
@@ -129,15 +130,12 @@ class MushroomWarMaster(GameMaster):
             await self.server.request("set_blocks", blocks=[[*p, "slime_block"] for p in respawn])
 
     async def scores(self) -> dict[str, float]:
-        out = {}
-        for side in self.scenario.sides:
-            item = TEAMS[side.key]["item"]
-            total = 0
-            for name in side.player_names:
-                try:
-                    inv = await self.server.request("inventory", player=name)
-                except Exception:  # a player who is not connected holds nothing
-                    inv = []
-                total += sum(s["count"] for s in inv if s["name"] == item)
-            out[side.key] = float(total)
-        return out
+        # every inventory asked at once: the server answers them in one turn, so neither side's
+        # holdings are read before the other's (a mushroom changing hands is counted once)
+        names = [n for side in self.scenario.sides for n in side.player_names]
+        replies = await asyncio.gather(*(self.server.request("inventory", player=n) for n in names),
+                                       return_exceptions=True)
+        held = {n: [] if isinstance(r, BaseException) else r for n, r in zip(names, replies)}  # offline: nothing
+        return {side.key: float(sum(s["count"] for n in side.player_names for s in held[n]
+                                    if s["name"] == TEAMS[side.key]["item"]))
+                for side in self.scenario.sides}

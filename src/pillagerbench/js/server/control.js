@@ -5,7 +5,9 @@
 //   event:   {"event": "block_dug", ...}
 // The game master and the arena builder use only this. Every op validates its input; a bad request
 // gets an error reply and never affects players.
+const { Vec3 } = require('vec3')
 const { ControlError, toPos, toBlockPos, stateIdOf, itemByName, blockByName } = require('./util')
+const { PICKUP } = require('./tables')
 
 function playerNamed (serv, name) {
   const p = serv.players.find(pl => pl.username === name)
@@ -115,6 +117,16 @@ const OPS = {
   mobs: async (serv) => serv.pb.mobs.list(),
   items: async (serv) => Object.values(serv.entities).filter(e => e.type === 'object' && e.itemId && !e.collected)
     .map(e => ({ id: e.id, item: serv.registry.items[e.itemId]?.name, count: e.itemCount, pos: [e.position.x, e.position.y, e.position.z], thrower: e.thrower || null })),
+  // An item lying at `pos` (no velocity), picked up after `delay_ticks` (default: a block drop's).
+  spawn_item: async (serv, { item, count = 1, pos, delay_ticks: delay = PICKUP.delayTicks.block }) => {
+    const it = itemByName(serv.registry, item)
+    if (!Number.isInteger(count) || count < 1 || count > it.stackSize) throw new ControlError(`count must be an integer 1..${it.stackSize}, got ${JSON.stringify(count)}`)
+    if (!Number.isInteger(delay) || delay < 0 || delay > 6000) throw new ControlError(`delay_ticks must be an integer 0..6000, got ${JSON.stringify(delay)}`)
+    const e = serv.spawnObject(serv.registry.entitiesByName.item.id, serv.overworld, toPos(pos), {
+      velocity: new Vec3(0, 0, 0), itemId: it.id, itemCount: count, pickupDelayTicks: delay, deathTime: 300000
+    })
+    return e.id
+  },
   remove_entities: async (serv) => { serv.pb.mobs.removeAll(); return true },
   set_chest: async (serv, { pos, items }) => serv.pb.chests.set(toBlockPos(pos), items),
   get_chest: async (serv, { pos }) => serv.pb.chests.get(toBlockPos(pos)),
@@ -127,7 +139,18 @@ const OPS = {
     serv.pb.chests.reset(); serv.pb.furnaces.reset(); serv.pb.crops.reset(); serv.pb.mobs.clearEggFarms(); serv.pb.mobs.removeAll()
     return true
   },
-  seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true }
+  seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
+  // The order in which the server visits its players (packets, block updates, anything that loops
+  // over serv.players): the online players named in `names` first, in that order, then the rest as
+  // they were. Returns the new order.
+  player_order: async (serv, { names }) => {
+    if (!Array.isArray(names) || new Set(names).size !== names.length) throw new ControlError(`names must be a list of distinct player names, got ${JSON.stringify(names)}`)
+    names.forEach(n => playerNamed(serv, n))
+    const rank = (p) => { const i = names.indexOf(p.username); return i < 0 ? names.length : i }
+    const order = serv.players.map((p, i) => [rank(p), i, p]).sort((a, b) => a[0] - b[0] || a[1] - b[1]).map(x => x[2])
+    serv.players.splice(0, serv.players.length, ...order)
+    return order.map(p => p.username)
+  }
 }
 
 function attach (serv, { input, write }) {

@@ -12,7 +12,7 @@ const channel = new net.Socket({ fd: settings.controlFd ?? 3, readable: true, wr
 const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
-const PLUGINS = ['guard', 'interact', 'player_list', 'teleport', 'inventory', 'windows', 'blocks', 'crafting', 'furnace', 'chest', 'drops',
+const PLUGINS = ['guard', 'interact', 'player_list', 'teleport', 'inventory', 'windows', 'blocks', 'crafting', 'furnace', 'chest', 'drops', 'pickup',
   'farming', 'crops', 'entities', 'mobs', 'fill', 'no_commands', 'events']
 
 function main () {

@@ -113,7 +113,19 @@ const ATTACK_DAMAGE = {
   wooden_axe: 7, golden_axe: 7, stone_axe: 9, iron_axe: 9, diamond_axe: 9, netherite_axe: 10
 }
 
+// Item pickup (vanilla 1.16): a player picks up an item entity whose box touches the player's
+// box grown by `reach` (Player.aiStep: getBoundingBox().inflate(1.0, 0.5, 1.0)), once the item's
+// pickup delay has run out. Delays in game ticks, by what made the item: a broken block or a
+// harvested bush (Block.popResource) and a killed mob's loot (Entity.spawnAtLocation) use the
+// default delay, 10; a player's toss (Player.drop) 40.
+const PICKUP = {
+  player: { width: 0.6, height: 1.8 },
+  item: { width: 0.25, height: 0.25 },
+  reach: { horizontal: 1.0, vertical: 0.5 },
+  delayTicks: { block: 10, mob: 10, toss: 40 }
+}
+
 module.exports = {
-  BLOCK_DROPS, GROWTH, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
+  PICKUP, BLOCK_DROPS, GROWTH, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
   FUEL_LEFTOVER, CRAFT_LEFTOVER, MOBS, ATTACK_DAMAGE
 }

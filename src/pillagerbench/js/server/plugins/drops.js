@@ -2,7 +2,7 @@
 // Block drops by our rules (tables.BLOCK_DROPS): chance and count ranges, crop age. Blocks without a
 // rule drop their loot-table items once, as flying-squid does. Reports every dug block.
 const { Vec3 } = require('vec3')
-const { BLOCK_DROPS, GROWTH } = require('../tables')
+const { BLOCK_DROPS, GROWTH, PICKUP } = require('../tables')
 const { seededRandom, rollCount } = require('../util')
 
 module.exports.server = function (serv) {
@@ -23,11 +23,12 @@ module.exports.server = function (serv) {
     return rule.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
   }
 
-  serv.pb.spawnDrops = (world, position, drops) => {
+  // cause: 'block' (dug, harvested) or 'mob' (loot), for the pickup delay (tables.PICKUP)
+  serv.pb.spawnDrops = (world, position, drops, cause = 'block') => {
     for (const d of drops) {
       serv.spawnObject(reg.entitiesByName.item.id, world, position.offset(0.5, 0.5, 0.5), {
         velocity: new Vec3(Math.random() * 2 - 1, 2, Math.random() * 2 - 1),
-        itemId: d.id, itemCount: d.count, pickupTime: 500, deathTime: 300000
+        itemId: d.id, itemCount: d.count, pickupDelayTicks: PICKUP.delayTicks[cause], deathTime: 300000
       })
     }
   }

@@ -56,7 +56,7 @@ module.exports.server = function (serv) {
       e.dead = true
       e._writeOthers('entity_status', { entityId: e.id, entityStatus: 3 })
       const drops = MOBS[e.name].loot.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
-      serv.pb.spawnDrops(e.world, e.position.floored(), drops)
+      serv.pb.spawnDrops(e.world, e.position.floored(), drops, 'mob')
       serv.emit('control_event', {
         event: 'mob_killed', mob: e.name, player: attacker || null,
         drops: drops.map(d => [reg.items[d.id].name, d.count])

@@ -8,6 +8,7 @@
 // - clicking outside the window tosses the cursor stack; drop-key clicks drop from a slot.
 // Crafting/furnace/chest plugins register container kinds through serv.pb.openContainer.
 const { Vec3 } = require('vec3')
+const { PICKUP } = require('../tables')
 
 const SUPPORTED_MODES = new Set([0, 1, 4])
 
@@ -24,7 +25,7 @@ module.exports.server = function (serv) {
     const pitch = (player.pitch * 360 / 256) * Math.PI / 180
     const dir = new Vec3(-Math.sin(yaw) * Math.cos(pitch), -Math.sin(pitch), Math.cos(yaw) * Math.cos(pitch))
     const entity = serv.spawnObject(serv.registry.entitiesByName.item.id, player.world, player.position.offset(0, 1.3, 0), {
-      velocity: dir.scaled(4).offset(0, 2, 0), itemId: type, itemCount: count, pickupTime: 1500, deathTime: 300000
+      velocity: dir.scaled(4).offset(0, 2, 0), itemId: type, itemCount: count, pickupDelayTicks: PICKUP.delayTicks.toss, deathTime: 300000
     })
     entity.thrower = player.username
     serv.emit('control_event', { event: 'item_tossed', player: player.username, item: serv.registry.items[type].name, count, entity: entity.id })
