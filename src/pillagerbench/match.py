@@ -41,6 +41,7 @@ class EpisodeRecord:
     iterations: dict[str, list[int]] = field(default_factory=dict)
     seed: int = 0
     player_order: list[str] = field(default_factory=list)  # the server's player order this episode
+    server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
 
 
 class RecordedPlayer:
@@ -216,6 +217,7 @@ class Match:
                 self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
 
         world = self.server.control.subscribe()  # what happened in the world, as the server saw it
+        first_tick = (await self.server.request("status"))["tick"]
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
         try:
@@ -231,6 +233,7 @@ class Match:
                 task.cancel()
             await asyncio.wait(plays + background, timeout=STOP_GRACE_S)
         rec.game_s = round(time.monotonic() - start, 3)
+        rec.server_tps = round(((await self.server.request("status"))["tick"] - first_tick) / rec.game_s, 2)
         await gm.step()
         final = await gm.scores()
         self.server.control.unsubscribe(world)

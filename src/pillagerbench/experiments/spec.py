@@ -11,6 +11,8 @@ Protocols (conf/experiment/*.yaml, key `protocol`):
 - benchmark:   each variant (team + options + model) against every opponent of every scenario
 - self_play:   each variant against itself; optionally the red checkpoints then meet every opponent
 - adaptation:  train against one opponent, then from that checkpoint one episode against each
+- symmetry:    each pairing of `pairings` in both orders (A red vs B blue, B red vs A blue); a
+               pairing of a team with itself is one mirror match
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config
 
-PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation")
+PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry")
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir")
 # command-line overrides an experiment chooses itself for each series
@@ -189,6 +191,22 @@ class _Builder:
                 for red in _opponents(self.exp, "red_teams", sc):
                     for blue in _opponents(self.exp, "blue_teams", sc):
                         self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+
+    def symmetry(self) -> None:
+        pairings = self.exp.get("pairings") or []
+        if not pairings:
+            raise ConfigError(f"experiment {self.exp.get('name')!r} needs `pairings`: a list of "
+                              "{scenario: NAME, a: TEAM, b: TEAM}")
+        for i, p in enumerate(pairings):
+            missing = [k for k in ("scenario", "a", "b") if not (p or {}).get(k)]
+            if missing:
+                raise ConfigError(f"experiment.pairings[{i}] needs {', '.join(missing)} "
+                                  f"(a pairing is {{scenario: NAME, a: TEAM, b: TEAM}}), got {p}")
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for p in pairings:
+                orders = [(p.a, p.b)] if p.a == p.b else [(p.a, p.b), (p.b, p.a)]
+                for red, blue in orders:
+                    self.add(p.scenario, red, blue, self.exp.episodes, repetition=rep)
 
     def benchmark(self) -> None:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
