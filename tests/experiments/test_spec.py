@@ -70,3 +70,17 @@ def test_adaptation_trains_then_meets_same_and_different_opponents():
 def test_choosing_teams_outside_the_experiment_is_refused():
     with pytest.raises(ConfigError, match="experiment.team"):
         build("experiment=main_benchmark", "red=cot")
+
+
+def test_symmetry_plays_each_pairing_in_both_orders_and_mirrors_once():
+    series = build("experiment=symmetry")
+    got = [(s.scenario, s.red, s.blue, s.episodes) for s in series]
+    assert got[:2] == [("mushroom_war", "balanced", "passive", 6), ("mushroom_war", "passive", "balanced", 6)]
+    assert ("dash_and_dine", "potato_cookie", "berries", 6) in got
+    assert [g for g in got if g[1] == g[2]] == [("mushroom_war", "passive", "passive", 6)]
+    assert len(got) == 9
+
+
+def test_symmetry_pairing_without_a_team_names_what_is_missing():
+    with pytest.raises(ConfigError, match=r"pairings\[0\] needs b"):
+        build("experiment=symmetry", "experiment.pairings=[{scenario: mushroom_war, a: passive}]")

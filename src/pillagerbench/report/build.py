@@ -15,6 +15,7 @@ from pathlib import Path
 
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.load import ReportError, load_runs
+from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report import html, plots, tables
 
 
@@ -26,12 +27,14 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     df = runs.episodes
     out.mkdir(parents=True, exist_ok=True)
     main = tables.main_episodes(df)
+    symmetry, one_order = side_symmetry(main)
     t = {
         "summary": (tables.summary(main, sigma, runs.ledger), "Summary per red team (all scenarios and opponents)"),
         "per_scenario": (tables.summary(main, sigma, runs.ledger, by_scenario=True), "Per red team and scenario"),
         "pairings": (tables.pairings(main, sigma), "Per pairing (heatmap values)"),
         "groups": (tables.groups(df, sigma), "Groups (adaptation: same/different opponent; self-play: after k episodes)"),
         "learning_curve": (tables.learning_curve(main), "Points difference per episode index"),
+        "side_symmetry": (symmetry, "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)"),
         "calibration": (tables.calibration(sigma), "σ_blue used for the sabotage metric"),
         "skipped": (tables.skipped(runs.skipped), "Skipped"),
     }
@@ -49,7 +52,9 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     files += [p for _, p in figures]
     notes.insert(0, f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
                     "± is the 95 % confidence interval")
-    sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups")]
+    if one_order:
+        notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
+    sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]
     sections += [(title, "image", path) for title, path in figures]
     sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "skipped")]
     page = out / "report.html"
