@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import importlib
 import sys
+import time
+import traceback
+from pathlib import Path
 
 # name -> ("module:function", help). Each function takes the remaining argv and returns an exit code.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -35,16 +38,39 @@ def main(argv: list[str] | None = None) -> int:
               file=sys.stderr)
         return 2
     module_name, func_name = COMMANDS[name][0].split(":")
-    func = getattr(importlib.import_module(module_name), func_name)
     from pillagerbench.config import ConfigError
+    from pillagerbench.arena.server import ArenaServerError
+    from pillagerbench.metrics.load import ReportError
+    from pillagerbench.node import NodeSetupError
 
     try:
+        func = getattr(importlib.import_module(module_name), func_name)
         return int(func(rest) or 0)
-    except ConfigError as exc:
-        print(f"pillagerbench {name}: bad configuration: {exc}", file=sys.stderr)
+    except ConfigError as exc:  # a user error: one line per problem, nothing started
+        for line in str(exc).splitlines() or [""]:
+            print(f"pillagerbench {name}: {line}", file=sys.stderr)
+        return 2
+    except (NodeSetupError, ReportError, ArenaServerError, FileNotFoundError, PermissionError, IsADirectoryError) as exc:
+        print(f"pillagerbench {name}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130
+    except Exception as exc:  # a bug of ours: one line, and where the traceback is
+        path = write_traceback(name)
+        print(f"pillagerbench {name}: internal error: {type(exc).__name__}: {exc} (full traceback: {path}; "
+              "please report it)", file=sys.stderr)
+        return 1
+
+
+def write_traceback(command: str) -> Path:
+    """The current exception's traceback in the cache's errors/ folder; returns its path."""
+    from pillagerbench.node import cache_root
+
+    folder = cache_root() / "errors"
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{time.strftime('%Y-%m-%d_%H-%M-%S')}_{command}.txt"
+    path.write_text(traceback.format_exc())
+    return path
 
 
 if __name__ == "__main__":

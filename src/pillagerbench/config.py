@@ -6,6 +6,8 @@ We use Hydra's compose API so every sub-command takes the same override syntax.
 
 from __future__ import annotations
 
+import re
+
 from hydra import compose, initialize_config_module
 from hydra.core.global_hydra import GlobalHydra
 from hydra.errors import HydraException
@@ -31,12 +33,54 @@ def _alias(override: str) -> str:
     return override
 
 
+GROUP_WORDS = {"team": "team", "scenario": "scenario", "experiment": "experiment", "llm": "llm preset"}
+
+
+def _team_keys(side: str, overrides: list[str]) -> str:
+    """The keys of the team chosen for `side` (from the overrides, else the default), for a message."""
+    from importlib import resources
+
+    from omegaconf import OmegaConf
+
+    root = resources.files("pillagerbench.conf")
+    defaults = OmegaConf.create((root / "config.yaml").read_text()).defaults
+    name = next(d[f"team@{side}"] for d in defaults if isinstance(d, dict) or OmegaConf.is_dict(d)
+                if f"team@{side}" in d)
+    for o in overrides:
+        key, _, value = o.partition("=")
+        if key in (side, f"team@{side}"):
+            name = value
+    path = root / "team" / f"{name}.yaml"
+    keys = [k for k in OmegaConf.create(path.read_text()) if k not in ("name", "llm")] if path.is_file() else []
+    return f"team {name} has {'options ' + ', '.join(keys) if keys else 'no options'}"
+
+
+def one_line(message: str, overrides: list[str] | None = None) -> str:
+    """Hydra's message without its config search path, on one line, in our words."""
+    missing = re.search(r"Could not find '(\w+)/([^']*)'", message)
+    if missing:
+        group, name = missing.groups()
+        options = re.findall(r"^\t(\S+)$", message, flags=re.M)
+        options = [o for o in options if o != "base"] if group == "llm" else options
+        return f"unknown {GROUP_WORDS.get(group, group)} {name!r}; valid: {', '.join(options)}"
+    override = re.search(r"Could not override '([^']+)'", message)
+    if override:
+        key = override.group(1)
+        side = key.split(".")[0]
+        if side in GROUP_ALIASES:
+            return f"{key}: no such option ({_team_keys(side, overrides or [])})"
+        return f"{key}: no such key (conf/config.yaml lists the top-level keys; docs/ explain them)"
+
+    first = message.strip().splitlines()[0] if message.strip() else message
+    return f"bad override: {first}"
+
+
 def load_config(overrides: list[str] | None = None, config_name: str = "config") -> DictConfig:
     GlobalHydra.instance().clear()
     try:
         with initialize_config_module(config_module="pillagerbench.conf", version_base="1.3"):
             cfg = compose(config_name=config_name, overrides=[_alias(o) for o in overrides or []])
     except HydraException as exc:  # unknown group option, bad override syntax, ...
-        raise ConfigError(str(exc)) from None
+        raise ConfigError(one_line(str(exc), list(overrides or []))) from None
     OmegaConf.set_readonly(cfg, False)
     return cfg

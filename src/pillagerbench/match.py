@@ -42,6 +42,7 @@ class EpisodeRecord:
     seed: int = 0
     player_order: list[str] = field(default_factory=list)  # the server's player order this episode
     server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
+    problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
 
 
 class RecordedPlayer:
@@ -180,6 +181,10 @@ class Match:
                                       "chat": (out / "chat.txt").read_text().splitlines()}
             ctx.last_episode = self.last_records[key]
         await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
+        for key, llm in self.llms.items():
+            problem = llm.budget.problem()
+            if problem:
+                rec.problems.setdefault(key, []).append(problem)
 
     @staticmethod
     def _write_world_events(queue: asyncio.Queue, out: Path) -> None:

@@ -22,11 +22,12 @@ from omegaconf import OmegaConf
 
 from pillagerbench import __version__
 from pillagerbench.arena import ArenaServer
-from pillagerbench.config import load_config
+from pillagerbench.config import ConfigError, load_config
 from pillagerbench.display import MatchDisplay
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.teams import make_team
+from pillagerbench.teams import TEAMS, make_team
+from pillagerbench.validate import check_run_config
 
 
 def git_revision() -> str | None:
@@ -112,12 +113,44 @@ async def play(cfg, run_dir: Path) -> list:
     return records
 
 
+def llm_configs(cfg) -> list:
+    """The LLM settings of every side whose team uses an LLM."""
+    return [team_llm_config(cfg, side).llm for side in ("red", "blue")
+            if getattr(TEAMS.get(str(cfg[side].name)), "uses_llm", False)]
+
+
+def run_preflight(configs: list) -> None:
+    """Stop before anything is created when a provider the run needs does not answer."""
+    from pillagerbench.llm.preflight import preflight
+
+    if configs:
+        problems = asyncio.run(preflight(configs))
+        if problems:
+            raise ConfigError("\n".join(problems))
+
+
+def summarize_problems(records: list) -> tuple[list[str], bool]:
+    """Lines about episodes in which a team played without its model, and whether every episode
+    of some team went that way."""
+    lines, all_failed = [], False
+    for side in ("red", "blue"):
+        hit = [r for r in records if side in (r.problems or {})]
+        if hit:
+            lines.append(f"{side} {getattr(hit[0], side)} played without its model in {len(hit)} of {len(records)} "
+                         f"episode(s): {hit[-1].problems[side][-1]}")
+            all_failed = all_failed or len(hit) == len(records)
+    return lines, all_failed
+
+
 def main(argv: list[str]) -> int:
     cfg = load_config(argv)
-    if cfg.get("experiment") is not None or cfg.get("resume"):  # many series, parallel, resumable
+    experiment = cfg.get("experiment") is not None or bool(cfg.get("resume"))
+    check_run_config(cfg, teams=not experiment)
+    if experiment:  # many series, parallel, resumable
         from pillagerbench.experiments.runner import main_experiment
 
         return main_experiment(cfg, argv)
+    run_preflight(llm_configs(cfg))
     run_dir = make_run_dir(cfg)
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"run directory: {run_dir}", flush=True)
@@ -128,6 +161,9 @@ def main(argv: list[str]) -> int:
         print(f"run directory: {run_dir}")
         return 130
     failed = sum(r.status != "ok" for r in records)
+    problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")
+    for line in problems:
+        print(line)
     print(f"run directory: {run_dir}")
-    return 1 if failed and failed == len(records) else 0
+    return 1 if (failed and failed == len(records)) or all_without_model else 0

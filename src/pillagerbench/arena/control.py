@@ -74,6 +74,8 @@ class ControlChannel:
                 if "event" in msg:
                     if msg["event"] == "ready" and not self.ready.done():
                         self.ready.set_result(msg)
+                    elif msg["event"] == "failed" and not self.ready.done():  # could not start (e.g. port in use)
+                        self.ready.set_exception(RuntimeError(str(msg.get("error"))))
                     for q in list(self._subscribers):
                         q.put_nowait(msg)
                     continue

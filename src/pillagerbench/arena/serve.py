@@ -12,6 +12,7 @@ import asyncio
 
 from pillagerbench.arena.server import MC_VERSION, ArenaServer
 from pillagerbench.config import load_config
+from pillagerbench.config_schema import ServerConfig, check, problems
 
 
 async def _serve(server: ArenaServer) -> None:
@@ -30,6 +31,7 @@ async def _serve(server: ArenaServer) -> None:
 
 def main(argv: list[str]) -> int:
     cfg = load_config(argv)
+    check(problems(ServerConfig, cfg.server, "server"))
     server = ArenaServer.from_config(cfg.server)
     try:
         asyncio.run(_serve(server))

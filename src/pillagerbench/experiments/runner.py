@@ -181,6 +181,27 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
             closer()
 
 
+def series_llm_configs(specs: list[SeriesSpec]) -> list:
+    """The LLM settings of every side of every series whose team uses an LLM."""
+    from omegaconf import OmegaConf
+
+    from pillagerbench.teams import TEAMS
+
+    return [OmegaConf.merge(s.config.get("llm") or {}, s.config[side].get("llm") or {})
+            for s in specs for side in ("red", "blue")
+            if getattr(TEAMS.get(str(s.config[side]["name"])), "uses_llm", False)]
+
+
+def check_providers(specs: list[SeriesSpec]) -> None:
+    """Preflight (llm/preflight.py): stop before anything starts when a provider does not answer."""
+    from pillagerbench.llm.preflight import preflight
+
+    configs = series_llm_configs(specs)
+    problems = asyncio.run(preflight(configs)) if configs else []
+    if problems:
+        raise ConfigError("\n".join(problems))
+
+
 def main_experiment(cfg, argv: list[str]) -> int:
     """`pillagerbench run experiment=NAME ...` and `pillagerbench run resume=RUN_DIR ...`."""
     if cfg.get("resume"):
@@ -188,9 +209,11 @@ def main_experiment(cfg, argv: list[str]) -> int:
         title, specs, dirs = load_experiment(run_dir)
         if cfg.get("experiment") is not None and title != "run":
             check_same(specs, build_series(cfg, argv), run_dir)
+        check_providers(specs)
         print(f"resuming {run_dir}", flush=True)
     else:
         specs = build_series(cfg, argv)
+        check_providers(specs)
         run_dir = make_experiment_dir(cfg)
         if (run_dir / "experiment.json").exists():
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")

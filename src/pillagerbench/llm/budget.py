@@ -29,6 +29,8 @@ class Budget:
     output_tokens: int = 0
     cost_usd: float = 0.0
     in_flight: int = 0  # calls checked and not finished: they count against max_calls
+    failed: int = 0     # calls that raised an LLMError this episode (not counted in `calls`)
+    last_error: str | None = None
 
     @classmethod
     def from_limits(cls, limits: Mapping[str, Any] | None, price_input_per_1m: float = 0.0,
@@ -76,6 +78,17 @@ class Budget:
         self.cost_usd += cost
         return cost
 
+    def note_failure(self, error: Exception) -> None:
+        self.failed += 1
+        self.last_error = f"{type(error).__name__}: {getattr(error, 'detail', error)}"
+
+    def problem(self) -> str | None:
+        """A line when every call of the episode failed (the team played without its model)."""
+        if self.failed and not self.calls:
+            return f"llm failed on all {self.failed} call(s); last: {self.last_error}"
+        return None
+
     def reset(self) -> None:
-        self.calls = self.input_tokens = self.output_tokens = self.in_flight = 0
+        self.calls = self.input_tokens = self.output_tokens = self.in_flight = self.failed = 0
         self.cost_usd = 0.0
+        self.last_error = None

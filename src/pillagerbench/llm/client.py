@@ -170,6 +170,7 @@ class LLMClient:
             return self._answer(role, request, response, start, retries, False, key, sample)
         except E.LLMError as err:
             self._log(role, request, None, start, getattr(err, "retries", 0), False, key, sample, err)
+            self.budget.note_failure(err)
             raise
         except asyncio.CancelledError:
             # cancelled by the caller (a deadline, the whistle): still one ledger record

@@ -10,6 +10,7 @@ import asyncio
 import sys
 
 from pillagerbench.config import load_config
+from pillagerbench.config_schema import LLMConfig, check, problems
 
 from .client import LLMClient
 from .errors import LLMError
@@ -37,4 +38,5 @@ async def _ping(cfg) -> int:
 
 def main(argv: list[str]) -> int:
     cfg = load_config(argv)
+    check(problems(LLMConfig, cfg.llm, "llm"))
     return asyncio.run(_ping(cfg))

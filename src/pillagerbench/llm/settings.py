@@ -37,6 +37,7 @@ class LLMSettings:
     price_input_per_1m: float = 0.0  # USD per million input tokens
     price_output_per_1m: float = 0.0
     budget: dict[str, float | None] = field(default_factory=dict)  # per team and episode
+    preflight: bool = True  # one short request before episode 0 (llm/preflight.py)
 
     @classmethod
     def from_config(cls, cfg: Mapping[str, Any]) -> "LLMSettings":

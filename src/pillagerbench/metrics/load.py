@@ -141,6 +141,7 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
             "red_raw": float(rec["red_score"]), "blue_raw": float(rec["blue_score"]), "scale": scale,
             "red_score": float(rec["red_score"]) * scale, "blue_score": float(rec["blue_score"]) * scale,
             "iterations": float(np.mean(red_it)) if red_it else np.nan,
+            "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
             "t": np.array([p["t"] for p in timeline], dtype=float),
             "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
             "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,

@@ -52,6 +52,12 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     files += [p for _, p in figures]
     notes.insert(0, f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
                     "± is the 95 % confidence interval")
+    without_model = [(r, side) for r in df.itertuples() for side in (getattr(r, "problems", None) or {})] \
+        if len(df) and "problems" in df else []
+    if without_model:
+        r, side = without_model[-1]
+        notes.append(f"{len(without_model)} episode(s) in which a team played without its model, e.g. "
+                     f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}")
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
     sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]

@@ -40,7 +40,13 @@ function main () {
   })
   serv.pb.tps = 20
   serv.pb.operators = settings.operators || []
-  serv.on('error', (err) => log('[server] error', err && err.stack ? err.stack : err))
+  serv.on('error', (err) => {
+    log('[server] error', err && err.stack ? err.stack : err)
+    if (err && err.code === 'EADDRINUSE' && !serv.listeningPort) { // before `listening`: we cannot start
+      const where = `${settings.host ?? '127.0.0.1'}:${settings.port}`
+      protocolOut(JSON.stringify({ event: 'failed', error: `port ${where} is already in use (choose another with server.port=..., or 0 for a free port)` }) + '\n', () => process.exit(2))
+    }
+  })
   process.on('uncaughtException', (err) => log('[server] uncaught', err && err.stack ? err.stack : err))
   process.on('unhandledRejection', (err) => log('[server] unhandled rejection', err && err.stack ? err.stack : err))
 

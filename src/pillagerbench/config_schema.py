@@ -1,0 +1,118 @@
+"""The configuration's schema: every top-level key and the `llm` node typed with pydantic (types,
+ranges, choices). `problems(model, data)` gives one line per problem, naming the key, the bad value
+and what is valid. Groups (scenario, teams) are checked against their registries in validate.py.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from omegaconf import OmegaConf
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from pillagerbench.config import ConfigError
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class ServerConfig(_Strict):
+    host: str
+    port: int = Field(ge=0, le=65535)
+    view_distance: int = Field(ge=1, le=32)
+    crop_growth_chance: float = Field(ge=0, le=1)
+    tps: float = Field(ge=1, le=200)
+    operators: list[str]
+    log_dir: str | None
+
+
+class LLMCacheConfig(_Strict):
+    mode: Literal["off", "read", "write", "readwrite", "replay"]
+    dir: str | None
+
+
+class LLMLedgerConfig(_Strict):
+    content: Literal["full", "hash"]
+
+
+class LLMConfig(_Strict):
+    """The `llm` node (the fields of LLMSettings, with ranges)."""
+
+    provider: str
+    base_url: str
+    model: str
+    api_key_env: str | None
+    temperature: float | None = Field(default=None, ge=0, le=2)
+    max_tokens: int | None = Field(default=None, ge=1)
+    timeout: float = Field(gt=0)
+    max_retries: int = Field(ge=0)
+    retry_backoff_s: float = Field(ge=0)
+    retry_max_wait_s: float = Field(ge=0)
+    system_role: Literal["system", "developer"]
+    send_temperature: bool
+    max_tokens_param: Literal["max_tokens", "max_completion_tokens"]
+    strip_think: bool
+    preflight: bool
+    extra_headers: dict[str, str]
+    extra_body: dict[str, Any]
+    price: dict[Literal["input_per_1m", "output_per_1m"], float]
+    budget: dict[Literal["max_calls", "max_input_tokens", "max_output_tokens", "max_cost_usd"], float | None]
+
+
+class RunConfig(BaseModel):
+    """The top-level keys of conf/config.yaml (groups are checked on their own)."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    server: ServerConfig
+    llm_cache: LLMCacheConfig
+    llm_ledger: LLMLedgerConfig
+    episodes: int = Field(ge=1)
+    episode_length: float = Field(gt=0)
+    seed: int
+    run_dir: str | None
+    display: Literal["auto", "live", "plain"]
+    parallel: int | None = Field(ge=1)
+    launcher: Literal["local", "ray"]
+    ray_address: str | None
+    resume: str | None
+    calibration: str | None
+
+
+def _where(prefix: str, loc: tuple) -> str:
+    return ".".join([prefix, *map(str, loc)] if prefix else map(str, loc))
+
+
+def problems(model: type[BaseModel], data: Any, prefix: str = "") -> list[str]:
+    """One line per problem of `data` (a dict or an OmegaConf node) against `model`."""
+    if OmegaConf.is_config(data):
+        data = OmegaConf.to_container(data, resolve=True)
+    try:
+        model.model_validate(data)
+    except ValidationError as exc:
+        out = []
+        for e in exc.errors(include_url=False):
+            key = _where(prefix, e["loc"])
+            if e["type"] == "extra_forbidden":
+                out.append(f"{key}: unknown key")
+            elif e["type"] == "missing":
+                out.append(f"{key}: missing")
+            else:
+                out.append(f"{key}={e.get('input')!r}: {e['msg'][0].lower() + e['msg'][1:]}")
+        return out
+    return []
+
+
+def top_level_problems(cfg: Any) -> list[str]:
+    """Problems of the top-level keys of a composed config (conf/config.yaml)."""
+    data = OmegaConf.to_container(cfg, resolve=True)
+    if data.get("llm_cache", {}).get("mode") in (None, False):  # YAML 1.1 reads a bare `off` as false
+        data["llm_cache"]["mode"] = "off"
+    return problems(RunConfig, data)
+
+
+def check(lines: list[str]) -> None:
+    """Raise one ConfigError holding every line, if any."""
+    if lines:
+        raise ConfigError("\n".join(lines))

@@ -1,0 +1,88 @@
+"""The whole run configuration checked at once, before anything is created or started.
+
+The top-level keys are typed (config_schema.py); a team's options are
+checked against what its config file declares (`conf/team/<name>.yaml`: the keys and the types of
+their defaults); `red.llm.*` / `blue.llm.*` only for teams that use an LLM; the LLM settings of
+every side that uses one. Every problem is one line naming the key, the bad value and what is
+valid; `check_run_config` raises one `ConfigError` holding all of them.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from typing import Any
+
+from omegaconf import OmegaConf
+from pydantic import ConfigDict, create_model
+
+from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems
+from pillagerbench.scenarios import SCENARIOS
+from pillagerbench.teams import TEAMS
+
+SIDES = ("red", "blue")
+
+
+def team_declared_options(name: str) -> dict[str, Any]:
+    """The options a team's config file declares, with their defaults (without name and llm)."""
+    path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
+    if not path.is_file():
+        return {}
+    data = OmegaConf.to_container(OmegaConf.create(path.read_text()), resolve=False) or {}
+    return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
+
+
+def _option_type(default: Any) -> Any:
+    if default is None:
+        return Any
+    if isinstance(default, bool):
+        return bool
+    if isinstance(default, float):
+        return float
+    return type(default)
+
+
+def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
+    node = cfg.get(side)
+    name = str(node.get("name"))
+    cls = TEAMS.get(name)
+    if cls is None:
+        return [f"{side}={name}: unknown team; valid teams: {', '.join(TEAMS)}"]
+    out = []
+    if cls.scenarios is not None and scenario not in cls.scenarios:
+        valid = [n for n, c in TEAMS.items() if c.scenarios is None or scenario in c.scenarios]
+        out.append(f"{side}={name}: plays only {', '.join(cls.scenarios)}, not {scenario}; "
+                   f"teams for {scenario}: {', '.join(valid)}")
+    declared = team_declared_options(name)
+    fields: dict[str, Any] = {k: (_option_type(v), v) for k, v in declared.items()}
+    model = create_model(f"{name}_options", __config__=ConfigDict(extra="forbid"), **fields)
+    given = {k: v for k, v in OmegaConf.to_container(node, resolve=True).items() if k not in ("name", "llm")}
+    out += [p + (f" (options of {name}: {', '.join(declared) or 'none'})" if p.endswith("unknown key") else "")
+            for p in problems(model, given, side)]
+    own_llm = node.get("llm") or {}
+    if own_llm and not cls.uses_llm:
+        llm_teams = [n for n, c in TEAMS.items() if c.uses_llm]
+        for key in own_llm:
+            out.append(f"{side}.llm.{key}: team {name} uses no LLM (teams that do: {', '.join(llm_teams)})")
+    elif cls.uses_llm:
+        merged = OmegaConf.to_container(OmegaConf.merge(cfg.llm, own_llm), resolve=True)
+        out += problems(LLMConfig, merged, f"{side}.llm" if own_llm else "llm")
+    return out
+
+
+def check_run_config(cfg: Any, *, teams: bool = True) -> None:
+    """Raise one ConfigError listing every problem of the config (one line each). With
+    teams=False (experiments choose teams themselves) only the top-level keys are checked."""
+    found = top_level_problems(cfg)
+    if teams:
+        scenario = str(cfg.scenario.name)
+        if scenario not in SCENARIOS:
+            found.append(f"scenario={scenario}: unknown scenario; valid: {', '.join(SCENARIOS)}")
+        seen_llm: set[str] = set()
+        for side in SIDES:
+            for p in _team_problems(cfg, side, scenario):
+                if p.startswith("llm.") and p in seen_llm:
+                    continue  # the shared llm settings are reported once
+                seen_llm.add(p)
+                found.append(p)
+    check(found)
+
