@@ -40,7 +40,7 @@ def one_line_refusal(tmp_path, *args, lines=1):
     (["red=cot", "red.attempts=x"], "pillagerbench run: red.attempts='x': input should be a valid integer"),
     (["red=cot", "red.atempts=3"], "pillagerbench run: red.atempts: no such option (team cot has options attempts"),
     (["blue=passive", "blue.llm.model=x"], "pillagerbench run: blue.llm.model: team passive uses no LLM"),
-    (["red=nonexistent"], "pillagerbench run: unknown team 'nonexistent'; valid: aggressive, balanced"),
+    (["red=nonexistent"], "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; valid teams: aggressive"),
     (["scenario=foo"], "pillagerbench run: unknown scenario 'foo'; valid: dash_and_dine, mushroom_war"),
     (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; valid: ablation_models"),
     (["llm=nope"], "pillagerbench run: unknown llm preset 'nope'; valid: fake"),
@@ -85,11 +85,11 @@ def test_an_unknown_model_is_named_by_the_preflight(tmp_path):
 
 def test_a_reachable_provider_passes_the_preflight_with_one_request(tmp_path):
     from pillagerbench.config import load_config
-    from pillagerbench.run import llm_configs, run_preflight
+    from pillagerbench import preflight
 
     with FakeLLMServer() as fake:
         cfg = load_config(["red=cot", "blue=cot", "llm=fake", f"llm.base_url={fake.url}"])
-        run_preflight(llm_configs(cfg))  # both sides share provider, model and URL: one request
+        preflight.check(preflight.sides_of(cfg))  # both sides share provider, model and URL: one request
         assert fake.count == 1 and fake.requests[0].role == "preflight"
 
 
@@ -98,8 +98,8 @@ def test_without_preflight_a_team_without_its_model_is_recorded_and_shown(tmp_pa
               "llm.preflight=false", "llm.max_retries=0", "episode_length=4", "display=plain", "run_dir=out",
               timeout=240)
     assert proc.returncode == 1, proc.stdout + proc.stderr  # every episode of red went without its model
-    assert "red cot played without its model: llm failed on all" in proc.stdout
-    assert "red cot played without its model in 1 of 1 episode(s)" in proc.stdout
+    assert "red cot: llm failed on all" in proc.stdout
+    assert "red cot had problems in 1 of 1 episode(s), e.g.: llm failed on all" in proc.stdout
     rec = json.loads((tmp_path / "out" / "episodes.jsonl").read_text().splitlines()[0])
     assert rec["status"] == "ok" and "LLMConnectionError" in rec["problems"]["red"][0]
     assert "blue" not in rec["problems"]

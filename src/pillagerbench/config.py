@@ -23,14 +23,37 @@ class ConfigError(ValueError):
 GROUP_ALIASES = {"red": "team@red", "blue": "team@blue"}
 
 
-def _alias(override: str) -> str:
-    key, sep, value = override.partition("=")
-    if sep and key in GROUP_ALIASES:
-        return f"{GROUP_ALIASES[key]}={value}"
-    side, _, rest = key.partition(".")
-    if sep and side in GROUP_ALIASES and rest.startswith("llm."):
-        return f"++{override}"  # a side's LLM overrides may name keys its team config leaves out
-    return override
+EXTERNAL = "_external"  # conf/team/_external.yaml: teams without a YAML file of their own
+
+
+def _has_yaml(team: str) -> bool:
+    from importlib import resources
+
+    return (resources.files("pillagerbench.conf") / "team" / f"{team}.yaml").is_file()
+
+
+def _aliases(overrides: list[str]) -> list[str]:
+    """Our spellings in Hydra's: `red=X` is `team@red=X`; a team without a YAML file of its own
+    (import path, entry point, remote) is `team@red=_external` plus `red.name=X`, and its options
+    `red.KEY=V` are added keys; a side's `llm.*` keys may be new too."""
+    side_of = {v: k for k, v in GROUP_ALIASES.items()}
+    chosen = {side_of.get(k, k): v for k, sep, v in (o.partition("=") for o in overrides)
+              if sep and side_of.get(k, k) in GROUP_ALIASES}
+    external = {side for side, team in chosen.items() if not _has_yaml(team)}
+    out = []
+    for override in overrides:
+        key, sep, value = override.partition("=")
+        group = side_of.get(key, key)
+        if sep and group in GROUP_ALIASES:
+            out += ([f"{GROUP_ALIASES[group]}={value}"] if group not in external or value != chosen[group] or
+                    _has_yaml(value) else [f"{GROUP_ALIASES[group]}={EXTERNAL}", f"++{group}.name={value}"])
+            continue
+        side, _, rest = key.partition(".")
+        if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or side in external):
+            out.append(f"++{override}")
+            continue
+        out.append(override)
+    return out
 
 
 GROUP_WORDS = {"team": "team", "scenario": "scenario", "experiment": "experiment", "llm": "llm preset"}
@@ -79,7 +102,7 @@ def load_config(overrides: list[str] | None = None, config_name: str = "config")
     GlobalHydra.instance().clear()
     try:
         with initialize_config_module(config_module="pillagerbench.conf", version_base="1.3"):
-            cfg = compose(config_name=config_name, overrides=[_alias(o) for o in overrides or []])
+            cfg = compose(config_name=config_name, overrides=_aliases(list(overrides or [])))
     except HydraException as exc:  # unknown group option, bad override syntax, ...
         raise ConfigError(one_line(str(exc), list(overrides or []))) from None
     OmegaConf.set_readonly(cfg, False)

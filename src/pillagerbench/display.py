@@ -51,7 +51,7 @@ class MatchDisplay:
         message = (f"episode {rec.episode}: red {rec.red} {rec.red_score} - blue {rec.blue} {rec.blue_score} "
                    f"({rec.winner or rec.status}{': ' + rec.error if rec.error else ''}) in {rec.duration_s:.1f} s")
         for side, problems in (rec.problems or {}).items():
-            message += f"\n  {side} {getattr(rec, side)} played without its model: " + "; ".join(problems)
+            message += f"\n  {side} {getattr(rec, side)}: " + "; ".join(problems)
         if self.live:
             self.live.console.print(message)
         else:

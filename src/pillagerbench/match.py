@@ -156,6 +156,8 @@ class Match:
         contexts = {}
         for llm in self.llms.values():
             llm.reset_episode()
+        for team in self.teams.values():
+            team.problems = []
         for side in sc.sides:
             team_dir = out / side.key
             team_dir.mkdir(exist_ok=True)
@@ -185,6 +187,9 @@ class Match:
             problem = llm.budget.problem()
             if problem:
                 rec.problems.setdefault(key, []).append(problem)
+        for key, team in self.teams.items():
+            if team.problems:
+                rec.problems.setdefault(key, []).extend(team.problems)
 
     @staticmethod
     def _write_world_events(queue: asyncio.Queue, out: Path) -> None:

@@ -22,11 +22,13 @@ from omegaconf import OmegaConf
 
 from pillagerbench import __version__
 from pillagerbench.arena import ArenaServer
-from pillagerbench.config import ConfigError, load_config
+from pillagerbench.config import load_config
 from pillagerbench.display import MatchDisplay
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.teams import TEAMS, make_team
+from pillagerbench import preflight
+from pillagerbench.preflight import team_llm_config, team_options
+from pillagerbench.teams import make_team
 from pillagerbench.validate import check_run_config
 
 
@@ -59,20 +61,6 @@ def write_manifest(run_dir: Path, cfg, scenario) -> None:
         "git_revision": git_revision(),
     }
     (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
-
-
-def team_options(team_cfg) -> dict:
-    """The team's constructor options: its config node without `name` and `llm`."""
-    opts = OmegaConf.to_container(team_cfg, resolve=True)
-    opts.pop("name", None)
-    opts.pop("llm", None)
-    return opts
-
-
-def team_llm_config(cfg, side: str):
-    """The top-level `llm` settings with the side's own `llm` overrides (e.g. `red.llm.model=...`)."""
-    merged = OmegaConf.merge(cfg, {"llm": cfg[side].get("llm") or {}})
-    return merged
 
 
 def make_llms(cfg, teams: dict, run_dir: Path) -> dict:
@@ -113,31 +101,15 @@ async def play(cfg, run_dir: Path) -> list:
     return records
 
 
-def llm_configs(cfg) -> list:
-    """The LLM settings of every side whose team uses an LLM."""
-    return [team_llm_config(cfg, side).llm for side in ("red", "blue")
-            if getattr(TEAMS.get(str(cfg[side].name)), "uses_llm", False)]
-
-
-def run_preflight(configs: list) -> None:
-    """Stop before anything is created when a provider the run needs does not answer."""
-    from pillagerbench.llm.preflight import preflight
-
-    if configs:
-        problems = asyncio.run(preflight(configs))
-        if problems:
-            raise ConfigError("\n".join(problems))
-
-
 def summarize_problems(records: list) -> tuple[list[str], bool]:
-    """Lines about episodes in which a team played without its model, and whether every episode
-    of some team went that way."""
+    """Lines about episodes in which a team had problems (its model or its server never answered,
+    ...), and whether every episode of some team went that way."""
     lines, all_failed = [], False
     for side in ("red", "blue"):
         hit = [r for r in records if side in (r.problems or {})]
         if hit:
-            lines.append(f"{side} {getattr(hit[0], side)} played without its model in {len(hit)} of {len(records)} "
-                         f"episode(s): {hit[-1].problems[side][-1]}")
+            lines.append(f"{side} {getattr(hit[0], side)} had problems in {len(hit)} of {len(records)} "
+                         f"episode(s), e.g.: {hit[-1].problems[side][-1]}")
             all_failed = all_failed or len(hit) == len(records)
     return lines, all_failed
 
@@ -150,7 +122,7 @@ def main(argv: list[str]) -> int:
         from pillagerbench.experiments.runner import main_experiment
 
         return main_experiment(cfg, argv)
-    run_preflight(llm_configs(cfg))
+    preflight.check(preflight.sides_of(cfg))
     run_dir = make_run_dir(cfg)
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"run directory: {run_dir}", flush=True)

@@ -15,18 +15,20 @@ from typing import Any
 from omegaconf import OmegaConf
 from pydantic import ConfigDict, create_model
 
+from pillagerbench.config import ConfigError
 from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems
 from pillagerbench.scenarios import SCENARIOS
-from pillagerbench.teams import TEAMS
+from pillagerbench.teams import TEAMS, Team, find_team
 
 SIDES = ("red", "blue")
 
 
-def team_declared_options(name: str) -> dict[str, Any]:
-    """The options a team's config file declares, with their defaults (without name and llm)."""
+def team_declared_options(name: str, cls: type[Team] | None = None) -> dict[str, Any]:
+    """The options a team declares, with their defaults (without name and llm): its config file
+    `conf/team/<name>.yaml`, or for a team without one, the class's `options_declared`."""
     path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
     if not path.is_file():
-        return {}
+        return dict(cls.options_declared) if cls is not None else {}
     data = OmegaConf.to_container(OmegaConf.create(path.read_text()), resolve=False) or {}
     return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
 
@@ -44,20 +46,24 @@ def _option_type(default: Any) -> Any:
 def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
     node = cfg.get(side)
     name = str(node.get("name"))
-    cls = TEAMS.get(name)
-    if cls is None:
-        return [f"{side}={name}: unknown team; valid teams: {', '.join(TEAMS)}"]
+    try:
+        cls = find_team(name)
+    except ConfigError as exc:
+        return [f"{side}={name}: {exc}"]
     out = []
     if cls.scenarios is not None and scenario not in cls.scenarios:
         valid = [n for n, c in TEAMS.items() if c.scenarios is None or scenario in c.scenarios]
         out.append(f"{side}={name}: plays only {', '.join(cls.scenarios)}, not {scenario}; "
                    f"teams for {scenario}: {', '.join(valid)}")
-    declared = team_declared_options(name)
+    declared = team_declared_options(name, cls)
     fields: dict[str, Any] = {k: (_option_type(v), v) for k, v in declared.items()}
     model = create_model(f"{name}_options", __config__=ConfigDict(extra="forbid"), **fields)
     given = {k: v for k, v in OmegaConf.to_container(node, resolve=True).items() if k not in ("name", "llm")}
+    found = problems(model, given, side)
     out += [p + (f" (options of {name}: {', '.join(declared) or 'none'})" if p.endswith("unknown key") else "")
-            for p in problems(model, given, side)]
+            for p in found]
+    if not found:
+        out += [f"{side}.{p}" for p in cls.check_options({**declared, **given})]
     own_llm = node.get("llm") or {}
     if own_llm and not cls.uses_llm:
         llm_teams = [n for n, c in TEAMS.items() if c.uses_llm]

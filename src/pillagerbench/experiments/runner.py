@@ -181,25 +181,11 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
             closer()
 
 
-def series_llm_configs(specs: list[SeriesSpec]) -> list:
-    """The LLM settings of every side of every series whose team uses an LLM."""
-    from omegaconf import OmegaConf
-
-    from pillagerbench.teams import TEAMS
-
-    return [OmegaConf.merge(s.config.get("llm") or {}, s.config[side].get("llm") or {})
-            for s in specs for side in ("red", "blue")
-            if getattr(TEAMS.get(str(s.config[side]["name"])), "uses_llm", False)]
-
-
 def check_providers(specs: list[SeriesSpec]) -> None:
-    """Preflight (llm/preflight.py): stop before anything starts when a provider does not answer."""
-    from pillagerbench.llm.preflight import preflight
+    """Preflight (preflight.py): stop before anything starts when an LLM or a team server does not answer."""
+    from pillagerbench import preflight
 
-    configs = series_llm_configs(specs)
-    problems = asyncio.run(preflight(configs)) if configs else []
-    if problems:
-        raise ConfigError("\n".join(problems))
+    preflight.check([side for s in specs for side in preflight.sides_of(s.config)])
 
 
 def main_experiment(cfg, argv: list[str]) -> int:

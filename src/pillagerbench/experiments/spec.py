@@ -117,7 +117,7 @@ class _Composer:
         key = (scenario, red, blue, llm)
         if key not in self.cache:
             own = [o for o in self.overrides if not (llm and override_key(o) == "llm")]
-            extra = [f"scenario={scenario}", f"team@red={red}", f"team@blue={blue}"] + ([f"llm={llm}"] if llm else [])
+            extra = [f"scenario={scenario}", f"red={red}", f"blue={blue}"] + ([f"llm={llm}"] if llm else [])
             cfg = load_config(own + extra)
             OmegaConf.set_struct(cfg, False)
             for k in RUNNER_KEYS:

@@ -56,7 +56,7 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
         if len(df) and "problems" in df else []
     if without_model:
         r, side = without_model[-1]
-        notes.append(f"{len(without_model)} episode(s) in which a team played without its model, e.g. "
+        notes.append(f"{len(without_model)} team-episode(s) with problems (model or team server not answering ...), e.g. "
                      f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}")
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")

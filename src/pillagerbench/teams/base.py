@@ -47,10 +47,23 @@ class Team:
     name: ClassVar[str] = "team"
     scenarios: ClassVar[tuple[str, ...] | None] = None
     uses_llm: ClassVar[bool] = False  # the match gives it an LLM client (ctx.llm) from the `llm` config
+    # the options `red.KEY=VALUE` may set, with their defaults (teams without a conf/team YAML file)
+    options_declared: ClassVar[dict[str, Any]] = {}
 
     def __init__(self, **options: Any):
         self.options = options
         self.iterations: list[int] = []  # code iterations per player per episode (the paper's I)
+        self.problems: list[str] = []    # what went wrong this episode (the match records it)
+
+    @classmethod
+    def check_options(cls, options: dict[str, Any]) -> list[str]:
+        """Problems with these options, one line each, found before anything starts."""
+        return []
+
+    @classmethod
+    async def preflight(cls, options: dict[str, Any]) -> str | None:
+        """One cheap check that the team can play (e.g. its server answers), before episode 0."""
+        return None
 
     async def pre_game(self, ctx: TeamContext) -> None:
         """Plan before the clock starts."""

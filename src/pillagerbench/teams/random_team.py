@@ -22,7 +22,7 @@ from typing import Any, Callable, ClassVar, Sequence
 
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
-from pillagerbench.teams import register
+from pillagerbench.teams.registry import register
 from pillagerbench.teams.base import Team, TeamContext
 
 UNMINABLE = {"air", "cave_air", "void_air", "bedrock", "barrier", "water", "lava", "fire"}

@@ -22,7 +22,7 @@ from pillagerbench.agents.code import ProgramsResult, programs_from_answer
 from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
-from pillagerbench.teams import register
+from pillagerbench.teams.registry import register
 from pillagerbench.teams.base import Team, TeamContext
 
 PROMPTS = load_prompts(Path(__file__).parent)

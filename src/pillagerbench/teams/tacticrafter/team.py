@@ -25,7 +25,7 @@ from typing import Any
 
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, RoleLLM
-from pillagerbench.teams import register
+from pillagerbench.teams.registry import register
 from pillagerbench.teams.base import Team, TeamContext
 
 from . import causal, opponent, tactics

@@ -1,0 +1,57 @@
+"""Before episode 0: every LLM the run needs answers (llm/preflight.py) and every team that can
+check itself does (Team.preflight, e.g. a remote team's server). One line per problem; nothing is
+created before this passes."""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any, Iterable
+
+from omegaconf import OmegaConf
+
+from pillagerbench.config import ConfigError
+from pillagerbench.llm.preflight import preflight as llm_preflight
+from pillagerbench.teams import find_team
+
+SIDES = ("red", "blue")
+
+
+def team_options(team_cfg) -> dict:
+    """The team's constructor options: its config node without `name` and `llm`."""
+    opts = OmegaConf.to_container(OmegaConf.create(team_cfg), resolve=True) if not OmegaConf.is_config(team_cfg) \
+        else OmegaConf.to_container(team_cfg, resolve=True)
+    opts.pop("name", None)
+    opts.pop("llm", None)
+    return opts
+
+
+def team_llm_config(cfg, side: str):
+    """The top-level `llm` settings with the side's own `llm` overrides (e.g. `red.llm.model=...`)."""
+    return OmegaConf.merge(cfg, {"llm": cfg[side].get("llm") or {}})
+
+
+def sides_of(cfg) -> list[tuple[str, dict, Any]]:
+    """(team name, options, llm config or None) for both sides of a match config."""
+    cfg = cfg if OmegaConf.is_config(cfg) else OmegaConf.create(cfg)
+    out = []
+    for side in SIDES:
+        name = str(cfg[side].name)
+        uses_llm = getattr(find_team(name), "uses_llm", False)
+        out.append((name, team_options(cfg[side]), team_llm_config(cfg, side).llm if uses_llm else None))
+    return out
+
+
+async def problems(sides: Iterable[tuple[str, dict, Any]]) -> list[str]:
+    sides = list(sides)
+    teams: dict[str, tuple[str, dict]] = {}
+    for name, options, _ in sides:
+        teams.setdefault(f"{name}{sorted(options.items())!r}", (name, options))
+    checks = [find_team(name).preflight(options) for name, options in teams.values()]
+    found = await asyncio.gather(llm_preflight([llm for _, _, llm in sides if llm is not None]), *checks)
+    return list(found[0]) + [p for p in found[1:] if p]
+
+
+def check(sides: Iterable[tuple[str, dict, Any]]) -> None:
+    found = asyncio.run(problems(sides))
+    if found:
+        raise ConfigError("\n".join(found))
