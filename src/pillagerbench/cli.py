@@ -15,6 +15,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "server": ("pillagerbench.arena.serve:main", "start an arena server to watch with a 1.16.5 client"),
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
     "llm-ping": ("pillagerbench.llm.ping:main", "send one short request to an LLM provider"),
+    "teams": ("pillagerbench.teams.catalog:main", "list every team: where it comes from, scenarios, LLM, options"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": ("pillagerbench.report.symmetry:main", "each team's points as red and as blue per pairing (side effect check)"),
     "calibrate": ("pillagerbench.metrics.calibration:main", "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)"),

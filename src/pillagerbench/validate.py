@@ -9,7 +9,6 @@ valid; `check_run_config` raises one `ConfigError` holding all of them.
 
 from __future__ import annotations
 
-from importlib import resources
 from typing import Any
 
 from omegaconf import OmegaConf
@@ -18,19 +17,9 @@ from pydantic import ConfigDict, create_model
 from pillagerbench.config import ConfigError
 from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems
 from pillagerbench.scenarios import SCENARIOS
-from pillagerbench.teams import TEAMS, Team, find_team
+from pillagerbench.teams import TEAMS, declared_options, find_team
 
 SIDES = ("red", "blue")
-
-
-def team_declared_options(name: str, cls: type[Team] | None = None) -> dict[str, Any]:
-    """The options a team declares, with their defaults (without name and llm): its config file
-    `conf/team/<name>.yaml`, or for a team without one, the class's `options_declared`."""
-    path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
-    if not path.is_file():
-        return dict(cls.options_declared) if cls is not None else {}
-    data = OmegaConf.to_container(OmegaConf.create(path.read_text()), resolve=False) or {}
-    return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
 
 
 def _option_type(default: Any) -> Any:
@@ -55,7 +44,7 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
         valid = [n for n, c in TEAMS.items() if c.scenarios is None or scenario in c.scenarios]
         out.append(f"{side}={name}: plays only {', '.join(cls.scenarios)}, not {scenario}; "
                    f"teams for {scenario}: {', '.join(valid)}")
-    declared = team_declared_options(name, cls)
+    declared = declared_options(name, cls)
     fields: dict[str, Any] = {k: (_option_type(v), v) for k, v in declared.items()}
     model = create_model(f"{name}_options", __config__=ConfigDict(extra="forbid"), **fields)
     given = {k: v for k, v in OmegaConf.to_container(node, resolve=True).items() if k not in ("name", "llm")}

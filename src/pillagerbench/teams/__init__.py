@@ -6,12 +6,12 @@ from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.dash_and_dine import Berries, CakeBeetroot, MelonPumpkin, PotatoCookie
 from pillagerbench.teams.do_nothing import DoNothing
 from pillagerbench.teams.mushroom_war import Aggressive, Balanced, Passive, Slimy
-from pillagerbench.teams.registry import TEAMS, available, find_team, make_team, register
+from pillagerbench.teams.registry import TEAMS, available, declared_options, find_team, make_team, register
 
 for _cls in (DoNothing, Aggressive, Balanced, Passive, Slimy, Berries, CakeBeetroot, MelonPumpkin, PotatoCookie):
     register(_cls)
 
-__all__ = ["TEAMS", "Team", "TeamContext", "available", "find_team", "make_team", "register"]
+__all__ = ["TEAMS", "Team", "TeamContext", "available", "declared_options", "find_team", "make_team", "register"]
 
 from pillagerbench.teams import cot, random_team  # noqa: E402,F401  (baselines; they register themselves)
 from pillagerbench.teams import tacticrafter  # noqa: E402,F401  (the paper's TactiCrafter; registers itself)

@@ -9,8 +9,11 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass, field
+from importlib import resources
 from importlib.metadata import entry_points
 from typing import Any
+
+from omegaconf import OmegaConf
 
 from pillagerbench.config import ConfigError
 from pillagerbench.teams.base import Team
@@ -31,6 +34,16 @@ class TeamEntry:
     cls: type[Team]
     source: str                      # built-in | entry point <distribution> | import path
     options: dict[str, Any] = field(default_factory=dict)
+
+
+def declared_options(name: str, cls: type[Team] | None = None) -> dict[str, Any]:
+    """The options a team declares, with their defaults (without name and llm): its config file
+    `conf/team/<name>.yaml`, or for a team without one, the class's `options_declared`."""
+    path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
+    if not path.is_file():
+        return dict(cls.options_declared) if cls is not None else {}
+    data = OmegaConf.to_container(OmegaConf.create(path.read_text()), resolve=False) or {}
+    return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
 
 
 def _entry_points() -> dict[str, list]:
@@ -92,11 +105,11 @@ def find_team(name: str) -> type[Team]:
 
 def available() -> list[TeamEntry]:
     """Every team a name can reach: registered ones, then entry points (import path teams are not listed)."""
-    out = [TeamEntry(n, c, "built-in", dict(c.options_declared)) for n, c in TEAMS.items()]
+    out = [TeamEntry(n, c, "built-in", declared_options(n, c)) for n, c in TEAMS.items()]
     for name, eps in sorted(_entry_points().items()):
         try:
             cls = _from_entry_point(name, eps)
-            out.append(TeamEntry(name, cls, f"entry point {eps[0].value}", dict(cls.options_declared)))
+            out.append(TeamEntry(name, cls, f"entry point {eps[0].value}", declared_options(name, cls)))
         except ConfigError as exc:
             out.append(TeamEntry(name, Team, f"broken: {exc}"))
     return out

@@ -95,3 +95,17 @@ MESSAGES: dict[str, type[BaseModel]] = {
 def schemas() -> dict[str, dict]:
     """message name -> JSON Schema (draft 2020-12, as pydantic writes it)."""
     return {name: model.model_json_schema() for name, model in MESSAGES.items()}
+
+
+def schema_section() -> str:
+    """The Markdown section of docs/remote-teams.md that holds every message's JSON Schema."""
+    import json
+
+    parts = []
+    for name, schema in schemas().items():
+        parts.append(f"### `{name}`\n\n```json\n{json.dumps(schema, indent=1)}\n```\n")
+    return "\n".join(parts)
+
+
+if __name__ == "__main__":  # python -m pillagerbench.teams.remote.protocol > section.md
+    print(schema_section(), end="")

@@ -94,6 +94,7 @@ class RemoteTeam(Team):
         self.programs: dict[str, str] = {}
         self.versions: dict[str, int] = {}
         self.record: dict[str, Any] = {}
+        self._t0 = time.monotonic()
 
     # --- checks before the run ----------------------------------------------------------------
     @classmethod
@@ -121,7 +122,7 @@ class RemoteTeam(Team):
     # --- calls ---------------------------------------------------------------------------------
     async def _call(self, path: str, message: BaseModel, reply: type[BaseModel], timeout: float) -> Any:
         t0 = time.monotonic()
-        entry: dict[str, Any] = {"path": path, "t": round(t0, 3)}
+        entry: dict[str, Any] = {"path": path, "at_s": round(t0 - self._t0, 3)}
         self.record.setdefault("calls", []).append(entry)
         try:
             answer = await call(self.url, path, message, reply, timeout=timeout, limit=self.max_answer_bytes)
@@ -151,6 +152,7 @@ class RemoteTeam(Team):
     # --- phases --------------------------------------------------------------------------------
     async def pre_game(self, ctx: TeamContext) -> None:
         self.record = {"episode": ctx.episode, "url": self.url}
+        self._t0 = time.monotonic()
         self.programs, self.versions = {}, {}
         sc, side = ctx.scenario, ctx.side
         modules = list(sc.primitives)
