@@ -53,6 +53,8 @@ def _http(method: str, url: str, body: bytes | None, timeout: float, limit: int)
         raise RemoteError(f"HTTP {exc.code} from {url}") from None
     except (urllib.error.URLError, OSError) as exc:
         reason = getattr(exc, "reason", exc)
+        if isinstance(reason, TimeoutError):
+            raise RemoteError(f"no answer from {url} within {timeout:g} s") from None
         raise RemoteError(f"cannot reach {url}: {reason}") from None
     if len(data) > limit:
         raise RemoteError(f"answer from {url} is larger than max_answer_bytes={limit}")

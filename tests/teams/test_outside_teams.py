@@ -1,0 +1,162 @@
+"""Teams from outside the package: import paths, entry points, bad input in one line, and a remote
+team server that misbehaves in every way the protocol allows (the match plays on)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from pathlib import Path
+
+import pytest
+
+from pillagerbench.config import ConfigError
+from pillagerbench.teams import find_team
+from pillagerbench.teams.remote.protocol import schemas
+
+ROOT = Path(__file__).resolve().parents[2]
+
+TEAM_MODULE = '''
+from pillagerbench.teams import Team
+
+class Idle(Team):
+    name = "idle"
+    options_declared = {"patience": 3}
+
+NOT_A_TEAM = 42
+'''
+
+
+@pytest.fixture
+def outside(tmp_path):
+    """A folder on PYTHONPATH with a team module and two installed distributions with entry points."""
+    (tmp_path / "my_teams.py").write_text(TEAM_MODULE)
+    (tmp_path / "broken_team.py").write_text("raise RuntimeError('this package is broken')\n")
+    for dist, entries in (("good_dist", "idle_ep = my_teams:Idle\ndup = my_teams:Idle\nbad = broken_team:X\n"),
+                          ("other_dist", "dup = my_teams:Idle\n")):
+        info = tmp_path / f"{dist}-1.0.dist-info"
+        info.mkdir()
+        (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {dist}\nVersion: 1.0\n")
+        (info / "entry_points.txt").write_text(f"[pillagerbench.teams]\n{entries}")
+    return tmp_path
+
+
+def pb(cwd, path, *args):
+    env = dict(os.environ, PYTHONPATH=str(path))
+    return subprocess.run([sys.executable, "-m", "pillagerbench.cli", *args], cwd=cwd, capture_output=True, text=True,
+                          env=env, timeout=120)
+
+
+def test_teams_lists_entry_points_with_options(outside, tmp_path):
+    proc = pb(tmp_path, outside, "teams")
+    assert proc.returncode == 0, proc.stderr
+    idle = next(line for line in proc.stdout.splitlines() if line.startswith("idle_ep"))
+    assert "entry point my_teams:Idle" in idle and "patience=3" in idle
+    assert any(line.startswith("remote ") and "url=null" in line for line in proc.stdout.splitlines())
+    assert any(line.startswith("dup") and "broken: two teams" in line for line in proc.stdout.splitlines())
+
+
+@pytest.mark.parametrize("args, expected", [
+    (["red=my_teams:Nope"], "red=my_teams:Nope: team 'my_teams:Nope': module my_teams has no Nope"),
+    (["red=my_teams:NOT_A_TEAM"], "team 'my_teams:NOT_A_TEAM' is 42, not a team: it must be a subclass"),
+    (["red=no_such_pkg.mod:X"], "cannot import no_such_pkg.mod: ModuleNotFoundError"),
+    (["red=bad"], "team 'bad': its entry point broken_team:X failed to import: RuntimeError: this package is broken"),
+    (["red=dup"], "two teams are registered under the name 'dup'"),
+    (["red=my_teams:Idle", "red.patiense=2"], "red.patiense: unknown key (options of my_teams:Idle: patience)"),
+    (["red=idle_ep", "red.patience=soon"], "red.patience='soon': input should be a valid integer"),
+    (["red=remote", "red.url=ftp://x"], "red.url='ftp://x': not an http(s) address"),
+    (["red=remote"], "red.url: the remote team needs the address of its server"),
+    (["red=remote", "red.url=http://127.0.0.1:9"], "remote team at http://127.0.0.1:9 does not answer"),
+])
+def test_bad_outside_teams_are_one_line_before_anything_starts(outside, tmp_path, args, expected):
+    proc = pb(tmp_path, outside, "run", *args)
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and expected in lines[0], proc.stderr
+    assert "Traceback" not in proc.stderr and not (tmp_path / "runs").exists()
+
+
+def test_an_import_path_and_an_entry_point_reach_the_same_class(outside, monkeypatch):
+    monkeypatch.syspath_prepend(str(outside))
+    import importlib
+
+    importlib.invalidate_caches()
+    assert find_team("my_teams:Idle") is find_team("idle_ep")
+    with pytest.raises(ConfigError, match="valid teams: .*remote.*or an import path"):
+        find_team("nobody")
+
+
+def test_the_documented_schemas_are_the_protocol_models():
+    doc = (ROOT / "docs" / "remote-teams.md").read_text()
+    for name, schema in schemas().items():
+        assert f"### `{name}`\n\n```json\n{json.dumps(schema, indent=1)}\n```" in doc, name
+
+
+class Misbehaving(BaseHTTPRequestHandler):
+    """Pre-game: a program for a stranger and one for a real player; then, in turn, a malformed
+    answer, an oversized one, a late one, a refused player, and finally a good new program."""
+
+    calls: list[str] = []
+
+    def answer(self, raw: bytes, status: int = 200) -> None:
+        self.send_response(status)
+        self.send_header("Content-Length", str(len(raw)))
+        self.end_headers()
+        self.wfile.write(raw)
+
+    def do_GET(self):  # noqa: N802
+        self.answer(b'{"protocol": 1}')
+
+    def do_POST(self):  # noqa: N802
+        body = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
+        Misbehaving.calls.append(self.path)
+        if self.path == "/pregame":
+            me = body["side"]["players"][0]["name"]
+            return self.answer(json.dumps({"programs": {"Stranger": "bot.chat('x')",
+                                                        me: "bot.chat('first program'); while (true) { await bot.waitForTicks(10); bot.chat('tick') }"}}).encode())
+        if self.path == "/postgame":
+            return self.answer(b"{}")
+        n = Misbehaving.calls.count("/events")
+        if n == 1:
+            return self.answer(b"this is not json")
+        if n == 2:
+            return self.answer(b'{"programs": {"x": "' + b"a" * 3000 + b'"}}')
+        if n == 3:
+            time.sleep(1.5)
+            return self.answer(b"{}")
+        if n == 4:
+            return self.answer(b"{}", status=500)
+        return self.answer(b"{}")
+
+    def log_message(self, *args):
+        pass
+
+
+def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
+    Misbehaving.calls = []
+    server = ThreadingHTTPServer(("127.0.0.1", 0), Misbehaving)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        url = f"http://127.0.0.1:{server.server_address[1]}"
+        proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "run", "red=remote", f"red.url={url}",
+                               "red.call_timeout_s=0.5", "red.max_answer_bytes=2000", "red.events_every_s=0.5",
+                               "blue=do_nothing", "episode_length=12", "display=plain", "run_dir=out"],
+                              cwd=tmp_path, capture_output=True, text=True, timeout=240)
+    finally:
+        server.shutdown()
+    assert proc.returncode in (0, 1), proc.stdout + proc.stderr
+    rec = json.loads((tmp_path / "out" / "episodes.jsonl").read_text())
+    assert rec["status"] == "ok"
+    problems = "\n".join(rec["problems"]["red"])
+    assert "remote answer names 'Stranger', not a player of this team" in problems
+    assert "malformed answer" in problems
+    assert "larger than max_answer_bytes=2000" in problems
+    assert "no answer from" in problems and "within 0.5 s" in problems
+    assert "HTTP 500" in problems
+    chat = (tmp_path / "out" / "episode_000" / "chat.txt").read_text()
+    assert "first program" in chat  # the good program of the pre-game ran
+    assert Misbehaving.calls[0] == "/pregame" and Misbehaving.calls[-1] == "/postgame"
