@@ -7,7 +7,7 @@ import sys
 
 # name -> ("module:function", help). Each function takes the remaining argv and returns an exit code.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "run": ("pillagerbench.run:main", "play a match between two teams and record it"),
+    "run": ("pillagerbench.cli:run_main", "play a match between two teams and record it"),
     "setup": ("pillagerbench.node:setup_main", "install the pinned Node packages into the cache"),
     "server": ("pillagerbench.arena.serve:main", "start an arena server to watch with a 1.16.5 client"),
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
@@ -15,6 +15,20 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "calibrate": ("pillagerbench.metrics.calibration:main", "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)"),
 }
+
+
+def run_main(argv: list[str]) -> int:
+    """`pillagerbench run`: one match (run.py), or many series with experiment=/resume= (experiments/)."""
+    from pillagerbench.config import load_config
+
+    cfg = load_config(argv)
+    if cfg.get("experiment") is not None or cfg.get("resume"):  # many series, parallel, resumable
+        from pillagerbench.experiments.runner import main_experiment
+
+        return main_experiment(cfg, argv)
+    from pillagerbench.run import run_match
+
+    return run_match(cfg)
 
 
 def usage() -> str:

@@ -49,7 +49,7 @@ def make_experiment_dir(cfg) -> Path:
 
 def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec]) -> None:
     from pillagerbench import __version__
-    from pillagerbench.run import git_revision
+    from pillagerbench.manifest import git_revision
 
     run_dir.mkdir(parents=True, exist_ok=True)
     top = OmegaConf.to_container(cfg, resolve=True)

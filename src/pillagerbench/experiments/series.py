@@ -28,34 +28,8 @@ from typing import Any, Callable
 
 from omegaconf import OmegaConf
 
+from pillagerbench.experiments.layout import EPISODES, LEDGER, checkpoint_dir, episode_dir, episode_index, state_dir
 from pillagerbench.experiments.spec import SeriesSpec
-
-EPISODES = "episodes.jsonl"
-LEDGER = "llm_calls.jsonl"
-
-
-def episode_dir(series_dir: Path, episode: int) -> Path:
-    return Path(series_dir) / f"episode_{episode:03d}"
-
-
-def state_dir(series_dir: Path, episode: int) -> Path:
-    return Path(series_dir) / "state" / f"episode_{episode:03d}"
-
-
-def checkpoint_dir(series_dir: Path, episode: int, side: str) -> Path:
-    return Path(series_dir) / "checkpoints" / f"episode_{episode:03d}" / side
-
-
-def _index(name: str) -> int | None:
-    try:
-        return int(name.split("_", 1)[1])
-    except (IndexError, ValueError):
-        return None
-
-
-def read_series_index(run_dir: Path) -> list[SeriesSpec]:
-    data = json.loads((Path(run_dir) / "experiment.json").read_text())
-    return [SeriesSpec.from_dict(s) for s in data["series"]]
 
 
 def read_finished(series_dir: Path) -> tuple[dict[int, dict], int, int]:
@@ -103,12 +77,12 @@ def recover(series_dir: Path) -> tuple[dict[int, dict], list[str]]:
             f.truncate(good)
         note.append(f"a torn last line of {EPISODES} ({len(tail)} bytes)")
     for d in sorted(series_dir.glob("episode_*")):
-        i = _index(d.name)
+        i = episode_index(d.name)
         if d.is_dir() and i is not None and i not in finished:
             _discard(series_dir, d, note)
     for parent in (series_dir / "state", series_dir / "checkpoints"):
         for d in sorted(parent.glob("episode_*")) if parent.exists() else []:
-            i = _index(d.name)
+            i = episode_index(d.name)
             if i is not None and i not in finished:
                 shutil.rmtree(d, ignore_errors=True)
     ledger = series_dir / LEDGER
@@ -162,10 +136,11 @@ async def run_series(spec: SeriesSpec, series_dir: Path, run_dir: Path | None = 
                      say: Callable[[str], None] = print) -> dict:
     """Play the unfinished episodes of a series. Returns {"id", "finished", "failed", "played"}."""
     from pillagerbench.arena import ArenaServer
+    from pillagerbench.llm.presets import make_llms
+    from pillagerbench.manifest import write_manifest
     from pillagerbench.match import Match
-    from pillagerbench.run import make_llms, team_options, write_manifest
     from pillagerbench.scenarios import make_scenario
-    from pillagerbench.teams import make_team
+    from pillagerbench.teams import team_from_config
 
     series_dir = Path(series_dir)
     series_dir.mkdir(parents=True, exist_ok=True)
@@ -180,8 +155,7 @@ async def run_series(spec: SeriesSpec, series_dir: Path, run_dir: Path | None = 
     summary = {"id": spec.id, "played": 0}
     if remaining:
         scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
-        teams = {"red": make_team(cfg.red.name, scenario.key, **team_options(cfg.red)),
-                 "blue": make_team(cfg.blue.name, scenario.key, **team_options(cfg.blue))}
+        teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
         if finished:
             last = state_dir(series_dir, max(finished))
             for side, team in teams.items():
@@ -260,6 +234,6 @@ def _commit(spec: SeriesSpec, series_dir: Path, teams: dict, episode: int, rec) 
             shutil.copytree(state / side, target)
     _append_line(series_dir / EPISODES, asdict(rec))
     for old in (series_dir / "state").glob("episode_*"):
-        i = _index(old.name)
+        i = episode_index(old.name)
         if i is not None and i < episode:
             shutil.rmtree(old, ignore_errors=True)

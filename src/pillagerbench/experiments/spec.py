@@ -15,6 +15,7 @@ Protocols (conf/experiment/*.yaml, key `protocol`):
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -23,6 +24,7 @@ from typing import Any
 from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config
+from pillagerbench.experiments.layout import checkpoint_dir
 
 PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation")
 # keys of the top-level config that belong to the experiment machinery, not to one series
@@ -240,10 +242,14 @@ class _Builder:
                                      episode_offset=train)
 
 
+def read_series_index(run_dir: Path) -> list[SeriesSpec]:
+    """The series of an experiment's run directory, from its experiment.json."""
+    data = json.loads((Path(run_dir) / "experiment.json").read_text())
+    return [SeriesSpec.from_dict(s) for s in data["series"]]
+
+
 def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:
     """The red checkpoint after `episode` of the series (scenario, red, blue, repetition) of another run."""
-    from pillagerbench.experiments.series import checkpoint_dir, read_series_index
-
     for spec in read_series_index(run_dir):
         if (spec.scenario, spec.red, spec.blue, spec.repetition) == (scenario, red, blue, repetition) \
                 and spec.group is None:

@@ -22,7 +22,6 @@ from typing import Any, Callable, ClassVar, Sequence
 
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
-from pillagerbench.teams import register
 from pillagerbench.teams.base import Team, TeamContext
 
 UNMINABLE = {"air", "cave_air", "void_air", "bedrock", "barrier", "water", "lava", "fire"}
@@ -191,7 +190,6 @@ class RandomActions:
         return Action(kind, build(self, seen))
 
 
-@register
 class RandomTeam(Team):
     name = "random"
     uses_llm = False

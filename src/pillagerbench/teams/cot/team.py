@@ -22,7 +22,6 @@ from pillagerbench.agents.code import ProgramsResult, programs_from_answer
 from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
-from pillagerbench.teams import register
 from pillagerbench.teams.base import Team, TeamContext
 
 PROMPTS = load_prompts(Path(__file__).parent)
@@ -34,7 +33,6 @@ def task_text(ctx: TeamContext) -> str:
             "starting now and for as long as the game lasts.")
 
 
-@register
 class ChainOfThought(Team):
     name = "cot"
     uses_llm = True

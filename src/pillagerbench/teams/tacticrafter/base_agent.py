@@ -21,22 +21,48 @@ from __future__ import annotations
 
 import asyncio
 import time
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from pillagerbench.agents import context as C
-from pillagerbench.agents.asking import Asked, ask
+from pillagerbench.agents.asking import Asked, RoleLLM, ask
 from pillagerbench.agents.code import CodeError, Program, check_program, extract_code_blocks, parse_js
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
+from pillagerbench.teams.base import TeamContext
 
 from .events import DedupStats, dedupe, last_observation, tail
+from .memory import Memory
 from .templates import PROMPTS
 
-if TYPE_CHECKING:
-    from .team import TactiCrafter
-
 ACTION, CRITIC = "action", "critic"
+
+
+class AgentsTeam(Protocol):
+    """What a base agent reads from its team (TactiCrafter, team.py, is the one implementation)."""
+
+    agents: list[BaseAgent]
+    agent_names: list[str]
+    iterations: list[int]
+    memory: Memory
+    llm: RoleLLM | None
+    llm_off: str | None
+    attempts: int
+    keep_messages: bool
+    max_chat_lines: int
+    max_iterations: int
+    max_llm_failures: int
+    min_llm_time_s: float
+    quick_fail_s: float
+    restart_pause_s: float
+
+    def objective(self, ctx: TeamContext) -> str: ...
+
+    def tactics_text(self) -> str: ...
+
+    def expected_latency(self, role: str) -> float: ...
+
+    def note_call(self, role: str, asked: Asked) -> None: ...
 
 
 def parse_code(text: str, allowed) -> Program:
@@ -73,7 +99,7 @@ def parse_critique(text: str) -> dict:
 
 
 class BaseAgent:
-    def __init__(self, team: "TactiCrafter", name: str, index: int):
+    def __init__(self, team: AgentsTeam, name: str, index: int):
         self.team, self.name, self.k = team, name, index
         self.program: Program | None = None     # what runs next
         self.good: Program | None = None        # last code whose run did not fail at once

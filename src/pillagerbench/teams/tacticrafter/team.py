@@ -25,7 +25,6 @@ from typing import Any
 
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, RoleLLM
-from pillagerbench.teams import register
 from pillagerbench.teams.base import Team, TeamContext
 
 from . import causal, opponent, tactics
@@ -38,7 +37,6 @@ from .opponent import UNKNOWN
 ROLES = ("tactics", "causal", "opponent", "action", "critic")
 
 
-@register
 class TactiCrafter(Team):
     name = "tacticrafter"
     uses_llm = True
