@@ -21,8 +21,8 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from pillagerbench.arena import ArenaServer  # noqa: E402
-from tests.support.bots import TestBot  # noqa: E402
+from pillagerbench.arena import ArenaServer
+from tests.support.bots import TestBot
 
 WORK = """
 const { GoalNear } = goals

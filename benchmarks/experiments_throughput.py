@@ -21,9 +21,9 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.config import load_config  # noqa: E402
-from pillagerbench.experiments import build_series  # noqa: E402
-from pillagerbench.experiments.runner import local_launcher, run_all  # noqa: E402
+from pillagerbench.config import load_config
+from pillagerbench.experiments import build_series
+from pillagerbench.experiments.runner import local_launcher, run_all
 
 PAIRINGS = {1: ("[passive]", "[aggressive]"), 2: ("[passive]", "[aggressive,slimy]"),
             4: ("[passive,balanced]", "[aggressive,slimy]"), 8: ("[passive,balanced,slimy,aggressive]", "[aggressive,slimy]")}

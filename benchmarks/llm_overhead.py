@@ -28,7 +28,7 @@ from urllib.parse import urlparse
 import httpx2
 
 from pillagerbench.config import load_config
-from pillagerbench.llm import LLMClient, LLMCache, Ledger
+from pillagerbench.llm import Ledger, LLMCache, LLMClient
 
 MESSAGES = [{"role": "system", "content": "You are a Minecraft agent."},
             {"role": "user", "content": "Next action? Reply with one line of code."}]

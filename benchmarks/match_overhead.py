@@ -20,10 +20,10 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.arena import ArenaServer  # noqa: E402
-from pillagerbench.match import Match  # noqa: E402
-from pillagerbench.scenarios import make_scenario  # noqa: E402
-from pillagerbench.teams import make_team  # noqa: E402
+from pillagerbench.arena import ArenaServer
+from pillagerbench.match import Match
+from pillagerbench.scenarios import make_scenario
+from pillagerbench.teams import make_team
 
 
 def cpu_seconds(me: psutil.Process) -> float:

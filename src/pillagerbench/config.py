@@ -6,6 +6,8 @@ We use Hydra's compose API so every sub-command takes the same override syntax.
 
 from __future__ import annotations
 
+from typing import Any
+
 from hydra import compose, initialize_config_module
 from hydra.core.global_hydra import GlobalHydra
 from hydra.errors import HydraException
@@ -40,3 +42,11 @@ def load_config(overrides: list[str] | None = None, config_name: str = "config")
         raise ConfigError(str(exc)) from None
     OmegaConf.set_readonly(cfg, False)
     return cfg
+
+
+def to_dict(cfg: Any) -> dict[str, Any]:
+    """A config node (a mapping) as plain Python data, interpolations resolved."""
+    data = OmegaConf.to_container(cfg, resolve=True)
+    if not isinstance(data, dict):
+        raise ConfigError(f"expected a mapping, got {type(data).__name__}: {data!r}")
+    return {str(k): v for k, v in data.items()}

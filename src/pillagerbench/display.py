@@ -18,7 +18,7 @@ class MatchDisplay:
         self.live: Live | None = None
         self.finished: list[str] = []
 
-    def __enter__(self) -> "MatchDisplay":
+    def __enter__(self) -> MatchDisplay:
         if self.live_mode:
             self.live = Live(self._table({}), console=self.console, refresh_per_second=4, transient=False)
             self.live.__enter__()

@@ -12,9 +12,10 @@ import asyncio
 import json
 import random
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from pillagerbench.players import Player
 from pillagerbench.scenarios import Scenario
@@ -116,7 +117,7 @@ class Match:
         t_start = time.monotonic()
         try:
             await self._play(rec, out, sink)
-        except Exception as exc:  # one failed episode never ends the series
+        except Exception as exc:  # noqa: BLE001 - one failed episode never ends the series
             rec.status, rec.error = "failed", f"{type(exc).__name__}: {exc}"
         finally:
             for f in files.values():
@@ -207,8 +208,8 @@ class Match:
             done, _ = await asyncio.wait(background, timeout=max(0.0, deadline - time.monotonic()),
                                          return_when=asyncio.FIRST_EXCEPTION)
             for task in done:
-                if task.exception():
-                    raise task.exception()
+                if (exc := task.exception()) is not None:
+                    raise exc
         finally:
             # the whistle: stop every player's code, then nothing a player does counts any more
             await asyncio.gather(*(p.stop() for p in self.players.values()), return_exceptions=True)

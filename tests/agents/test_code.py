@@ -6,8 +6,14 @@ import time
 
 import pytest
 
-from pillagerbench.agents.code import (CodeError, JSParser, check_program, extract_code_blocks, parse_js,
-                                       programs_from_answer)
+from pillagerbench.agents.code import (
+    CodeError,
+    JSParser,
+    check_program,
+    extract_code_blocks,
+    parse_js,
+    programs_from_answer,
+)
 from pillagerbench.scenarios import make_scenario
 
 MW = make_scenario("mushroom_war").primitives

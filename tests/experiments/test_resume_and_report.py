@@ -16,7 +16,8 @@ from pathlib import Path
 import psutil
 import pytest
 
-from pillagerbench.report.build import build_report, main as report_main
+from pillagerbench.report.build import build_report
+from pillagerbench.report.build import main as report_main
 
 EPISODES = 3
 ARGS = ["experiment=round_robin_mushroom_war", "experiment.red_teams=[do_nothing,passive]",

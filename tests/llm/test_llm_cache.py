@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from pillagerbench.llm import CacheMiss
+from pillagerbench.llm import CacheMiss, LLMError
 from pillagerbench.llm.fake_server import Rule
 
 
@@ -110,7 +110,7 @@ async def test_replay_miss_is_recorded_and_sends_nothing(fake_llm, make_client, 
 async def test_errors_are_not_cached(fake_llm, make_client, tmp_path):
     fake_llm.add(Rule(status=500))
     client = make_client("llm_cache.mode=readwrite", f"llm_cache.dir={tmp_path / 'c'}", "llm.max_retries=0")
-    with pytest.raises(Exception):
+    with pytest.raises(LLMError):
         await client.complete("q", role="action")
     assert cache_files(tmp_path / "c") == []
 

@@ -4,9 +4,19 @@ import time
 
 import pytest
 
-from pillagerbench.llm import (AuthenticationFailed, EmptyResponse, InvalidJSON, LLMConfigError,
-                               LLMConnectionError, LLMError, LLMTimeout, MalformedResponse,
-                               ModelNotFound, ProviderError, RateLimited)
+from pillagerbench.llm import (
+    AuthenticationFailed,
+    EmptyResponse,
+    InvalidJSON,
+    LLMConfigError,
+    LLMConnectionError,
+    LLMError,
+    LLMTimeout,
+    MalformedResponse,
+    ModelNotFound,
+    ProviderError,
+    RateLimited,
+)
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.llm.parsing import parse_json
 

@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from pillagerbench.llm import ProviderError, Ledger, read_ledger, summarize
+from pillagerbench.llm import Ledger, ProviderError, read_ledger, summarize
 from pillagerbench.llm.fake_server import Rule, count_tokens
 
 FIELDS = {"ts", "team", "role", "provider", "model", "latency_s", "input_tokens", "output_tokens",

@@ -24,7 +24,7 @@ async def test_observation_fields(server, area, make_player):
     await p.reset(position=area.at(0, 4, 0), inventory={"bread": 3}, equipment=["iron_helmet", None, None, None, "bread", None])
     events = await p.run("bot.chat('look'); bot.save('saved_it'); await bot.waitForTicks(2)")
     assert [e[0] for e in events] == ["onSave", "onChat", "observe"]
-    for kind, data in events:
+    for _kind, data in events:
         assert {"voxels", "status", "inventory", "nearbyChests", "blockRecords"} <= set(data)
     assert events[0][1]["onSave"] == "saved_it" and events[1][1]["onChat"] == f"<{p.name}> look"
     obs = last_observation(events)
@@ -70,7 +70,7 @@ async def test_chat_between_runs_is_delivered_with_the_next_run(server, area, ma
 
 
 async def test_stop_settles_fast_and_stops_everything(server, area, make_player):
-    await area.blocks(*[(dx, 4, 6, "slime_block") for dx in range(0, 12)])
+    await area.blocks(*[(dx, 4, 6, "slime_block") for dx in range(12)])
     p = await make_player(area, 0, 0, {"wooden_pickaxe": 1})
     run = asyncio.create_task(p.run(
         "setInterval(() => bot.chat('tick'), 200)\n"

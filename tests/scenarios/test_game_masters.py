@@ -51,7 +51,7 @@ async def test_slime_respawns_at_its_original_positions(server):
 
 async def test_mushroom_war_score_is_own_colour_mushrooms_held(server):
     sc = make_scenario("mushroom_war")
-    async with TestBot(server.port, "Ryn") as ryn, TestBot(server.port, "Byte") as byte:
+    async with TestBot(server.port, "Ryn"), TestBot(server.port, "Byte"):
         await server.request("set_inventory", player="Ryn", items={"red_mushroom": 3, "brown_mushroom": 5})
         await server.request("set_inventory", player="Byte", items={"brown_mushroom": 2})
         gm = sc.game_master(server, Always(0.99))

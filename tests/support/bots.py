@@ -27,7 +27,7 @@ class TestBot:
         self._pending: dict[int, asyncio.Future] = {}
         self._spawned: asyncio.Future | None = None
 
-    async def start(self, timeout: float = 30) -> "TestBot":
+    async def start(self, timeout: float = 30) -> TestBot:
         loop = asyncio.get_running_loop()
         self._spawned = loop.create_future()
         self.proc = await asyncio.create_subprocess_exec(

@@ -7,11 +7,11 @@ import json
 from pathlib import Path
 
 from pillagerbench.arena import ArenaServer
-from pillagerbench.llm.fake_server import Rule
+from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import TeamContext, make_team
-from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 (fixtures)
+from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
 
 # --- scripted answers (Mushroom War, red team) ---------------------------------------------------
 

@@ -4,16 +4,24 @@ checkpoint round trip, and a series full of bad inputs that keeps playing."""
 
 from __future__ import annotations
 
-import asyncio
 import json
 
 from pillagerbench.llm.fake_server import Rule
 from pillagerbench.teams import make_team
 from pillagerbench.teams.tacticrafter import TactiCrafter
-from pillagerbench.teams.tacticrafter.memory import Memory
 
-from .conftest import (CRITIC, LOOP, NO_CODE, ONE_PASS, THROWS, code_answer, context, good_rules, play_series,
-                       requests_of)
+from .conftest import (
+    CRITIC,
+    LOOP,
+    NO_CODE,
+    ONE_PASS,
+    THROWS,
+    code_answer,
+    context,
+    good_rules,
+    play_series,
+    requests_of,
+)
 
 
 def load(path):

@@ -9,7 +9,7 @@ import pytest
 
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams.tacticrafter.causal import CausalGraph, Relation, parse_relations
-from pillagerbench.teams.tacticrafter.events import (dedupe, digest, opponent_chat, own_chat_with_inventory)
+from pillagerbench.teams.tacticrafter.events import dedupe, digest, opponent_chat, own_chat_with_inventory
 from pillagerbench.teams.tacticrafter.memory import Memory
 from pillagerbench.teams.tacticrafter.tactics import extract_tactics
 
@@ -163,6 +163,7 @@ def test_a_cut_off_graph_keeps_its_complete_relations():
 
 def test_code_answers_checked_with_acorn_and_an_empty_main_is_refused():
     from pillagerbench.teams.tacticrafter.base_agent import parse_code
+
     from .conftest import LOOP, code_answer
     sc = make_scenario("mushroom_war")
     assert parse_code(code_answer(LOOP), sc.primitives).entry == "keepFarming"

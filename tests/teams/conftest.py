@@ -9,8 +9,7 @@ from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import make_team
-from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 (fixtures)
-
+from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
 
 llm_client = llm_client_fixture()
 

@@ -8,7 +8,6 @@ import json
 from pillagerbench.agents.code import parse_js
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.teams import make_team
 from pillagerbench.teams.random_team import RandomActions
 from tests.teams.conftest import play_series
 

@@ -24,8 +24,9 @@ from __future__ import annotations
 import asyncio
 import dataclasses
 import time
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from pillagerbench.llm import BudgetExceeded, LLMClient, LLMError
 

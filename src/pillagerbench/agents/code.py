@@ -21,8 +21,8 @@ import atexit
 import json
 import subprocess
 import threading
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
 
 from pillagerbench.players import primitives as prim
 
@@ -160,7 +160,7 @@ class ParsedJS:
 class JSParser:
     """A long-lived Node process parsing JavaScript with acorn. Thread-safe; restarts if it dies."""
 
-    _shared: "JSParser | None" = None
+    _shared: JSParser | None = None
     _shared_lock = threading.Lock()
 
     def __init__(self) -> None:
@@ -169,7 +169,7 @@ class JSParser:
         self._next_id = 0
 
     @classmethod
-    def shared(cls) -> "JSParser":
+    def shared(cls) -> JSParser:
         with cls._shared_lock:
             if cls._shared is None:
                 cls._shared = JSParser()
@@ -184,14 +184,16 @@ class JSParser:
 
     def parse(self, code: str) -> ParsedJS:
         with self._lock:
-            for attempt in range(2):
+            for _attempt in range(2):
                 if self._proc is None or self._proc.poll() is not None:
                     self._proc = self._start()
                 self._next_id += 1
+                stdin, stdout = self._proc.stdin, self._proc.stdout
+                assert stdin is not None and stdout is not None  # _start opens both as pipes
                 try:
-                    self._proc.stdin.write(json.dumps({"id": self._next_id, "code": code}) + "\n")
-                    self._proc.stdin.flush()
-                    line = self._proc.stdout.readline()
+                    stdin.write(json.dumps({"id": self._next_id, "code": code}) + "\n")
+                    stdin.flush()
+                    line = stdout.readline()
                 except (BrokenPipeError, OSError):
                     line = ""
                 if line:
@@ -213,7 +215,8 @@ class JSParser:
         proc, self._proc = self._proc, None
         if proc is not None:
             try:
-                proc.stdin.close()
+                if proc.stdin is not None:
+                    proc.stdin.close()
             except OSError:
                 pass
             try:
@@ -223,7 +226,8 @@ class JSParser:
                 pass
             for stream in (proc.stdout,):
                 try:
-                    stream.close()
+                    if stream is not None:
+                        stream.close()
                 except OSError:
                     pass
 

@@ -14,11 +14,12 @@ with a readable stand-in ("none") when there is nothing to show.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from pillagerbench.players import events as ev
-from pillagerbench.players.events import last_observation  # re-exported for agents
+from pillagerbench.players.events import last_observation as last_observation  # re-exported for agents
 
 NONE = "none"
 

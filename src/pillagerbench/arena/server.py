@@ -35,7 +35,7 @@ class ArenaServerError(RuntimeError):
 
 class ArenaServer:
     @classmethod
-    def from_config(cls, server_cfg, log_path: str | Path | None = None) -> "ArenaServer":
+    def from_config(cls, server_cfg, log_path: str | Path | None = None) -> ArenaServer:
         """Build from the `server` section of the Hydra config."""
         log_dir = server_cfg.get("log_dir")
         return cls(host=server_cfg.host, port=int(server_cfg.port),
@@ -57,7 +57,7 @@ class ArenaServer:
         self.control: ControlChannel | None = None
         self.ready_seconds: float | None = None
 
-    async def start(self, timeout: float = 30) -> "ArenaServer":
+    async def start(self, timeout: float = 30) -> ArenaServer:
         self.log_path.parent.mkdir(parents=True, exist_ok=True)
         parent_sock, child_sock = socket.socketpair()
         env = node_env()
@@ -77,7 +77,7 @@ class ArenaServer:
         except asyncio.TimeoutError:
             await self.stop()
             raise ArenaServerError(f"arena server not ready within {timeout} s; log: {self.log_path}\n{self.log_tail()}") from None
-        except Exception as exc:
+        except Exception as exc:  # noqa: BLE001 - any start failure becomes ArenaServerError
             await self.stop()
             raise ArenaServerError(f"arena server failed to start: {exc}") from None
         self.port = int(ready["port"])
@@ -126,7 +126,7 @@ class ArenaServer:
                 pass
             await proc.wait()
 
-    async def __aenter__(self) -> "ArenaServer":
+    async def __aenter__(self) -> ArenaServer:
         return await self.start()
 
     async def __aexit__(self, *exc) -> None:

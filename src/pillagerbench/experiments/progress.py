@@ -126,7 +126,7 @@ class ExperimentProgress:
 
     def update(self, force: bool = False) -> dict:
         snap = self.snapshot()
-        if self._progress is not None:
+        if self._progress is not None and self._live is not None:
             self._progress.update(self._bar, completed=snap["done"],
                                   eta=fmt_duration(snap["eta_s"]), failed=snap["failed"])
             self._live.update(Group(self._progress, self._table(snap)))
@@ -139,7 +139,7 @@ class ExperimentProgress:
             self.update()
             await asyncio.sleep(self.interval)
 
-    def __enter__(self) -> "ExperimentProgress":
+    def __enter__(self) -> ExperimentProgress:
         snap = self.snapshot()
         for spec in self.specs:
             self._reported[spec.id] = len(self.finished(spec))

@@ -23,12 +23,10 @@ import os
 import shutil
 import time
 import traceback
+from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Awaitable, Callable
 
-from omegaconf import OmegaConf
-
-from pillagerbench.config import ConfigError
+from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import count_finished, run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
@@ -52,7 +50,7 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
     from pillagerbench.manifest import git_revision
 
     run_dir.mkdir(parents=True, exist_ok=True)
-    top = OmegaConf.to_container(cfg, resolve=True)
+    top = to_dict(cfg)
     data = {"name": cfg.experiment.name, "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
             "experiment": top["experiment"], "overrides": list(argv), "series": [s.to_dict() for s in specs]}
     (run_dir / "experiment.json").write_text(json.dumps(data, indent=1, default=str))

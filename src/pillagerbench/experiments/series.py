@@ -22,9 +22,10 @@ import json
 import os
 import shutil
 import time
+from collections.abc import Callable
 from dataclasses import asdict
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from omegaconf import OmegaConf
 
@@ -89,8 +90,8 @@ def recover(series_dir: Path) -> tuple[dict[int, dict], list[str]]:
     if ledger.exists():
         offset = 0
         if finished:
-            f = state_dir(series_dir, max(finished)) / "ledger_offset"
-            offset = int(f.read_text()) if f.exists() else ledger.stat().st_size  # older run: keep all
+            offset_file = state_dir(series_dir, max(finished)) / "ledger_offset"
+            offset = int(offset_file.read_text()) if offset_file.exists() else ledger.stat().st_size  # older run: keep all
         if ledger.stat().st_size > offset:
             data = ledger.read_bytes()
             (series_dir / "discarded").mkdir(exist_ok=True)

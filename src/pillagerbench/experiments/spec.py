@@ -23,7 +23,7 @@ from typing import Any
 
 from omegaconf import DictConfig, OmegaConf
 
-from pillagerbench.config import ConfigError, load_config
+from pillagerbench.config import ConfigError, load_config, to_dict
 from pillagerbench.experiments.layout import checkpoint_dir
 
 PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation")
@@ -68,7 +68,7 @@ class SeriesSpec:
         return asdict(self)
 
     @classmethod
-    def from_dict(cls, d: dict) -> "SeriesSpec":
+    def from_dict(cls, d: dict) -> SeriesSpec:
         return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
 
 
@@ -180,7 +180,7 @@ class _Builder:
         cfg.seed = seed
         spec = SeriesSpec(id="_".join(parts), index=index, protocol=str(self.exp.protocol), scenario=scenario,
                           red=red, blue=blue, red_team=red_team, blue_team=blue_team, episodes=int(episodes),
-                          seed=seed, config=OmegaConf.to_container(cfg, resolve=True), **extra)
+                          seed=seed, config=to_dict(cfg), **extra)
         self.series.append(spec)
         return spec
 
@@ -210,7 +210,7 @@ class _Builder:
                                     blue_variant=v, variant_label=label, repetition=rep, checkpoint_every=every)
                     if not self.exp.get("evaluate"):
                         continue
-                    stages = [0] + ([k for k in range(every, episodes + 1, every)] if every else [episodes])
+                    stages = [0] + (list(range(every, episodes + 1, every)) if every else [episodes])
                     for k in stages:
                         ckpt = {"red": {"series": play.id, "episode": k - 1}} if k else {}
                         play.checkpoint_at = sorted(set(play.checkpoint_at) | ({k - 1} if k else set()))
@@ -228,7 +228,7 @@ class _Builder:
                     opponents = _opponents(self.exp, "opponents", sc)
                     for trained_on in opponents:
                         if from_run:
-                            ckpt = {"red": {"path": str(find_checkpoint(Path(from_run), sc, label, trained_on, rep,
+                            ckpt: dict[str, dict[str, Any]] = {"red": {"path": str(find_checkpoint(Path(from_run), sc, label, trained_on, rep,
                                                                          train - 1))}}
                         else:
                             t = self.add(sc, v["team"], trained_on, train, red=label, variant=v,

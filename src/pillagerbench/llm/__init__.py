@@ -6,9 +6,22 @@
 from .budget import Budget
 from .cache import LLMCache
 from .client import LLMClient, LLMResponse
-from .errors import (AuthenticationFailed, BadRequest, BudgetExceeded, CacheMiss, EmptyResponse,
-                     InvalidJSON, LLMConfigError, LLMConnectionError, LLMError, LLMTimeout,
-                     MalformedResponse, ModelNotFound, ProviderError, RateLimited)
+from .errors import (
+                     AuthenticationFailed,
+                     BadRequest,
+                     BudgetExceeded,
+                     CacheMiss,
+                     EmptyResponse,
+                     InvalidJSON,
+                     LLMConfigError,
+                     LLMConnectionError,
+                     LLMError,
+                     LLMTimeout,
+                     MalformedResponse,
+                     ModelNotFound,
+                     ProviderError,
+                     RateLimited,
+)
 from .ledger import Ledger, LedgerStats, read_ledger, summarize
 from .settings import LLMSettings
 

@@ -8,8 +8,9 @@ replayed episode runs out of budget at the same point as the original.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from .errors import BudgetExceeded
 
@@ -32,7 +33,7 @@ class Budget:
 
     @classmethod
     def from_limits(cls, limits: Mapping[str, Any] | None, price_input_per_1m: float = 0.0,
-                    price_output_per_1m: float = 0.0) -> "Budget":
+                    price_output_per_1m: float = 0.0) -> Budget:
         limits = dict(limits or {})
         unknown = sorted(set(limits) - set(LIMITS))
         if unknown:

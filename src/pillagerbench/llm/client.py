@@ -18,9 +18,10 @@ from __future__ import annotations
 import asyncio
 import email.utils
 import time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import openai
 
@@ -71,7 +72,7 @@ class LLMClient:
 
     @classmethod
     def from_config(cls, cfg: Any, *, team: str | None = None, run_dir: str | Path | None = None,
-                    ledger: Ledger | None = None, cache: LLMCache | None = None) -> "LLMClient":
+                    ledger: Ledger | None = None, cache: LLMCache | None = None) -> LLMClient:
         """From the full config (sections llm, llm_cache, llm_ledger) or just its `llm` node.
         With run_dir, the ledger is `<run_dir>/llm_calls.jsonl` and the cache (unless mode off)
         is llm_cache.dir or `<run_dir>/llm_cache`."""
@@ -89,7 +90,7 @@ class LLMClient:
             cache = LLMCache(directory, mode)
         return cls(settings, team=team, ledger=ledger, cache=cache)
 
-    def for_team(self, team: str, budget: Budget | None = None) -> "LLMClient":
+    def for_team(self, team: str, budget: Budget | None = None) -> LLMClient:
         """A client for one team: same provider connection, ledger and cache; its own budget."""
         return LLMClient(self.settings, team=team, ledger=self.ledger, cache=self.cache,
                          budget=budget, _sdk=self._sdk)
@@ -108,7 +109,7 @@ class LLMClient:
         if self.ledger is not None and self._owns_sdk:
             self.ledger.close()
 
-    async def __aenter__(self) -> "LLMClient":
+    async def __aenter__(self) -> LLMClient:
         return self
 
     async def __aexit__(self, *exc: object) -> None:
@@ -148,7 +149,7 @@ class LLMClient:
         """One chat completion. `params` (stop, seed, top_p, response_format, ...) go into the body.
         Raises an LLMError subclass; every call, failed or not, is one ledger record."""
         s = self.settings
-        ctx = {"role": role, "team": self.team, "model": s.model, "provider": s.provider}
+        ctx: dict[str, Any] = {"role": role, "team": self.team, "model": s.model, "provider": s.provider}
         request = self.build_request(messages, temperature=temperature, max_tokens=max_tokens, **params)
         start = time.perf_counter()
         key, sample = "", 0

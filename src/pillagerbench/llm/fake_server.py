@@ -31,9 +31,10 @@ import json
 import re
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from typing import Any, Callable
+from typing import Any
 
 from pillagerbench.llm.protocol import ROLE_HEADER, TEAM_HEADER
 
@@ -60,7 +61,7 @@ class Rule:
     times: int | None = None  # how many requests this rule answers; None = unlimited
     used: int = 0
 
-    def matches(self, req: "Received") -> bool:
+    def matches(self, req: Received) -> bool:
         if self.times is not None and self.used >= self.times:
             return False
         if self.role is not None and req.role != self.role:
@@ -115,7 +116,7 @@ class FakeLLMServer:
         self._next_id = 0
 
     # -- lifecycle -------------------------------------------------------------------------------
-    def start(self) -> "FakeLLMServer":
+    def start(self) -> FakeLLMServer:
         server = self
 
         class Handler(_Handler):
@@ -135,7 +136,7 @@ class FakeLLMServer:
             self._httpd.server_close()
             self._httpd = None
 
-    def __enter__(self) -> "FakeLLMServer":
+    def __enter__(self) -> FakeLLMServer:
         return self.start()
 
     def __exit__(self, *exc: object) -> None:
@@ -147,7 +148,7 @@ class FakeLLMServer:
         return f"http://{self.host}:{self.port}/v1"
 
     # -- script ----------------------------------------------------------------------------------
-    def add(self, *rules: Rule) -> "FakeLLMServer":
+    def add(self, *rules: Rule) -> FakeLLMServer:
         with self._lock:
             self.rules.extend(rules)
         return self
@@ -228,7 +229,7 @@ class _Handler(BaseHTTPRequestHandler):
         return json.dumps(_error(401, f"Incorrect API key provided: {received}",
                                  "invalid_request_error")).encode()
 
-    def do_GET(self) -> None:  # noqa: N802
+    def do_GET(self) -> None:
         if self.path.rstrip("/").endswith("/models"):
             names = self.fake.models or ["fake-model"]
             data = [{"id": n, "object": "model", "owned_by": "fake"} for n in names]
@@ -236,7 +237,7 @@ class _Handler(BaseHTTPRequestHandler):
         else:
             self._send(404, json.dumps(_error(404, f"no route {self.path}", "not_found")).encode())
 
-    def do_POST(self) -> None:  # noqa: N802
+    def do_POST(self) -> None:
         raw = self.rfile.read(int(self.headers.get("Content-Length") or 0))
         try:
             body = json.loads(raw or b"{}")

@@ -19,15 +19,17 @@ is added (Welch). Dash & Dine scores are multiplied by 0.1 as in the paper (SCOR
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 import numpy as np
+
+Values = Sequence[float] | np.ndarray  # scores, one per episode
 
 SCORE_SCALE = {"mushroom_war": 1.0, "dash_and_dine": 0.1}
 
 # t_{0.975, df}
-_T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228,
+_T975: dict[float, float] = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228,
          11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131, 16: 2.120, 17: 2.110, 18: 2.101, 19: 2.093,
          20: 2.086, 21: 2.080, 22: 2.074, 23: 2.069, 24: 2.064, 25: 2.060, 26: 2.056, 27: 2.052, 28: 2.048,
          29: 2.045, 30: 2.042, 40: 2.021, 60: 2.000, 120: 1.980}
@@ -80,20 +82,20 @@ def mean_ci(values: Iterable[float]) -> Estimate:
     return Estimate(float(x.mean()), float(t_critical(n - 1) * x.std(ddof=1) / math.sqrt(n)), n)
 
 
-def win_outcomes(red: Sequence[float], blue: Sequence[float]) -> np.ndarray:
+def win_outcomes(red: Values, blue: Values) -> np.ndarray:
     r, b = np.asarray(red, dtype=float), np.asarray(blue, dtype=float)
     return (r > b).astype(float) + 0.5 * (r == b)
 
 
-def points(red: Sequence[float]) -> Estimate:
+def points(red: Values) -> Estimate:
     return mean_ci(red)
 
 
-def difference(red: Sequence[float], blue: Sequence[float]) -> Estimate:
+def difference(red: Values, blue: Values) -> Estimate:
     return mean_ci(np.asarray(red, dtype=float) - np.asarray(blue, dtype=float))
 
 
-def win_rate(red: Sequence[float], blue: Sequence[float]) -> Estimate:
+def win_rate(red: Values, blue: Values) -> Estimate:
     e = mean_ci(win_outcomes(red, blue))
     return e
 

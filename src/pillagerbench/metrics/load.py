@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -161,7 +162,11 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
 
 
 def load_runs(paths: list[str | Path]) -> Runs:
-    series, skipped, rows, ledger, cals = [], [], [], [], []
+    series: list[Any] = []
+    skipped: list[Any] = []
+    rows: list[Any] = []
+    ledger: list[Any] = []
+    cals: list[Any] = []
     runs = [Path(p) for p in paths]
     for run in runs:
         series += _series_of(run)

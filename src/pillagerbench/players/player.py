@@ -23,8 +23,9 @@ import json
 import os
 import signal
 import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any
 
 from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env
 
@@ -68,7 +69,7 @@ class _RunState:
         if self.on_event is not None:
             try:
                 self.on_event(event)
-            except Exception:  # a faulty callback must not break the run
+            except Exception:  # noqa: BLE001 - a faulty callback must not break the run
                 pass
 
 
@@ -94,12 +95,13 @@ class Player:
         self._last_line = 0.0
         self._spawned: asyncio.Future | None = None
         self._tasks: list[asyncio.Task] = []
+        self._recoveries: set[asyncio.Task] = set()  # held so a running recovery is not garbage-collected
         self._stderr_tail: collections.deque[str] = collections.deque(maxlen=40)
         self._fatal: str | None = None
         self._expect_exit = False
         self._closed = False
         self._generation = 0
-        self.position: list[float] | None = None
+        self.position: list[float | None] | None = None
         self._last_obs: dict = {}
 
     # ---- process ----------------------------------------------------------------------------
@@ -155,6 +157,7 @@ class Player:
 
     async def _read_stderr(self, proc: asyncio.subprocess.Process) -> None:
         log = self._log_file()
+        assert proc.stderr is not None  # started with stderr=PIPE
         try:
             while line := await proc.stderr.readline():
                 text = line.decode(errors="replace").rstrip()
@@ -167,6 +170,7 @@ class Player:
                 log.close()
 
     async def _read_stdout(self, proc: asyncio.subprocess.Process, gen: int) -> None:
+        assert proc.stdout is not None  # started with stdout=PIPE
         try:
             while True:
                 try:
@@ -188,7 +192,9 @@ class Player:
                 if self._spawned and not self._spawned.done():
                     self._spawned.set_exception(PlayerError(f"{self.name}: bot process ended before spawning: {reason}"))
                 else:
-                    asyncio.create_task(self._recover(reason, gen))
+                    task = asyncio.create_task(self._recover(reason, gen))
+                    self._recoveries.add(task)
+                    task.add_done_callback(self._recoveries.discard)
 
     def _exit_reason(self, code: int | None) -> str:
         tail = self.stderr_tail()
@@ -217,7 +223,7 @@ class Player:
         if "fatal" in msg:
             self._fatal = f"Error: the bot lost its connection ({msg['fatal']}) and was restarted"
             return
-        rid = msg.get("id")
+        rid: Any = msg.get("id")
         run = self._run
         if run is not None and rid == run.rid:
             if not run.done.done():
@@ -348,7 +354,7 @@ class Player:
             await self._teleport(snapshot["pos"])
 
     async def _teleport(self, pos: list[float]) -> None:
-        for attempt in range(3):
+        for _attempt in range(3):
             await self.server.request("teleport", player=self.name, pos=pos)
             settled = await self._request("settle", pos=pos, timeout=3, wait=6)
             if settled is True:
@@ -446,7 +452,8 @@ class Player:
         if proc is not None and proc.returncode is None:
             self._expect_exit = True
             try:
-                proc.stdin.close()
+                if proc.stdin is not None:
+                    proc.stdin.close()
                 await asyncio.wait_for(proc.wait(), 2)
             except (asyncio.TimeoutError, BrokenPipeError, ConnectionResetError):
                 await self._kill()
@@ -455,7 +462,7 @@ class Player:
                 t.cancel()
         self._tasks.clear()
 
-    async def __aenter__(self) -> "Player":
+    async def __aenter__(self) -> Player:
         await self.start()
         return self
 

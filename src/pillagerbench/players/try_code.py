@@ -83,6 +83,7 @@ async def _main(opts: dict[str, str]) -> int:
                       file=sys.stderr)
         if not built:
             print(f"pillagerbench try: flat arena ({scenario_key} not built)", file=sys.stderr)
+        assert server.port is not None  # the server has started
         player = Player(player_name, server.port, server=server, primitives=primitives,
                         log_dir=Path(opts["log_dir"]) if "log_dir" in opts else None)
         try:

@@ -15,12 +15,12 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
 
-from pillagerbench.metrics.formulas import t_critical  # noqa: E402
-from pillagerbench.report.tables import ALL, opponent_order, red_order  # noqa: E402
+from pillagerbench.metrics.formulas import t_critical
+from pillagerbench.report.tables import ALL, opponent_order, red_order
 
 TITLES = {"P": "Points (red team)", "S": "Sabotage (red team)", "W": "Win rate (red team)",
           "D": "Points difference (red − blue)"}
@@ -46,7 +46,7 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
     if not len(sd):
         return _empty(path, f"{_title(scenario)}: no episodes")
     rows = red_order(sd)
-    cols = [c for c in opponent_order(sd[sd["blue"] != ALL], scenario)] + [ALL]
+    cols = [*opponent_order(sd[sd["blue"] != ALL], scenario), ALL]
     fig, axes = plt.subplots(1, 4, figsize=(4.2 * 4, 1.2 + 0.65 * len(rows) + 0.2 * max(0, len(cols) - 5)))
     for ax, metric in zip(axes, ("P", "S", "W", "D")):
         grid = np.full((len(rows), len(cols)), np.nan)
@@ -55,7 +55,7 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
             i, j = rows.index(r["red"]), cols.index(r["blue"])
             grid[i, j], ci[i, j] = r[metric], r[f"{metric}_ci"]
         masked = np.ma.masked_invalid(grid)
-        kw = {"vmin": 0, "vmax": 1} if metric == "W" else {}
+        kw: dict[str, float] = {"vmin": 0, "vmax": 1} if metric == "W" else {}
         if metric == "D" and np.isfinite(grid).any():
             lim = np.nanmax(np.abs(grid)) or 1.0
             kw = {"vmin": -lim, "vmax": lim}

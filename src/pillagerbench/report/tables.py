@@ -88,7 +88,7 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
 
 def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool = False) -> pd.DataFrame:
     rows = []
-    keys = [(r, None) for r in red_order(df)]
+    keys: list[tuple[str, str | None]] = [(r, None) for r in red_order(df)]
     if by_scenario:
         keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df["scenario"] == sc])]
     for red, scenario in keys:

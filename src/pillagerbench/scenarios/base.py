@@ -23,7 +23,7 @@ class Side:
     team_name: str               # "red_team"
     color: str
     players: tuple[PlayerSpec, ...]
-    center: tuple[int, int, int]
+    center: tuple[float, float, float]
 
     @property
     def player_names(self) -> list[str]:
@@ -36,11 +36,11 @@ class GameMaster(ABC):
 
     period_s: ClassVar[float] = 1.0
 
-    def __init__(self, scenario: "Scenario", server, rng: random.Random):
+    def __init__(self, scenario: Scenario, server, rng: random.Random):
         self.scenario, self.server, self.rng = scenario, server, rng
         self.log: list[dict] = []  # what the game master did, for the episode record
 
-    async def start(self) -> None:
+    async def start(self) -> None:  # noqa: B027 - a hook with nothing to do by default
         """Called once when the clock starts."""
 
     @abstractmethod
@@ -69,7 +69,7 @@ class Scenario(ABC):
 
     @property
     @abstractmethod
-    def sides(self) -> tuple[Side, Side]: ...
+    def sides(self) -> tuple[Side, ...]: ...
 
     @property
     @abstractmethod

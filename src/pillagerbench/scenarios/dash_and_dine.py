@@ -128,7 +128,7 @@ class DashAndDine(Scenario):
     crop_growth_chance: float = 0.3
 
     @property
-    def sides(self) -> tuple[Side, Side]:
+    def sides(self) -> tuple[Side, ...]:
         return tuple(Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in PLAYERS[key]),
                           SERVERS[key].spawn) for key in ("red", "blue"))
 
@@ -168,7 +168,7 @@ class DashAndDine(Scenario):
         ]
         return "\n".join(lines)
 
-    def game_master(self, server, rng: random.Random) -> "DashAndDineMaster":
+    def game_master(self, server, rng: random.Random) -> DashAndDineMaster:
         return DashAndDineMaster(self, server, rng)
 
 
@@ -183,7 +183,7 @@ class DashAndDineMaster(GameMaster):
         for key, server_player in SERVERS.items():
             try:
                 inventory = await self.server.request("inventory", player=server_player.name)
-            except Exception as exc:
+            except Exception as exc:  # noqa: BLE001 - logged; the other server is still emptied
                 self.log.append({"error": f"{server_player.name}: {exc}"})
                 continue
             if not inventory:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass
+from typing import Any
 
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
@@ -20,7 +21,7 @@ AREA_RADIUS = 7
 P_REGROW = 0.1          # per missing cap block per second, while clean
 P_SLIME = 0.02          # per original slime position per second, always
 
-RED = {"cap": "red_mushroom_block", "item": "red_mushroom", "center": (-9, Y, -10),
+RED: dict[str, Any] = {"cap": "red_mushroom_block", "item": "red_mushroom", "center": (-9, Y, -10),
        "mushrooms": [(-13, -8), (-5, -8), (-9, -12)], "slime": [(-9, -8), (-13, -12), (-5, -12)],
        "players": [("Ryn", (-7, Y, -10)), ("Raze", (-11, Y, -10))]}
 
@@ -29,7 +30,7 @@ def mirror(z: float) -> float:
     return -4 - z
 
 
-BLUE = {"cap": "brown_mushroom_block", "item": "brown_mushroom", "center": (-9, Y, mirror(-10)),
+BLUE: dict[str, Any] = {"cap": "brown_mushroom_block", "item": "brown_mushroom", "center": (-9, Y, mirror(-10)),
         "mushrooms": [(x, mirror(z)) for x, z in RED["mushrooms"]],
         "slime": [(x, mirror(z)) for x, z in RED["slime"]],
         "players": [("Byte", (-11, Y, mirror(-10))), ("Blink", (-7, Y, mirror(-10)))]}
@@ -57,7 +58,7 @@ class MushroomWar(Scenario):
     primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
 
     @property
-    def sides(self) -> tuple[Side, Side]:
+    def sides(self) -> tuple[Side, ...]:
         return tuple(Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in d["players"]), d["center"])
                      for key, d in TEAMS.items())
 
@@ -98,7 +99,7 @@ class MushroomWar(Scenario):
             "There are no chests. Sabotaging the other team is allowed.",
         ])
 
-    def game_master(self, server, rng: random.Random) -> "MushroomWarMaster":
+    def game_master(self, server, rng: random.Random) -> MushroomWarMaster:
         return MushroomWarMaster(self, server, rng)
 
 
@@ -106,7 +107,7 @@ class MushroomWarMaster(GameMaster):
     period_s = 1.0
 
     async def start(self) -> None:
-        self.clean = {key: None for key in TEAMS}
+        self.clean: dict[str, bool | None] = {key: None for key in TEAMS}
         self.original_slime = [p for d in TEAMS.values() for p in slime(d)]
 
     async def step(self) -> None:
@@ -136,7 +137,7 @@ class MushroomWarMaster(GameMaster):
             for name in side.player_names:
                 try:
                     inv = await self.server.request("inventory", player=name)
-                except Exception:  # a player who is not connected holds nothing
+                except Exception:  # noqa: BLE001 - a player who is not connected holds nothing
                     inv = []
                 total += sum(s["count"] for s in inv if s["name"] == item)
             out[side.key] = float(total)

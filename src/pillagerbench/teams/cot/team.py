@@ -174,7 +174,7 @@ class ChainOfThought(Team):
             started = time.monotonic()
             try:
                 await player.run(program.exec_code)  # the match stops it at the whistle
-            except Exception as exc:  # the bot cannot run code right now: note it and try again
+            except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and try again
                 self.record.setdefault("run_errors", []).append(f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}")
             quick = time.monotonic() - started
             if ctx.time_left() > 0 and quick < self.restart_pause_s:

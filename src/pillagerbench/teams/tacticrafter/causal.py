@@ -19,8 +19,9 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Sequence
+from typing import Any
 
 from pillagerbench.agents.asking import Asked, ask
 from pillagerbench.llm.parsing import parse_json
@@ -70,7 +71,7 @@ def parse_relations(value: Any) -> list[Relation]:
                 action = rel.get("action")
                 items.append((action, rel.get("causes", rel.get("cause")), rel.get("effects", rel.get("effect"))))
             elif isinstance(rel, (list, tuple)) and len(rel) == 3:
-                items.append(tuple(rel))  # type: ignore[arg-type]
+                items.append(tuple(rel))
             else:
                 raise ValueError(f"relation {n + 1} is neither [action, [causes], [effects]] nor an object")
     else:
@@ -124,11 +125,11 @@ class CausalGraph:
         return [r.to_list() for r in self.relations]
 
     @classmethod
-    def from_json(cls, value: Any) -> "CausalGraph":
+    def from_json(cls, value: Any) -> CausalGraph:
         return cls(parse_relations(value or []))
 
     @classmethod
-    def parse_text(cls, text: str) -> "CausalGraph":
+    def parse_text(cls, text: str) -> CausalGraph:
         """Back from the rendered lines (lines that do not match are skipped)."""
         rels = []
         for line in text.splitlines():
@@ -149,7 +150,8 @@ def complete_items(text: str) -> list:
     start = text.find("[")
     if start < 0:
         return []
-    decoder, items, i = json.JSONDecoder(), [], start + 1
+    decoder, i = json.JSONDecoder(), start + 1
+    items: list[Any] = []
     while True:
         while i < len(text) and text[i] in " \t\r\n,":
             i += 1

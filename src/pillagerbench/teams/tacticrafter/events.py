@@ -12,8 +12,9 @@ keep everything, but only the last few are kept whole (the others keep their inv
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from pillagerbench.agents import context as C
 from pillagerbench.scenarios import Scenario, Side
@@ -26,7 +27,7 @@ class DedupStats:
     chat_before: int = 0
     chat_after: int = 0
 
-    def add(self, other: "DedupStats") -> "DedupStats":
+    def add(self, other: DedupStats) -> DedupStats:
         return DedupStats(self.before + other.before, self.after + other.after,
                           self.chat_before + other.chat_before, self.chat_after + other.chat_after)
 

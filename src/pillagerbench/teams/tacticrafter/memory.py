@@ -46,7 +46,7 @@ class Memory:
                 "code": self.code, "events": self.events, "episodes": self.episodes}
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Memory":
+    def from_dict(cls, d: dict[str, Any]) -> Memory:
         return cls(tactics=d.get("tactics"), previous_tactics=d.get("previous_tactics"),
                    tactics_source=d.get("tactics_source"), opponent_tactics=d.get("opponent_tactics") or UNKNOWN,
                    opponent_source=d.get("opponent_source"), graph=CausalGraph.from_json(d.get("causal_graph")),
@@ -70,7 +70,7 @@ class Memory:
                                                "events": self.events.get(name, [])} for name in players})
 
     @classmethod
-    def read(cls, directory: Path) -> "Memory":
+    def read(cls, directory: Path) -> Memory:
         directory = Path(directory)
         team = directory / "team.json"
         if team.exists():

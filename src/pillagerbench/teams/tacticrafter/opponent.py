@@ -9,8 +9,8 @@ from typing import Any
 
 from pillagerbench.agents.asking import Asked, ask
 
-from .templates import PROMPTS
 from .tactics import extract_tactics
+from .templates import PROMPTS
 
 ROLE = "opponent"
 UNKNOWN = "unknown"

@@ -29,8 +29,18 @@ from pillagerbench.teams.base import Team, TeamContext
 
 from . import causal, opponent, tactics
 from .base_agent import BaseAgent
-from .events import (DedupStats, agent_names, dedupe, digest, inventories_text, longest_chat, nearby_blocks_text,
-                     opponent_chat, own_chat_with_inventory, tail)
+from .events import (
+    DedupStats,
+    agent_names,
+    dedupe,
+    digest,
+    inventories_text,
+    longest_chat,
+    nearby_blocks_text,
+    opponent_chat,
+    own_chat_with_inventory,
+    tail,
+)
 from .memory import Memory
 from .opponent import UNKNOWN
 
