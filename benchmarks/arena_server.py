@@ -21,8 +21,8 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from pillagerbench.arena import ArenaServer  # noqa: E402
-from tests.support.bots import TestBot  # noqa: E402
+from pillagerbench.arena import ArenaServer
+from tests.support.bots import TestBot
 
 WORK = """
 const { GoalNear } = goals
@@ -81,9 +81,16 @@ async def main(n_bots: int, seconds: float) -> dict:
     await asyncio.sleep(2)
     (cpu, rss), held = await asyncio.gather(measure(proc, seconds - 4), tps(server, seconds - 4))
     loops = await asyncio.gather(*work)
-    out.update({"bots": n_bots, "busy_cpu_pct_one_core": round(cpu, 1), "busy_rss_mb": round(rss, 1),
-                "tps_held": round(held, 2), "bot_work_loops": sum(loops),
-                "kicked": sum(b.kicked for b in bots)})
+    out.update(
+        {
+            "bots": n_bots,
+            "busy_cpu_pct_one_core": round(cpu, 1),
+            "busy_rss_mb": round(rss, 1),
+            "tps_held": round(held, 2),
+            "bot_work_loops": sum(loops),
+            "kicked": sum(b.kicked for b in bots),
+        }
+    )
     for b in bots:
         await b.stop()
     await server.stop()

@@ -21,12 +21,16 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.config import load_config  # noqa: E402
-from pillagerbench.experiments import build_series  # noqa: E402
-from pillagerbench.experiments.runner import local_launcher, run_all  # noqa: E402
+from pillagerbench.config import load_config
+from pillagerbench.experiments import build_series
+from pillagerbench.experiments.runner import local_launcher, run_all
 
-PAIRINGS = {1: ("[passive]", "[aggressive]"), 2: ("[passive]", "[aggressive,slimy]"),
-            4: ("[passive,balanced]", "[aggressive,slimy]"), 8: ("[passive,balanced,slimy,aggressive]", "[aggressive,slimy]")}
+PAIRINGS = {
+    1: ("[passive]", "[aggressive]"),
+    2: ("[passive]", "[aggressive,slimy]"),
+    4: ("[passive,balanced]", "[aggressive,slimy]"),
+    8: ("[passive,balanced,slimy,aggressive]", "[aggressive,slimy]"),
+}
 
 
 class CpuMeter:
@@ -58,8 +62,13 @@ class CpuMeter:
 
 async def one_setting(n: int, episodes: int, length: float) -> dict:
     red, blue = PAIRINGS[n]
-    argv = ["experiment=round_robin_mushroom_war", f"experiment.red_teams={red}", f"experiment.blue_teams={blue}",
-            f"experiment.episodes={episodes}", f"episode_length={length}"]
+    argv = [
+        "experiment=round_robin_mushroom_war",
+        f"experiment.red_teams={red}",
+        f"experiment.blue_teams={blue}",
+        f"experiment.episodes={episodes}",
+        f"episode_length={length}",
+    ]
     specs = build_series(load_config(argv), argv)
     assert len(specs) == n, (n, len(specs))
     run_dir = Path(tempfile.mkdtemp(prefix=f"pb-bench-exp{n}-"))
@@ -75,13 +84,20 @@ async def one_setting(n: int, episodes: int, length: float) -> dict:
     cpu = meter.total()
     recs = [json.loads(x) for d in dirs.values() for x in (d / "episodes.jsonl").read_text().splitlines()]
     ok = sum(r["status"] == "ok" for r in recs)
-    return {"parallel": n, "series": n, "episodes": len(recs), "episodes_ok": ok, "episode_length_s": length,
-            "wall_s": round(wall, 1), "episodes_per_hour": round(len(recs) / wall * 3600, 1),
-            "game_time_share": round(len(recs) * length / wall / n, 3),
-            "cpu_cores_used": round(cpu / wall, 2),
-            "cpu_share_of_machine_pct": round(100 * cpu / wall / psutil.cpu_count(), 1),
-            "machine_cpu_busy_pct": machine_pct,
-            "errors": [r for r in results.values() if r["status"] != "done"]}
+    return {
+        "parallel": n,
+        "series": n,
+        "episodes": len(recs),
+        "episodes_ok": ok,
+        "episode_length_s": length,
+        "wall_s": round(wall, 1),
+        "episodes_per_hour": round(len(recs) / wall * 3600, 1),
+        "game_time_share": round(len(recs) * length / wall / n, 3),
+        "cpu_cores_used": round(cpu / wall, 2),
+        "cpu_share_of_machine_pct": round(100 * cpu / wall / psutil.cpu_count(), 1),
+        "machine_cpu_busy_pct": machine_pct,
+        "errors": [r for r in results.values() if r["status"] != "done"],
+    }
 
 
 async def main(a) -> dict:

@@ -28,10 +28,12 @@ from urllib.parse import urlparse
 import httpx2
 
 from pillagerbench.config import load_config
-from pillagerbench.llm import LLMClient, LLMCache, Ledger
+from pillagerbench.llm import Ledger, LLMCache, LLMClient
 
-MESSAGES = [{"role": "system", "content": "You are a Minecraft agent."},
-            {"role": "user", "content": "Next action? Reply with one line of code."}]
+MESSAGES = [
+    {"role": "system", "content": "You are a Minecraft agent."},
+    {"role": "user", "content": "Next action? Reply with one line of code."},
+]
 
 
 def stats(samples: list[float]) -> dict:
@@ -52,18 +54,20 @@ async def timed(n: int, call) -> list[float]:
 async def run(n: int, url: str) -> dict:
     body = {"model": "fake-model", "messages": MESSAGES, "temperature": 0.3, "max_tokens": 512}
     async with httpx2.AsyncClient(base_url=url, timeout=10) as raw:
+
         async def raw_call(i: int) -> None:
             r = await raw.post("/chat/completions", json=body)
             json.loads(r.content)
+
         raw_t = await timed(n, raw_call)
 
     parts = urlparse(url)
     conn = http.client.HTTPConnection(parts.hostname, parts.port, timeout=10)
 
     async def stdlib_call(i: int) -> None:
-        conn.request("POST", parts.path + "/chat/completions", json.dumps(body),
-                     {"Content-Type": "application/json"})
+        conn.request("POST", parts.path + "/chat/completions", json.dumps(body), {"Content-Type": "application/json"})
         json.loads(conn.getresponse().read())
+
     stdlib_t = await timed(n, stdlib_call)
     conn.close()
 
@@ -78,8 +82,7 @@ async def run(n: int, url: str) -> dict:
             for p in prompts:
                 await writer.complete(p, role="action")
         ledger = Ledger(Path(tmp) / "run2")
-        async with LLMClient.from_config(cfg, team="red", ledger=ledger,
-                                         cache=LLMCache(cache_dir, "replay")) as replay:
+        async with LLMClient.from_config(cfg, team="red", ledger=ledger, cache=LLMCache(cache_dir, "replay")) as replay:
             await replay.complete(prompts[0], role="action")  # warm-up (each prompt hits once)
             hit_t = []
             for p in prompts[1:]:
@@ -104,8 +107,9 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--calls", type=int, default=300)
     args = parser.parse_args()
-    server = subprocess.Popen([sys.executable, "-m", "pillagerbench.llm.fake_server", "--port", "0"],
-                              stdout=subprocess.PIPE, text=True)
+    server = subprocess.Popen(
+        [sys.executable, "-m", "pillagerbench.llm.fake_server", "--port", "0"], stdout=subprocess.PIPE, text=True
+    )
     try:
         url = server.stdout.readline().strip()
         result = asyncio.run(run(args.calls, url))

@@ -20,10 +20,10 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.arena import ArenaServer  # noqa: E402
-from pillagerbench.match import Match  # noqa: E402
-from pillagerbench.scenarios import make_scenario  # noqa: E402
-from pillagerbench.teams import make_team  # noqa: E402
+from pillagerbench.arena import ArenaServer
+from pillagerbench.match import Match
+from pillagerbench.scenarios import make_scenario
+from pillagerbench.teams import make_team
 
 
 def cpu_seconds(me: psutil.Process) -> float:
@@ -49,7 +49,11 @@ async def main(a) -> dict:
         wall, cpu = time.monotonic() - t0, cpu_seconds(me) - c0
         await match.close()
     return {
-        "scenario": a.scenario, "red": a.red, "blue": a.blue, "episodes": a.episodes, "episode_length_s": a.length,
+        "scenario": a.scenario,
+        "red": a.red,
+        "blue": a.blue,
+        "episodes": a.episodes,
+        "episode_length_s": a.length,
         "overhead_s_per_episode": round((wall - a.episodes * a.length) / a.episodes, 2),
         "reset_s_per_episode": round(sum(r.reset_s for r in recs) / len(recs), 2),
         "cpu_share_of_machine_pct": round(100 * cpu / wall / psutil.cpu_count(), 1),

@@ -33,8 +33,12 @@ def pct(values: list[float], q: float) -> float:
 
 
 def summary(ms: list[float]) -> dict:
-    return {"median_ms": round(statistics.median(ms), 1), "p90_ms": round(pct(ms, 0.9), 1),
-            "max_ms": round(max(ms), 1), "n": len(ms)}
+    return {
+        "median_ms": round(statistics.median(ms), 1),
+        "p90_ms": round(pct(ms, 0.9), 1),
+        "max_ms": round(max(ms), 1),
+        "n": len(ms),
+    }
 
 
 async def first_event_latency(player: Player, code: str, kind: str, match: str, repeats: int) -> list[float]:
@@ -93,14 +97,22 @@ async def main(n_bots: int, seconds: float, repeats: int) -> dict:
         p0 = players[0]
         # warm up
         await p0.run("bot.save('warm')")
-        results["run_to_first_call_event"] = summary(await first_event_latency(p0, "bot.save('go')", "onSave", "go", repeats))
+        results["run_to_first_call_event"] = summary(
+            await first_event_latency(p0, "bot.save('go')", "onSave", "go", repeats)
+        )
         results["run_to_first_primitive_chat"] = summary(
-            await first_event_latency(p0, "await sendSignal(bot, 'Nobody')", "onChat", "[Nobody signal]", repeats))
-        results["stop_while_walking"] = summary(await stop_latency(
-            p0, "await bot.pathfinder.goto(new GoalNear(bot.entity.position.x + 200, 4, 0, 1))", repeats))
+            await first_event_latency(p0, "await sendSignal(bot, 'Nobody')", "onChat", "[Nobody signal]", repeats)
+        )
+        results["stop_while_walking"] = summary(
+            await stop_latency(
+                p0, "await bot.pathfinder.goto(new GoalNear(bot.entity.position.x + 200, 4, 0, 1))", repeats
+            )
+        )
         await server.request("fill", **{"from": [3, 4, -3], "to": [20, 4, 3], "block": "slime_block"})
         await p0.reset(position=(0, 4, 0))
-        results["stop_while_mining"] = summary(await stop_latency(p0, "await mineBlock(bot, 'slime_block', 100)", max(3, repeats // 4), after=1.5))
+        results["stop_while_mining"] = summary(
+            await stop_latency(p0, "await mineBlock(bot, 'slime_block', 100)", max(3, repeats // 4), after=1.5)
+        )
         await server.request("fill", **{"from": [3, 4, -3], "to": [20, 4, 3], "block": "air"})
 
         procs = [psutil.Process(p.proc.pid) for p in players]
@@ -110,11 +122,13 @@ async def main(n_bots: int, seconds: float, repeats: int) -> dict:
         results["rss_mb_idle"] = [round(p.memory_info().rss / 2**20, 1) for p in procs]
         results["cpu_pct_per_idle_bot"] = round(await measure_cpu(procs, seconds), 2)
 
-        busy = ("const x0 = bot.entity.position.x\n"
-                "for (let i = 0; ; i++) {\n"
-                "  await bot.pathfinder.goto(new GoalNear(x0 + (i % 2 ? 0 : 12), 4, (i % 3) * 3, 0))\n"
-                "  if (i % 4 === 0) bot.chat('lap ' + i)\n"
-                "}")
+        busy = (
+            "const x0 = bot.entity.position.x\n"
+            "for (let i = 0; ; i++) {\n"
+            "  await bot.pathfinder.goto(new GoalNear(x0 + (i % 2 ? 0 : 12), 4, (i % 3) * 3, 0))\n"
+            "  if (i % 4 === 0) bot.chat('lap ' + i)\n"
+            "}"
+        )
         runs = [asyncio.create_task(p.run(busy)) for p in players]
         await asyncio.sleep(1)
         results["cpu_pct_per_busy_bot"] = round(await measure_cpu(procs, seconds), 2)
@@ -126,8 +140,12 @@ async def main(n_bots: int, seconds: float, repeats: int) -> dict:
         results["rss_mb_after_busy"] = [round(p.memory_info().rss / 2**20, 1) for p in procs]
         for p in players:
             await p.close()
-    results["targets"] = {"run_to_first_call_event.median_ms": "<= 50", "stop.max_ms": "<= 200",
-                          "rss_mb": "<= 150", "cpu_pct_per_idle_bot": "<= 10"}
+    results["targets"] = {
+        "run_to_first_call_event.median_ms": "<= 50",
+        "stop.max_ms": "<= 200",
+        "rss_mb": "<= 150",
+        "cpu_pct_per_idle_bot": "<= 10",
+    }
     return results
 
 

@@ -24,9 +24,11 @@ class OneShot(Team):
     async def pre_game(self, ctx: TeamContext) -> None:
         self.code: dict[str, str] = {}
         for name in ctx.side.player_names:
-            prompt = (f"{ctx.scenario.description()}\n\nYou control {name} of {ctx.side.team_name}. "
-                      f"You may call these functions:\n{primitives.docs(list(ctx.scenario.primitives))}\n\n"
-                      "Answer with one ```javascript block: the body of an async function of `bot`.")
+            prompt = (
+                f"{ctx.scenario.description()}\n\nYou control {name} of {ctx.side.team_name}. "
+                f"You may call these functions:\n{primitives.docs(list(ctx.scenario.primitives))}\n\n"
+                "Answer with one ```javascript block: the body of an async function of `bot`."
+            )
             try:
                 answer = await ctx.llm.complete(prompt, role="action")
             except LLMError as exc:

@@ -36,10 +36,10 @@ class Team(BaseHTTPRequestHandler):
         self.end_headers()
         self.wfile.write(data)
 
-    def do_GET(self) -> None:  # noqa: N802 (the http.server API)
+    def do_GET(self) -> None:
         self.answer({"protocol": 1, "name": "python-harvesters"})
 
-    def do_POST(self) -> None:  # noqa: N802
+    def do_POST(self) -> None:
         message = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
         if self.path == "/pregame":
             self.answer({"programs": programs(message)})

@@ -1,6 +1,6 @@
 """A scripted team in one file: both players harvest their team's giant mushrooms in Mushroom War.
 
-    PYTHONPATH=examples pillagerbench run red=scripted_team:Harvesters blue=do_nothing
+PYTHONPATH=examples pillagerbench run red=scripted_team:Harvesters blue=do_nothing
 """
 
 from __future__ import annotations
@@ -26,8 +26,12 @@ class Harvesters(Team):
 
     async def play(self, ctx: TeamContext) -> None:
         place = ctx.scenario.placeholders(ctx.side.key)
-        code = HARVEST.format(center=place["team_center"], block=place["team_block"],
-                              radius=place["area_radius"], per_trip=int(self.options.get("per_trip", 4)))
+        code = HARVEST.format(
+            center=place["team_center"],
+            block=place["team_block"],
+            radius=place["area_radius"],
+            per_trip=int(self.options.get("per_trip", 4)),
+        )
         self.iterations = [0] * len(ctx.players)
 
         async def keep_harvesting(k: int, player) -> None:

@@ -16,8 +16,14 @@ from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 def pb(tmp_path, *args, env=None, timeout=120):
     environment = {k: v for k, v in os.environ.items() if k != "OPENAI_API_KEY"}
     environment.update(env or {})
-    return subprocess.run([sys.executable, "-m", "pillagerbench.cli", *args], cwd=tmp_path, capture_output=True,
-                          text=True, timeout=timeout, env=environment)
+    return subprocess.run(
+        [sys.executable, "-m", "pillagerbench.cli", *args],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=environment,
+    )
 
 
 def one_line_refusal(tmp_path, *args, lines=1):
@@ -30,22 +36,28 @@ def one_line_refusal(tmp_path, *args, lines=1):
     return err
 
 
-@pytest.mark.parametrize("args, expected", [
-    (["episode_length=abc"], "pillagerbench run: episode_length='abc': input should be a valid number"),
-    (["episodes=-1"], "pillagerbench run: episodes=-1: input should be greater than or equal to 1"),
-    (["parallel=0"], "pillagerbench run: parallel=0: input should be greater than or equal to 1"),
-    (["display=fancy"], "pillagerbench run: display='fancy': input should be 'auto', 'live' or 'plain'"),
-    (["server.port=70000"], "pillagerbench run: server.port=70000: input should be less than or equal to 65535"),
-    (["llm_cache.mode=sometimes"], "pillagerbench run: llm_cache.mode='sometimes': input should be 'off', 'read'"),
-    (["red=cot", "red.attempts=x"], "pillagerbench run: red.attempts='x': input should be a valid integer"),
-    (["red=cot", "red.atempts=3"], "pillagerbench run: red.atempts: no such option (team cot has options attempts"),
-    (["blue=passive", "blue.llm.model=x"], "pillagerbench run: blue.llm.model: team passive uses no LLM"),
-    (["red=nonexistent"], "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; valid teams: aggressive"),
-    (["scenario=foo"], "pillagerbench run: unknown scenario 'foo'; valid: dash_and_dine, mushroom_war"),
-    (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; valid: ablation_models"),
-    (["llm=nope"], "pillagerbench run: unknown llm preset 'nope'; valid: fake"),
-    (["epsiodes=3"], "pillagerbench run: epsiodes: no such key"),
-])
+@pytest.mark.parametrize(
+    "args, expected",
+    [
+        (["episode_length=abc"], "pillagerbench run: episode_length='abc': input should be a valid number"),
+        (["episodes=-1"], "pillagerbench run: episodes=-1: input should be greater than or equal to 1"),
+        (["parallel=0"], "pillagerbench run: parallel=0: input should be greater than or equal to 1"),
+        (["display=fancy"], "pillagerbench run: display='fancy': input should be 'auto', 'live' or 'plain'"),
+        (["server.port=70000"], "pillagerbench run: server.port=70000: input should be less than or equal to 65535"),
+        (["llm_cache.mode=sometimes"], "pillagerbench run: llm_cache.mode='sometimes': input should be 'off', 'read'"),
+        (["red=cot", "red.attempts=x"], "pillagerbench run: red.attempts='x': input should be a valid integer"),
+        (["red=cot", "red.atempts=3"], "pillagerbench run: red.atempts: no such option (team cot has options attempts"),
+        (["blue=passive", "blue.llm.model=x"], "pillagerbench run: blue.llm.model: team passive uses no LLM"),
+        (
+            ["red=nonexistent"],
+            "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; valid teams: aggressive",
+        ),
+        (["scenario=foo"], "pillagerbench run: unknown scenario 'foo'; valid: dash_and_dine, mushroom_war"),
+        (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; valid: ablation_models"),
+        (["llm=nope"], "pillagerbench run: unknown llm preset 'nope'; valid: fake"),
+        (["epsiodes=3"], "pillagerbench run: epsiodes: no such key"),
+    ],
+)
 def test_a_bad_value_is_one_line_naming_key_value_and_choices(tmp_path, args, expected):
     (line,) = one_line_refusal(tmp_path, "run", *args)
     assert line.startswith(expected), line
@@ -53,13 +65,16 @@ def test_a_bad_value_is_one_line_naming_key_value_and_choices(tmp_path, args, ex
 
 def test_a_team_that_cannot_play_the_scenario_leaves_no_run_directory(tmp_path):
     err = one_line_refusal(tmp_path, "run", "scenario=dash_and_dine", "red=passive", "blue=berries")
-    assert err[0].startswith("pillagerbench run: red=passive: plays only mushroom_war, not dash_and_dine; "
-                             "teams for dash_and_dine: do_nothing, berries")
+    assert err[0].startswith(
+        "pillagerbench run: red=passive: plays only mushroom_war, not dash_and_dine; "
+        "teams for dash_and_dine: do_nothing, berries"
+    )
 
 
 def test_every_problem_is_reported_at_once(tmp_path):
-    err = one_line_refusal(tmp_path, "run", "episodes=0", "episode_length=-5", "display=x", "red=cot",
-                           "llm.temperature=9", lines=4)
+    err = one_line_refusal(
+        tmp_path, "run", "episodes=0", "episode_length=-5", "display=x", "red=cot", "llm.temperature=9", lines=4
+    )
     keys = [line.split(": ")[1].split("=")[0] for line in err]
     assert sorted(keys) == ["display", "episode_length", "episodes", "llm.temperature"]
 
@@ -84,8 +99,8 @@ def test_an_unknown_model_is_named_by_the_preflight(tmp_path):
 
 
 def test_a_reachable_provider_passes_the_preflight_with_one_request(tmp_path):
-    from pillagerbench.config import load_config
     from pillagerbench import preflight
+    from pillagerbench.config import load_config
 
     with FakeLLMServer() as fake:
         cfg = load_config(["red=cot", "blue=cot", "llm=fake", f"llm.base_url={fake.url}"])
@@ -94,9 +109,20 @@ def test_a_reachable_provider_passes_the_preflight_with_one_request(tmp_path):
 
 
 def test_without_preflight_a_team_without_its_model_is_recorded_and_shown(tmp_path):
-    proc = pb(tmp_path, "run", "red=cot", "blue=do_nothing", "llm=fake", "llm.base_url=http://127.0.0.1:9/v1",
-              "llm.preflight=false", "llm.max_retries=0", "episode_length=4", "display=plain", "run_dir=out",
-              timeout=240)
+    proc = pb(
+        tmp_path,
+        "run",
+        "red=cot",
+        "blue=do_nothing",
+        "llm=fake",
+        "llm.base_url=http://127.0.0.1:9/v1",
+        "llm.preflight=false",
+        "llm.max_retries=0",
+        "episode_length=4",
+        "display=plain",
+        "run_dir=out",
+        timeout=240,
+    )
     assert proc.returncode == 1, proc.stdout + proc.stderr  # every episode of red went without its model
     assert "red cot: llm failed on all" in proc.stdout
     assert "red cot had problems in 1 of 1 episode(s), e.g.: llm failed on all" in proc.stdout
@@ -117,16 +143,19 @@ def test_an_internal_error_is_one_line_naming_the_traceback_file(tmp_path, monke
     assert "Traceback" in open(path).read()
 
 
-@pytest.mark.parametrize("args, expected", [
-    (["server", "server.port=abc"], "pillagerbench server: server.port='abc': input should be a valid integer"),
-    (["llm-ping", "llm.timeout=abc"], "pillagerbench llm-ping: llm.timeout='abc': input should be a valid number"),
-    (["llm-ping", "llm=nope"], "pillagerbench llm-ping: unknown llm preset 'nope'"),
-    (["report", "nowhere"], "pillagerbench report: nowhere: not a run directory"),
-    (["calibrate", "nowhere"], "pillagerbench calibrate: nowhere: not a run directory"),
-    (["symmetry", "nowhere"], "pillagerbench symmetry: nowhere: not a run directory"),
-    (["try", "scenario=mushroom_war", "player=Ryn", "code=none.js"], "pillagerbench try: [Errno 2] No such file"),
-    (["nope"], "pillagerbench: unknown command 'nope'; valid commands: run, setup"),
-])
+@pytest.mark.parametrize(
+    "args, expected",
+    [
+        (["server", "server.port=abc"], "pillagerbench server: server.port='abc': input should be a valid integer"),
+        (["llm-ping", "llm.timeout=abc"], "pillagerbench llm-ping: llm.timeout='abc': input should be a valid number"),
+        (["llm-ping", "llm=nope"], "pillagerbench llm-ping: unknown llm preset 'nope'"),
+        (["report", "nowhere"], "pillagerbench report: nowhere: not a run directory"),
+        (["calibrate", "nowhere"], "pillagerbench calibrate: nowhere: not a run directory"),
+        (["symmetry", "nowhere"], "pillagerbench symmetry: nowhere: not a run directory"),
+        (["try", "scenario=mushroom_war", "player=Ryn", "code=none.js"], "pillagerbench try: [Errno 2] No such file"),
+        (["nope"], "pillagerbench: unknown command 'nope'; valid commands: run, setup"),
+    ],
+)
 def test_other_commands_refuse_bad_input_in_one_line(tmp_path, args, expected):
     (line,) = one_line_refusal(tmp_path, *args)
     assert line.startswith(expected), line
@@ -140,5 +169,7 @@ def test_a_port_in_use_is_one_line(tmp_path):
         taken.listen()
         port = taken.getsockname()[1]
         (line,) = one_line_refusal(tmp_path, "server", f"server.port={port}")
-    assert line == (f"pillagerbench server: arena server failed to start: port 127.0.0.1:{port} is already in use "
-                    "(choose another with server.port=..., or 0 for a free port)")
+    assert line == (
+        f"pillagerbench server: arena server failed to start: port 127.0.0.1:{port} is already in use "
+        "(choose another with server.port=..., or 0 for a free port)"
+    )

@@ -10,16 +10,41 @@ from pathlib import Path
 
 # name -> ("module:function", help). Each function takes the remaining argv and returns an exit code.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "run": ("pillagerbench.run:main", "play a match between two teams and record it"),
+    "run": ("pillagerbench.cli:run_main", "play a match between two teams and record it"),
     "setup": ("pillagerbench.node:setup_main", "install the pinned Node packages into the cache"),
     "server": ("pillagerbench.arena.serve:main", "start an arena server to watch with a 1.16.5 client"),
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
     "llm-ping": ("pillagerbench.llm.ping:main", "send one short request to an LLM provider"),
     "teams": ("pillagerbench.teams.catalog:main", "list every team: where it comes from, scenarios, LLM, options"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
-    "symmetry": ("pillagerbench.report.symmetry:main", "each team's points as red and as blue per pairing (side effect check)"),
-    "calibrate": ("pillagerbench.metrics.calibration:main", "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)"),
+    "symmetry": (
+        "pillagerbench.report.symmetry:main",
+        "each team's points as red and as blue per pairing (side effect check)",
+    ),
+    "calibrate": (
+        "pillagerbench.metrics.calibration:main",
+        "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)",
+    ),
 }
+
+
+def run_main(argv: list[str]) -> int:
+    """`pillagerbench run`: one match (run.py), or many series with experiment=/resume= (experiments/)."""
+    from pillagerbench import preflight
+    from pillagerbench.config import load_config
+    from pillagerbench.validate import check_run_config
+
+    cfg = load_config(argv)
+    experiment = cfg.get("experiment") is not None or bool(cfg.get("resume"))
+    check_run_config(cfg, teams=not experiment)  # the whole config, before anything is created
+    if experiment:  # many series, parallel, resumable (they run the preflight on their series)
+        from pillagerbench.experiments.runner import main_experiment
+
+        return main_experiment(cfg, argv)
+    from pillagerbench.run import run_match
+
+    preflight.check(preflight.sides_of(cfg))
+    return run_match(cfg)
 
 
 def usage() -> str:
@@ -35,12 +60,11 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     name, rest = argv[0], argv[1:]
     if name not in COMMANDS:
-        print(f"pillagerbench: unknown command {name!r}; valid commands: {', '.join(COMMANDS)}",
-              file=sys.stderr)
+        print(f"pillagerbench: unknown command {name!r}; valid commands: {', '.join(COMMANDS)}", file=sys.stderr)
         return 2
     module_name, func_name = COMMANDS[name][0].split(":")
-    from pillagerbench.config import ConfigError
     from pillagerbench.arena.server import ArenaServerError
+    from pillagerbench.config import ConfigError
     from pillagerbench.metrics.load import ReportError
     from pillagerbench.node import NodeSetupError
 
@@ -51,15 +75,25 @@ def main(argv: list[str] | None = None) -> int:
         for line in str(exc).splitlines() or [""]:
             print(f"pillagerbench {name}: {line}", file=sys.stderr)
         return 2
-    except (NodeSetupError, ReportError, ArenaServerError, FileNotFoundError, PermissionError, IsADirectoryError) as exc:
+    except (
+        NodeSetupError,
+        ReportError,
+        ArenaServerError,
+        FileNotFoundError,
+        PermissionError,
+        IsADirectoryError,
+    ) as exc:
         print(f"pillagerbench {name}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130
-    except Exception as exc:  # a bug of ours: one line, and where the traceback is
+    except Exception as exc:  # noqa: BLE001 - a bug of ours: one line, and where the traceback is
         path = write_traceback(name)
-        print(f"pillagerbench {name}: internal error: {type(exc).__name__}: {exc} (full traceback: {path}; "
-              "please report it)", file=sys.stderr)
+        print(
+            f"pillagerbench {name}: internal error: {type(exc).__name__}: {exc} (full traceback: {path}; "
+            "please report it)",
+            file=sys.stderr,
+        )
         return 1
 
 

@@ -7,6 +7,7 @@ We use Hydra's compose API so every sub-command takes the same override syntax.
 from __future__ import annotations
 
 import re
+from typing import Any
 
 from hydra import compose, initialize_config_module
 from hydra.core.global_hydra import GlobalHydra
@@ -37,16 +38,22 @@ def _aliases(overrides: list[str]) -> list[str]:
     (import path, entry point, remote) is `team@red=_external` plus `red.name=X`, and its options
     `red.KEY=V` are added keys; a side's `llm.*` keys may be new too."""
     side_of = {v: k for k, v in GROUP_ALIASES.items()}
-    chosen = {side_of.get(k, k): v for k, sep, v in (o.partition("=") for o in overrides)
-              if sep and side_of.get(k, k) in GROUP_ALIASES}
+    chosen = {
+        side_of.get(k, k): v
+        for k, sep, v in (o.partition("=") for o in overrides)
+        if sep and side_of.get(k, k) in GROUP_ALIASES
+    }
     external = {side for side, team in chosen.items() if not _has_yaml(team)}
     out = []
     for override in overrides:
         key, sep, value = override.partition("=")
         group = side_of.get(key, key)
         if sep and group in GROUP_ALIASES:
-            out += ([f"{GROUP_ALIASES[group]}={value}"] if group not in external or value != chosen[group] or
-                    _has_yaml(value) else [f"{GROUP_ALIASES[group]}={EXTERNAL}", f"++{group}.name={value}"])
+            out += (
+                [f"{GROUP_ALIASES[group]}={value}"]
+                if group not in external or value != chosen[group] or _has_yaml(value)
+                else [f"{GROUP_ALIASES[group]}={EXTERNAL}", f"++{group}.name={value}"]
+            )
             continue
         side, _, rest = key.partition(".")
         if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or side in external):
@@ -67,14 +74,15 @@ def _team_keys(side: str, overrides: list[str]) -> str:
 
     root = resources.files("pillagerbench.conf")
     defaults = OmegaConf.create((root / "config.yaml").read_text()).defaults
-    name = next(d[f"team@{side}"] for d in defaults if isinstance(d, dict) or OmegaConf.is_dict(d)
-                if f"team@{side}" in d)
+    name = next(
+        d[f"team@{side}"] for d in defaults if isinstance(d, dict) or OmegaConf.is_dict(d) if f"team@{side}" in d
+    )
     for o in overrides:
         key, _, value = o.partition("=")
         if key in (side, f"team@{side}"):
             name = value
     path = root / "team" / f"{name}.yaml"
-    keys = [k for k in OmegaConf.create(path.read_text()) if k not in ("name", "llm")] if path.is_file() else []
+    keys = [str(k) for k in OmegaConf.create(path.read_text()) if k not in ("name", "llm")] if path.is_file() else []
     return f"team {name} has {'options ' + ', '.join(keys) if keys else 'no options'}"
 
 
@@ -107,3 +115,11 @@ def load_config(overrides: list[str] | None = None, config_name: str = "config")
         raise ConfigError(one_line(str(exc), list(overrides or []))) from None
     OmegaConf.set_readonly(cfg, False)
     return cfg
+
+
+def to_dict(cfg: Any) -> dict[str, Any]:
+    """A config node (a mapping) as plain Python data, interpolations resolved."""
+    data = OmegaConf.to_container(cfg, resolve=True)
+    if not isinstance(data, dict):
+        raise ConfigError(f"expected a mapping, got {type(data).__name__}: {data!r}")
+    return {str(k): v for k, v in data.items()}

@@ -10,7 +10,7 @@ from typing import Any, Literal
 from omegaconf import OmegaConf
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config import ConfigError, to_dict
 
 
 class _Strict(BaseModel):
@@ -106,7 +106,7 @@ def problems(model: type[BaseModel], data: Any, prefix: str = "") -> list[str]:
 
 def top_level_problems(cfg: Any) -> list[str]:
     """Problems of the top-level keys of a composed config (conf/config.yaml)."""
-    data = OmegaConf.to_container(cfg, resolve=True)
+    data = to_dict(cfg)
     if data.get("llm_cache", {}).get("mode") in (None, False):  # YAML 1.1 reads a bare `off` as false
         data["llm_cache"]["mode"] = "off"
     return problems(RunConfig, data)

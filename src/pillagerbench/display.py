@@ -18,7 +18,7 @@ class MatchDisplay:
         self.live: Live | None = None
         self.finished: list[str] = []
 
-    def __enter__(self) -> "MatchDisplay":
+    def __enter__(self) -> MatchDisplay:
         if self.live_mode:
             self.live = Live(self._table({}), console=self.console, refresh_per_second=4, transient=False)
             self.live.__enter__()
@@ -42,14 +42,21 @@ class MatchDisplay:
         if self.live:
             self.live.update(self._table(s))
         elif int(s["t"]) % 10 == 0 or s["t"] >= s["length"]:
-            print(f"episode {s['episode']} t={s['t']:.0f}/{s['length']:.0f}s red={s['red']:g} blue={s['blue']:g}", flush=True)
+            print(
+                f"episode {s['episode']} t={s['t']:.0f}/{s['length']:.0f}s red={s['red']:g} blue={s['blue']:g}",
+                flush=True,
+            )
 
     def episode_done(self, rec) -> None:
-        line = (f"{rec.episode}|{rec.status}|{rec.red_score if rec.red_score is not None else '-'}|"
-                f"{rec.blue_score if rec.blue_score is not None else '-'}")
+        line = (
+            f"{rec.episode}|{rec.status}|{rec.red_score if rec.red_score is not None else '-'}|"
+            f"{rec.blue_score if rec.blue_score is not None else '-'}"
+        )
         self.finished.append(line)
-        message = (f"episode {rec.episode}: red {rec.red} {rec.red_score} - blue {rec.blue} {rec.blue_score} "
-                   f"({rec.winner or rec.status}{': ' + rec.error if rec.error else ''}) in {rec.duration_s:.1f} s")
+        message = (
+            f"episode {rec.episode}: red {rec.red} {rec.red_score} - blue {rec.blue} {rec.blue_score} "
+            f"({rec.winner or rec.status}{': ' + rec.error if rec.error else ''}) in {rec.duration_s:.1f} s"
+        )
         for side, problems in (rec.problems or {}).items():
             message += f"\n  {side} {getattr(rec, side)}: " + "; ".join(problems)
         if self.live:

@@ -12,9 +12,10 @@ import asyncio
 import json
 import random
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from pillagerbench.players import Player
 from pillagerbench.scenarios import Scenario
@@ -32,8 +33,8 @@ class EpisodeRecord:
     red_score: float | None = None
     blue_score: float | None = None
     winner: str | None = None
-    duration_s: float = 0.0          # wall time of the whole episode (reset .. post-game)
-    status: str = "ok"               # ok | failed
+    duration_s: float = 0.0  # wall time of the whole episode (reset .. post-game)
+    status: str = "ok"  # ok | failed
     error: str | None = None
     reset_s: float = 0.0
     pre_game_s: dict[str, float] = field(default_factory=dict)
@@ -59,6 +60,7 @@ class RecordedPlayer:
             self._sink(self._player.name, event)
             if on_event:
                 on_event(event)
+
         return await self._player.run(code, timeout=timeout, on_event=both)
 
 
@@ -67,9 +69,18 @@ def winner_of(red: float, blue: float) -> str:
 
 
 class Match:
-    def __init__(self, server, scenario: Scenario, teams: dict[str, Team], run_dir: Path, *,
-                 episode_length: float = 120.0, seed: int = 0, on_tick: Callable[[dict], None] | None = None,
-                 llms: dict[str, Any] | None = None):
+    def __init__(
+        self,
+        server,
+        scenario: Scenario,
+        teams: dict[str, Team],
+        run_dir: Path,
+        *,
+        episode_length: float = 120.0,
+        seed: int = 0,
+        on_tick: Callable[[dict], None] | None = None,
+        llms: dict[str, Any] | None = None,
+    ):
         self.server, self.scenario, self.teams = server, scenario, teams
         self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
@@ -94,8 +105,13 @@ class Match:
         log_dir = self.run_dir / "logs"
         specs = {p.name: p for p in self.scenario.all_players()}
         for spec in (specs[n] for n in self.player_order(0)):
-            player = Player(spec.name, self.server.port, server=self.server, log_dir=log_dir,
-                            primitives=list(self.scenario.primitives))
+            player = Player(
+                spec.name,
+                self.server.port,
+                server=self.server,
+                log_dir=log_dir,
+                primitives=list(self.scenario.primitives),
+            )
             await player.start()
             self.players[spec.name] = player
 
@@ -117,8 +133,9 @@ class Match:
 
     async def play_episode(self, episode: int) -> EpisodeRecord:
         sc = self.scenario
-        rec = EpisodeRecord(sc.key, self.teams["red"].name, self.teams["blue"].name, episode,
-                            seed=self.seed * 1000 + episode)
+        rec = EpisodeRecord(
+            sc.key, self.teams["red"].name, self.teams["blue"].name, episode, seed=self.seed * 1000 + episode
+        )
         out = self.run_dir / f"episode_{episode:03d}"
         out.mkdir(parents=True, exist_ok=True)
         events_dir = out / "events"
@@ -132,7 +149,7 @@ class Match:
         t_start = time.monotonic()
         try:
             await self._play(rec, out, sink)
-        except Exception as exc:  # one failed episode never ends the series
+        except Exception as exc:  # noqa: BLE001 - one failed episode never ends the series
             rec.status, rec.error = "failed", f"{type(exc).__name__}: {exc}"
         finally:
             for f in files.values():
@@ -148,9 +165,14 @@ class Match:
         t0 = time.monotonic()
         await sc.arena.build(self.server)
         await self.server.request("crop_growth", chance=sc.crop_growth_chance)
-        observations = dict(zip(
-            [p.name for p in sc.all_players()],
-            await asyncio.gather(*(self.players[p.name].reset(position=p.spawn, inventory={}) for p in sc.all_players()))))
+        observations = dict(
+            zip(
+                [p.name for p in sc.all_players()],
+                await asyncio.gather(
+                    *(self.players[p.name].reset(position=p.spawn, inventory={}) for p in sc.all_players())
+                ),
+            )
+        )
         rec.reset_s = round(time.monotonic() - t0, 3)
 
         contexts = {}
@@ -162,16 +184,23 @@ class Match:
             team_dir = out / side.key
             team_dir.mkdir(exist_ok=True)
             contexts[side.key] = TeamContext(
-                scenario=sc, side=side, episode=rec.episode, out_dir=team_dir,
+                scenario=sc,
+                side=side,
+                episode=rec.episode,
+                out_dir=team_dir,
                 players={n: RecordedPlayer(self.players[n], sink) for n in side.player_names},
                 observations={n: observations[n] for n in side.player_names},
-                episode_length=self.episode_length, seed=rec.seed, llm=self.llms.get(side.key),
-                last_episode=self.last_records.get(side.key, {}))
+                episode_length=self.episode_length,
+                seed=rec.seed,
+                llm=self.llms.get(side.key),
+                last_episode=self.last_records.get(side.key, {}),
+            )
 
         async def timed_pre_game(key):
             t = time.monotonic()
             await self.teams[key].pre_game(contexts[key])
             rec.pre_game_s[key] = round(time.monotonic() - t, 3)
+
         await asyncio.gather(*(timed_pre_game(k) for k in contexts))
 
         timeline = await self._game(rec, contexts, rng, out)
@@ -179,8 +208,12 @@ class Match:
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
         for key, ctx in contexts.items():
-            self.last_records[key] = {"record": asdict(rec), "events_dir": str(out / "events"), "timeline": timeline,
-                                      "chat": (out / "chat.txt").read_text().splitlines()}
+            self.last_records[key] = {
+                "record": asdict(rec),
+                "events_dir": str(out / "events"),
+                "timeline": timeline,
+                "chat": (out / "chat.txt").read_text().splitlines(),
+            }
             ctx.last_episode = self.last_records[key]
         await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
         for key, llm in self.llms.items():
@@ -199,8 +232,11 @@ class Match:
         with open(out / "world_events.jsonl", "w") as f:
             for e in events:
                 f.write(json.dumps(e) + "\n")
-        lines = [(f"<{e['player']}> " if e.get("player") else "") + str(e.get("message", ""))
-                 for e in events if e.get("event") == "chat"]
+        lines = [
+            (f"<{e['player']}> " if e.get("player") else "") + str(e.get("message", ""))
+            for e in events
+            if e.get("event") == "chat"
+        ]
         (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
 
     async def _game(self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path) -> list[dict]:
@@ -231,11 +267,12 @@ class Match:
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
         try:
-            done, _ = await asyncio.wait(background, timeout=max(0.0, deadline - time.monotonic()),
-                                         return_when=asyncio.FIRST_EXCEPTION)
+            done, _ = await asyncio.wait(
+                background, timeout=max(0.0, deadline - time.monotonic()), return_when=asyncio.FIRST_EXCEPTION
+            )
             for task in done:
-                if task.exception():
-                    raise task.exception()
+                if (exc := task.exception()) is not None:
+                    raise exc
         finally:
             # the whistle: stop every player's code, then nothing a player does counts any more
             await asyncio.gather(*(p.stop() for p in self.players.values()), return_exceptions=True)

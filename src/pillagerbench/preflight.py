@@ -5,29 +5,17 @@ created before this passes."""
 from __future__ import annotations
 
 import asyncio
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 from omegaconf import OmegaConf
 
 from pillagerbench.config import ConfigError
 from pillagerbench.llm.preflight import preflight as llm_preflight
-from pillagerbench.teams import find_team
+from pillagerbench.llm.presets import side_llm_config
+from pillagerbench.teams import find_team, team_options
 
 SIDES = ("red", "blue")
-
-
-def team_options(team_cfg) -> dict:
-    """The team's constructor options: its config node without `name` and `llm`."""
-    opts = OmegaConf.to_container(OmegaConf.create(team_cfg), resolve=True) if not OmegaConf.is_config(team_cfg) \
-        else OmegaConf.to_container(team_cfg, resolve=True)
-    opts.pop("name", None)
-    opts.pop("llm", None)
-    return opts
-
-
-def team_llm_config(cfg, side: str):
-    """The top-level `llm` settings with the side's own `llm` overrides (e.g. `red.llm.model=...`)."""
-    return OmegaConf.merge(cfg, {"llm": cfg[side].get("llm") or {}})
 
 
 def sides_of(cfg) -> list[tuple[str, dict, Any]]:
@@ -37,7 +25,7 @@ def sides_of(cfg) -> list[tuple[str, dict, Any]]:
     for side in SIDES:
         name = str(cfg[side].name)
         uses_llm = getattr(find_team(name), "uses_llm", False)
-        out.append((name, team_options(cfg[side]), team_llm_config(cfg, side).llm if uses_llm else None))
+        out.append((name, team_options(cfg[side]), side_llm_config(cfg, side).llm if uses_llm else None))
     return out
 
 
@@ -47,8 +35,10 @@ async def problems(sides: Iterable[tuple[str, dict, Any]]) -> list[str]:
     for name, options, _ in sides:
         teams.setdefault(f"{name}{sorted(options.items())!r}", (name, options))
     checks = [find_team(name).preflight(options) for name, options in teams.values()]
-    found = await asyncio.gather(llm_preflight([llm for _, _, llm in sides if llm is not None]), *checks)
-    return list(found[0]) + [p for p in found[1:] if p]
+    llms, team_problems = await asyncio.gather(
+        llm_preflight([llm for _, _, llm in sides if llm is not None]), asyncio.gather(*checks)
+    )
+    return list(llms) + [p for p in team_problems if p]
 
 
 def check(sides: Iterable[tuple[str, dict, Any]]) -> None:

@@ -12,32 +12,17 @@ from __future__ import annotations
 
 import asyncio
 import json
-import platform
-import subprocess
 import time
 from dataclasses import asdict
 from pathlib import Path
 
-from omegaconf import OmegaConf
-
-from pillagerbench import __version__
 from pillagerbench.arena import ArenaServer
 from pillagerbench.config import load_config
 from pillagerbench.display import MatchDisplay
+from pillagerbench.manifest import write_manifest
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
-from pillagerbench import preflight
-from pillagerbench.preflight import team_llm_config, team_options
-from pillagerbench.teams import make_team
-from pillagerbench.validate import check_run_config
-
-
-def git_revision() -> str | None:
-    try:
-        return subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True, timeout=5,
-                              cwd=Path(__file__).parent).stdout.strip() or None
-    except (OSError, subprocess.SubprocessError):
-        return None
+from pillagerbench.teams import team_from_config
 
 
 def make_run_dir(cfg) -> Path:
@@ -47,42 +32,28 @@ def make_run_dir(cfg) -> Path:
     return Path("runs") / f"{stamp}_{cfg.scenario.name}_{cfg.red.name}_vs_{cfg.blue.name}"
 
 
-def write_manifest(run_dir: Path, cfg, scenario) -> None:
-    from pillagerbench.node import node_binary
-
-    node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
-    manifest = {
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "config": OmegaConf.to_container(cfg, resolve=True),
-        "scenario": {"key": scenario.key, "title": scenario.title, "version": scenario.version},
-        "versions": {"pillagerbench": __version__, "python": platform.python_version(), "node": node,
-                     "minecraft": "1.16.5"},
-        "seed": cfg.seed,
-        "git_revision": git_revision(),
-    }
-    (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
-
-
-def make_llms(cfg, teams: dict, run_dir: Path) -> dict:
-    from pillagerbench.llm import LLMClient
-
-    return {side: LLMClient.from_config(team_llm_config(cfg, side), team=side, run_dir=run_dir)
-            for side, team in teams.items() if team.uses_llm}
-
-
 async def play(cfg, run_dir: Path) -> list:
     scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
-    teams = {"red": make_team(cfg.red.name, scenario.key, **team_options(cfg.red)),
-             "blue": make_team(cfg.blue.name, scenario.key, **team_options(cfg.blue))}
+    teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
     write_manifest(run_dir, cfg, scenario)
     records = []
     title = f"{scenario.title}: red {cfg.red.name} vs blue {cfg.blue.name}"
     with MatchDisplay(title, cfg.display) as display:
         server = ArenaServer.from_config(cfg.server, log_path=run_dir / "server.log")
         await server.start()
+        from pillagerbench.llm.presets import make_llms
+
         llms = make_llms(cfg, teams, run_dir)
-        match = Match(server, scenario, teams, run_dir, episode_length=cfg.episode_length, seed=cfg.seed,
-                      on_tick=display.tick, llms=llms)
+        match = Match(
+            server,
+            scenario,
+            teams,
+            run_dir,
+            episode_length=cfg.episode_length,
+            seed=cfg.seed,
+            on_tick=display.tick,
+            llms=llms,
+        )
         try:
             await match.setup()
 
@@ -108,21 +79,20 @@ def summarize_problems(records: list) -> tuple[list[str], bool]:
     for side in ("red", "blue"):
         hit = [r for r in records if side in (r.problems or {})]
         if hit:
-            lines.append(f"{side} {getattr(hit[0], side)} had problems in {len(hit)} of {len(records)} "
-                         f"episode(s), e.g.: {hit[-1].problems[side][-1]}")
+            lines.append(
+                f"{side} {getattr(hit[0], side)} had problems in {len(hit)} of {len(records)} "
+                f"episode(s), e.g.: {hit[-1].problems[side][-1]}"
+            )
             all_failed = all_failed or len(hit) == len(records)
     return lines, all_failed
 
 
 def main(argv: list[str]) -> int:
-    cfg = load_config(argv)
-    experiment = cfg.get("experiment") is not None or bool(cfg.get("resume"))
-    check_run_config(cfg, teams=not experiment)
-    if experiment:  # many series, parallel, resumable
-        from pillagerbench.experiments.runner import main_experiment
+    """One match from Hydra overrides (`pillagerbench run` without experiment=/resume=, see cli.py)."""
+    return run_match(load_config(argv))
 
-        return main_experiment(cfg, argv)
-    preflight.check(preflight.sides_of(cfg))
+
+def run_match(cfg) -> int:
     run_dir = make_run_dir(cfg)
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"run directory: {run_dir}", flush=True)

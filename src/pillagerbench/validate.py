@@ -14,7 +14,7 @@ from typing import Any
 from omegaconf import OmegaConf
 from pydantic import ConfigDict, create_model
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems
 from pillagerbench.scenarios import SCENARIOS
 from pillagerbench.teams import TEAMS, declared_options, find_team
@@ -42,15 +42,19 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
     out = []
     if cls.scenarios is not None and scenario not in cls.scenarios:
         valid = [n for n, c in TEAMS.items() if c.scenarios is None or scenario in c.scenarios]
-        out.append(f"{side}={name}: plays only {', '.join(cls.scenarios)}, not {scenario}; "
-                   f"teams for {scenario}: {', '.join(valid)}")
+        out.append(
+            f"{side}={name}: plays only {', '.join(cls.scenarios)}, not {scenario}; "
+            f"teams for {scenario}: {', '.join(valid)}"
+        )
     declared = declared_options(name, cls)
     fields: dict[str, Any] = {k: (_option_type(v), v) for k, v in declared.items()}
     model = create_model(f"{name}_options", __config__=ConfigDict(extra="forbid"), **fields)
-    given = {k: v for k, v in OmegaConf.to_container(node, resolve=True).items() if k not in ("name", "llm")}
+    given = {k: v for k, v in to_dict(node).items() if k not in ("name", "llm")}
     found = problems(model, given, side)
-    out += [p + (f" (options of {name}: {', '.join(declared) or 'none'})" if p.endswith("unknown key") else "")
-            for p in found]
+    out += [
+        p + (f" (options of {name}: {', '.join(declared) or 'none'})" if p.endswith("unknown key") else "")
+        for p in found
+    ]
     if not found:
         out += [f"{side}.{p}" for p in cls.check_options({**declared, **given})]
     own_llm = node.get("llm") or {}
@@ -80,4 +84,3 @@ def check_run_config(cfg: Any, *, teams: bool = True) -> None:
                 seen_llm.add(p)
                 found.append(p)
     check(found)
-

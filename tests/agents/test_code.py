@@ -6,8 +6,14 @@ import time
 
 import pytest
 
-from pillagerbench.agents.code import (CodeError, JSParser, check_program, extract_code_blocks, parse_js,
-                                       programs_from_answer)
+from pillagerbench.agents.code import (
+    CodeError,
+    JSParser,
+    check_program,
+    extract_code_blocks,
+    parse_js,
+    programs_from_answer,
+)
 from pillagerbench.scenarios import make_scenario
 
 MW = make_scenario("mushroom_war").primitives
@@ -35,8 +41,8 @@ def answer(*blocks: str, lang: str = "javascript") -> str:
 def test_extract_blocks_in_order_and_tags():
     text = answer("let a = 1", "let b = 2") + "\n```python\nprint(1)\n```\n```js\nlet c = 3\n```"
     assert extract_code_blocks(text) == ["let a = 1", "let b = 2", "let c = 3"]
-    assert extract_code_blocks("```\nlet x = 1\n```") == ["let x = 1"]           # untagged only when no tagged
-    assert extract_code_blocks("text ```javascript\nlet x = 1\n") == []         # never closed (truncated)
+    assert extract_code_blocks("```\nlet x = 1\n```") == ["let x = 1"]  # untagged only when no tagged
+    assert extract_code_blocks("text ```javascript\nlet x = 1\n") == []  # never closed (truncated)
     assert extract_code_blocks("no code here") == []
     assert extract_code_blocks("````JavaScript\nconst s = '```'\n````") == ["const s = '```'"]
 
@@ -44,8 +50,10 @@ def test_extract_blocks_in_order_and_tags():
 def test_parse_reports_functions_calls_and_syntax_errors():
     p = parse_js(GOOD + "\nmain(bot)\n")
     assert p.ok
-    assert [(f.name, f.is_async, f.params) for f in p.functions] == [("clearSlime", True, ("bot",)),
-                                                                      ("main", True, ("bot",))]
+    assert [(f.name, f.is_async, f.params) for f in p.functions] == [
+        ("clearSlime", True, ("bot",)),
+        ("main", True, ("bot",)),
+    ]
     assert {"mineBlock", "clearSlime", "Vec3", "main"} <= set(p.calls)
     assert {"bot.chat", "bot.waitForTicks", "Math.floor"} <= set(p.members)
     assert len(p.others) == 1 and "main(bot)" in p.others[0]["text"]
@@ -78,15 +86,18 @@ def test_check_program_keeps_functions_and_calls_the_last_async_bot_function():
     assert parse_js(prog.exec_code).ok
 
 
-@pytest.mark.parametrize("code, reason", [
-    ("", "empty"),
-    ("async function main(bot) { await mineBlock(bot, 'x' }", "does not parse"),
-    ("function main(bot) { }", "no entry point"),
-    ("async function main(player) { }", "no entry point"),
-    ("async function main(bot) { await craftItem(bot, 'bread') }", "not available in this scenario: craftItem"),
-    ("async function main(bot) { await harvestWheat(bot, null) }", "not available in this scenario: harvestWheat"),
-    ("async function main(bot) { await sleep(1000) }", "defined nowhere: sleep"),
-])
+@pytest.mark.parametrize(
+    "code, reason",
+    [
+        ("", "empty"),
+        ("async function main(bot) { await mineBlock(bot, 'x' }", "does not parse"),
+        ("function main(bot) { }", "no entry point"),
+        ("async function main(player) { }", "no entry point"),
+        ("async function main(bot) { await craftItem(bot, 'bread') }", "not available in this scenario: craftItem"),
+        ("async function main(bot) { await harvestWheat(bot, null) }", "not available in this scenario: harvestWheat"),
+        ("async function main(bot) { await sleep(1000) }", "defined nowhere: sleep"),
+    ],
+)
 def test_check_program_rejects(code, reason):
     with pytest.raises(CodeError, match=reason):
         check_program(code, MW)

@@ -9,11 +9,19 @@ def chat(who, msg):
     return ["onChat", {"onChat": f"<{who}> {msg}" if who else msg}]
 
 
-OBS = {"voxels": ["slime_block", "grass_block", "red_mushroom_block"], "inventory": {"red_mushroom": 2, "bread": 1},
-       "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "health": 20, "food": 18.5,
-                  "entities": {"cow": 7.25, "chicken": 3.0}, "equipment": [None, None, None, None, "bread", None],
-                  "timeOfDay": "noon"},
-       "nearbyChests": {"(-7, 4, -7)": {"bucket": 16}, "(-7, 4, 5)": "Unknown"}}
+OBS = {
+    "voxels": ["slime_block", "grass_block", "red_mushroom_block"],
+    "inventory": {"red_mushroom": 2, "bread": 1},
+    "status": {
+        "position": {"x": -7.5, "y": 4, "z": -9.5},
+        "health": 20,
+        "food": 18.5,
+        "entities": {"cow": 7.25, "chicken": 3.0},
+        "equipment": [None, None, None, None, "bread", None],
+        "timeOfDay": "noon",
+    },
+    "nearbyChests": {"(-7, 4, -7)": {"bucket": 16}, "(-7, 4, 5)": "Unknown"},
+}
 
 
 def test_observation_texts():
@@ -29,21 +37,49 @@ def test_observation_texts():
 
 
 def test_chat_compression_as_upstream():
-    events = [chat("Ryn", "a"), chat("Ryn", "a"), chat("Ryn", "a"), chat(None, "Team red is clean!"),
-              chat("Ryn", "b"), chat("Raze", "x"), chat("Ryn", "c"), chat("Ryn", "b"), chat("Ryn", "c"),
-              ["onError", {"onError": "boom"}], chat(None, "Team red is clean!"), chat("Byte", "z"), chat("Byte", "z")]
+    events = [
+        chat("Ryn", "a"),
+        chat("Ryn", "a"),
+        chat("Ryn", "a"),
+        chat(None, "Team red is clean!"),
+        chat("Ryn", "b"),
+        chat("Raze", "x"),
+        chat("Ryn", "c"),
+        chat("Ryn", "b"),
+        chat("Ryn", "c"),
+        ["onError", {"onError": "boom"}],
+        chat(None, "Team red is clean!"),
+        chat("Byte", "z"),
+        chat("Byte", "z"),
+    ]
     kept = C.chat_lines(events, ["Ryn", "Raze"])
-    assert kept == ["<Ryn> a", "Team red is clean!", "<Ryn> b", "<Raze> x", "<Ryn> c",
-                    "Team red is clean!", "<Byte> z", "<Byte> z"]
+    assert kept == [
+        "<Ryn> a",
+        "Team red is clean!",
+        "<Ryn> b",
+        "<Raze> x",
+        "<Ryn> c",
+        "Team red is clean!",
+        "<Byte> z",
+        "<Byte> z",
+    ]
     assert C.chat_log_text([], ["Ryn"]) == "none"
     many = [chat("Server", str(i)) for i in range(10)]
-    assert C.chat_log_text(many, max_lines=3).splitlines() == ["... (7 earlier lines left out)", "<Server> 7",
-                                                               "<Server> 8", "<Server> 9"]
+    assert C.chat_log_text(many, max_lines=3).splitlines() == [
+        "... (7 earlier lines left out)",
+        "<Server> 7",
+        "<Server> 8",
+        "<Server> 9",
+    ]
 
 
 def test_errors_and_episode_events(tmp_path):
-    events = [["onError", {"onError": "Error: a"}], ["onError", {"onError": "Error: b"}],
-              ["onError", {"onError": "Error: a"}], ["observe", OBS]]
+    events = [
+        ["onError", {"onError": "Error: a"}],
+        ["onError", {"onError": "Error: b"}],
+        ["onError", {"onError": "Error: a"}],
+        ["observe", OBS],
+    ]
     (tmp_path / "Ryn.jsonl").write_text("\n".join(json.dumps(e) for e in events) + "\n{torn")
     got = C.episode_events({"events_dir": str(tmp_path)}, ["Ryn", "Raze"])
     assert got["Raze"] == [] and len(got["Ryn"]) == 4

@@ -27,5 +27,14 @@ def test_the_cot_prompts_load():
     from pillagerbench.teams.cot.team import PROMPTS
 
     assert {"system", "user", "retry", "code_format"} <= set(PROMPTS)
-    assert PROMPTS["user"].placeholders == {"last_code", "last_errors", "last_chat", "nearby_blocks",
-                                            "nearby_entities", "team_name", "team_players", "scenario", "task"}
+    assert PROMPTS["user"].placeholders == {
+        "last_code",
+        "last_errors",
+        "last_chat",
+        "nearby_blocks",
+        "nearby_entities",
+        "team_name",
+        "team_players",
+        "scenario",
+        "task",
+    }

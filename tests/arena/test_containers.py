@@ -20,7 +20,9 @@ async def test_chest_prefilled_withdraw_deposit_and_persist(arena, bots, area):
     await arena.request("set_block", pos=chest, block="chest")
     await arena.request("set_chest", pos=chest, items={"egg": 5, "wheat": 70})
     await area.put(alice, 2, 2, {"bread": 4})
-    seen = await alice.eval(FIND % ("chest", "chest") + """
+    seen = await alice.eval(
+        FIND % ("chest", "chest")
+        + """
         const c = await bot.openContainer(block)
         const seen = c.containerItems().map(i => [i.name, i.count])
         await c.withdraw(mcData.itemsByName.egg.id, null, 3)
@@ -28,19 +30,23 @@ async def test_chest_prefilled_withdraw_deposit_and_persist(arena, bots, area):
         c.close()
         await sleep(200)
         return seen
-    """)
+    """
+    )
     assert sorted(seen) == [["egg", 5], ["wheat", 6], ["wheat", 64]]
     assert await arena.request("get_chest", pos=chest) == {"egg": 2, "wheat": 70, "bread": 4}
     assert await count(arena, "alice", "egg") == 3
     assert await count(arena, "alice", "bread") == 0
     # another player opening it later sees the same contents
     await area.put(bob, 4, 2)
-    seen_by_bob = await bob.eval(FIND % ("chest", "chest") + """
+    seen_by_bob = await bob.eval(
+        FIND % ("chest", "chest")
+        + """
         const c = await bot.openContainer(block)
         const items = c.containerItems().map(i => [i.name, i.count])
         c.close()
         return items
-    """)
+    """
+    )
     assert sorted(seen_by_bob) == [["bread", 4], ["egg", 2], ["wheat", 6], ["wheat", 64]]
 
 
@@ -50,7 +56,9 @@ async def test_forged_chest_click_gets_nothing(arena, bots, area):
     await arena.request("set_block", pos=chest, block="chest")
     await arena.request("set_chest", pos=chest, items={"egg": 1})
     await area.put(alice, 2, 2)
-    await alice.eval(FIND % ("chest", "chest") + """
+    await alice.eval(
+        FIND % ("chest", "chest")
+        + """
         const c = await bot.openContainer(block)
         // claim that slot 5 of the chest holds 64 diamonds and take them
         bot._client.write('window_click', { windowId: c.id, slot: 5, mouseButton: 0, action: 77, mode: 0,
@@ -59,7 +67,8 @@ async def test_forged_chest_click_gets_nothing(arena, bots, area):
         await sleep(300)
         c.close()
         await sleep(200)
-    """)
+    """
+    )
     assert await count(arena, "alice", "diamond") == 0
     assert await arena.request("get_chest", pos=chest) == {"egg": 1}
 
@@ -71,11 +80,14 @@ async def test_furnace_smelts_potato_in_ten_seconds_with_prefuel(arena, bots, ar
     await arena.request("set_furnace", pos=furnace, fuel=["coal", 2])
     await area.put(alice, 2, 2, {"potato": 2})
     t0 = time.monotonic()
-    await alice.eval(FIND % ("furnace", "furnace") + """
+    await alice.eval(
+        FIND % ("furnace", "furnace")
+        + """
         const f = await bot.openFurnace(block)
         await f.putInput(mcData.itemsByName.potato.id, null, 2)
         f.close()
-    """)
+    """
+    )
     await asyncio.sleep(0.2)
     state = await arena.request("get_furnace", pos=furnace)
     assert state["input"] == ["potato", 2] and state["fuel"] == ["coal", 1] and state["burning"]
@@ -84,14 +96,17 @@ async def test_furnace_smelts_potato_in_ten_seconds_with_prefuel(arena, bots, ar
         await asyncio.sleep(0.25)
     first = time.monotonic() - t0
     assert 8.5 < first < 13, f"first baked potato after {first:.1f} s, expected about 10 s"
-    taken = await alice.eval(FIND % ("furnace", "furnace") + """
+    taken = await alice.eval(
+        FIND % ("furnace", "furnace")
+        + """
         const f = await bot.openFurnace(block)
         await sleep(200)
         const out = await f.takeOutput()
         f.close()
         await sleep(200)
         return out && [out.name, out.count]
-    """)
+    """
+    )
     assert taken == ["baked_potato", 1]
     assert await count(arena, "alice", "baked_potato") == 1
 

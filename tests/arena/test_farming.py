@@ -42,7 +42,9 @@ async def wait_block(arena, pos, predicate, timeout=10.0):
 async def test_mushroom_blocks_drop_0_to_2_and_slime_drops_itself(arena, bots, area):
     alice, _ = bots
     cells = [area.at(3 + i % 3, 4, 1 + i // 3) for i in range(6)]
-    await arena.request("set_blocks", blocks=[[*c, "red_mushroom_block"] for c in cells] + [[*area.at(1, 4, 4), "slime_block"]])
+    await arena.request(
+        "set_blocks", blocks=[[*c, "red_mushroom_block"] for c in cells] + [[*area.at(1, 4, 4), "slime_block"]]
+    )
     await area.put(alice, 2, 2)
     q = arena.control.subscribe()
     try:
@@ -65,19 +67,29 @@ async def test_hoe_tills_seeds_grow_and_ripe_wheat_drops_wheat_and_seeds(arena, 
     alice, _ = bots
     soil = area.at(3, 3, 2)
     await area.put(alice, 2, 2, {"wooden_hoe": 1, "wheat_seeds": 2})
-    await alice.eval("""
+    await alice.eval(
+        """
         await bot.equip(mcData.itemsByName.wooden_hoe.id, 'hand')
         await bot.activateBlock(bot.blockAt(new Vec3(%d, %d, %d)))
         await sleep(300)
-    """ % tuple(soil))
+    """
+        % tuple(soil)
+    )
     assert (await block(arena, soil))["name"] == "farmland"
-    await alice.eval("""
+    await alice.eval(
+        """
         await bot.equip(mcData.itemsByName.wheat_seeds.id, 'hand')
         await bot.placeBlock(bot.blockAt(new Vec3(%d, %d, %d)), new Vec3(0, 1, 0))
         await sleep(300)
-    """ % tuple(soil))
+    """
+        % tuple(soil)
+    )
     crop = [soil[0], 4, soil[2]]
-    assert await block(arena, crop) == {"name": "wheat", "properties": {"age": 0}, "state": (await block(arena, crop))["state"]}
+    assert await block(arena, crop) == {
+        "name": "wheat",
+        "properties": {"age": 0},
+        "state": (await block(arena, crop))["state"],
+    }
     assert await count(arena, "alice", "wheat_seeds") == 1
     async with fast_growth(arena):
         await wait_block(arena, crop, lambda b: b["properties"].get("age") == 7)
@@ -100,11 +112,14 @@ async def test_seeds_refuse_to_grow_off_farmland(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 2, 2, {"carrot": 1})
     target = area.at(3, 3, 2)  # grass, not farmland
-    await alice.eval("""
+    await alice.eval(
+        """
         await bot.equip(mcData.itemsByName.carrot.id, 'hand')
         await bot.placeBlock(bot.blockAt(new Vec3(%d, %d, %d)), new Vec3(0, 1, 0)).catch(() => {})
         await sleep(300)
-    """ % tuple(target))
+    """
+        % tuple(target)
+    )
     assert (await block(arena, [target[0], 4, target[2]]))["name"] == "air"
     assert await count(arena, "alice", "carrot") == 1
 
@@ -130,16 +145,22 @@ async def test_cocoa_on_jungle_log_and_sweet_berries_by_right_click(arena, bots,
     bush = area.at(2, 4, 3)
     await arena.request("set_blocks", blocks=[[*log, "jungle_log"], [*bush, "sweet_berry_bush", {"age": 3}]])
     await area.put(alice, 2, 2, {"cocoa_beans": 1})
-    await alice.eval("""
+    await alice.eval(
+        """
         await bot.equip(mcData.itemsByName.cocoa_beans.id, 'hand')
         await bot.placeBlock(bot.blockAt(new Vec3(%d, %d, %d)), new Vec3(-1, 0, 0))
         await sleep(300)
-    """ % tuple(log))
+    """
+        % tuple(log)
+    )
     cocoa = await block(arena, [log[0] - 1, 4, log[2]])
     assert cocoa["name"] == "cocoa" and cocoa["properties"]["facing"] == "east"
-    await alice.eval("""
+    await alice.eval(
+        """
         await bot.activateBlock(bot.blockAt(new Vec3(%d, %d, %d)))
         await sleep(1200)
-    """ % tuple(bush))
+    """
+        % tuple(bush)
+    )
     assert (await block(arena, bush))["properties"]["age"] == 1
     assert 2 <= await held_or_on_ground(arena, "alice", "sweet_berries") <= 3

@@ -23,8 +23,10 @@ async def test_toss_gives_whole_stack_to_the_other_player_and_remembers_thrower(
     await area.put(bob, 4, 2)
     q = arena.control.subscribe()
     try:
-        await alice.eval("await bot.lookAt(bot.players.bob.entity.position.offset(0, 1.2, 0), true); await sleep(150);"
-                         "await bot.toss(mcData.itemsByName.bread.id, null, 3)")
+        await alice.eval(
+            "await bot.lookAt(bot.players.bob.entity.position.offset(0, 1.2, 0), true); await sleep(150);"
+            "await bot.toss(mcData.itemsByName.bread.id, null, 3)"
+        )
         assert await wait_for(lambda: _eq(count(arena, "bob", "bread"), 3))
         events = []
         while not q.empty():
@@ -94,7 +96,9 @@ async def test_drop_key_and_click_outside_window_spawn_items(arena, bots, area):
         arena.control.unsubscribe(q)
     assert [e["count"] for e in events if e["event"] == "item_tossed"] == [1]
     # alice may pick her stick up again after the pickup delay; in any case nothing was duplicated
-    total = await count(arena, "alice", "stick") + sum(i["count"] for i in await arena.request("items") if i["item"] == "stick")
+    total = await count(arena, "alice", "stick") + sum(
+        i["count"] for i in await arena.request("items") if i["item"] == "stick"
+    )
     assert total == 4
 
 
@@ -108,6 +112,7 @@ async def test_a_new_player_sees_the_players_who_logged_in_before_it(arena, bots
         await area.put(carol, 3, 4)
         seen = await carol.eval(
             "for (let i = 0; i < 40; i++) { if (bot.players.alice?.entity && bot.players.bob?.entity) break; await sleep(50) }"
-            "return ['alice', 'bob'].filter(n => bot.players[n] && bot.players[n].entity)")
+            "return ['alice', 'bob'].filter(n => bot.players[n] && bot.players[n].entity)"
+        )
         assert seen == ["alice", "bob"]
         assert await bob.eval("return !!(bot.players.carol && bot.players.carol.entity)")

@@ -46,7 +46,9 @@ async def test_kill_cow_and_chicken_for_loot_and_nobody_is_kicked(arena, bots, a
     assert 1 <= beef <= 3
     assert chicken == 1
     assert not alice.kicked and not bob.kicked
-    assert not any(m["name"] in ("cow", "chicken") and abs(m["pos"][0] - area.x0) < 16 for m in await arena.request("mobs"))
+    assert not any(
+        m["name"] in ("cow", "chicken") and abs(m["pos"][0] - area.x0) < 16 for m in await arena.request("mobs")
+    )
 
 
 async def test_milk_a_cow_with_a_bucket(arena, bots, area):
@@ -86,5 +88,8 @@ async def test_login_near_a_mob_and_a_killed_mob_vanishes_for_late_comers(arena,
         await area.put(alice, 2, 2, {"diamond_sword": 1})  # alice arrives after the pig spawned
         await wait_mob(alice, "pig")
         assert await alice.eval(ATTACK % ("pig", "pig", "diamond_sword")) is True
-        assert await dave.eval("await sleep(300); return Object.values(bot.entities).filter(e => e.name === 'pig').length") == 0
+        assert (
+            await dave.eval("await sleep(300); return Object.values(bot.entities).filter(e => e.name === 'pig').length")
+            == 0
+        )
         assert not dave.kicked

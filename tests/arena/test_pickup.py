@@ -109,9 +109,11 @@ async def test_an_item_is_not_picked_up_before_its_delay(arena, bots, area):
 
 
 async def test_spawn_item_and_player_order_refuse_bad_input(arena, bots, area):
-    for args, fragment in [({"item": "stik", "pos": [0, 4, 0]}, "unknown item 'stik'"),
-                           ({"item": "stick", "pos": [0, 4, 0], "count": 65}, "count must be an integer 1..64"),
-                           ({"item": "stick", "pos": [0, 4, 0], "delay_ticks": -1}, "delay_ticks must be")]:
+    for args, fragment in [
+        ({"item": "stik", "pos": [0, 4, 0]}, "unknown item 'stik'"),
+        ({"item": "stick", "pos": [0, 4, 0], "count": 65}, "count must be an integer 1..64"),
+        ({"item": "stick", "pos": [0, 4, 0], "delay_ticks": -1}, "delay_ticks must be"),
+    ]:
         with pytest.raises(Exception, match=fragment):
             await arena.request("spawn_item", **args)
     with pytest.raises(Exception, match="no player named"):

@@ -14,10 +14,24 @@ pytest.importorskip("ray", reason="Ray is an optional extra: pip install -e '.[r
 def test_an_experiment_runs_on_a_local_ray_instance(tmp_path):
     run = tmp_path / "run"
     proc = subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", "run", "experiment=round_robin_mushroom_war",
-         "experiment.red_teams=[passive]", "experiment.blue_teams=[do_nothing,balanced]", "experiment.episodes=1",
-         "episode_length=10", "launcher=ray", "display=plain", f"run_dir={run}"],
-        capture_output=True, text=True, timeout=180)
+        [
+            sys.executable,
+            "-m",
+            "pillagerbench.cli",
+            "run",
+            "experiment=round_robin_mushroom_war",
+            "experiment.red_teams=[passive]",
+            "experiment.blue_teams=[do_nothing,balanced]",
+            "experiment.episodes=1",
+            "episode_length=10",
+            "launcher=ray",
+            "display=plain",
+            f"run_dir={run}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "(ray)" in proc.stdout
     for name in ("000_mushroom_war_passive_vs_do_nothing", "001_mushroom_war_passive_vs_balanced"):

@@ -37,9 +37,18 @@ def test_recover_keeps_finished_and_discards_the_rest(tmp_path):
 def test_a_plain_run_directory_resumes_as_one_series(tmp_path):
     from pillagerbench.experiments.runner import load_experiment
 
-    config = {"scenario": {"name": "mushroom_war", "crop_growth_chance": 0.0}, "red": {"name": "passive"},
-              "blue": {"name": "balanced"}, "episodes": 3, "episode_length": 10, "seed": 4, "display": "auto",
-              "experiment": None, "parallel": None, "resume": None}
+    config = {
+        "scenario": {"name": "mushroom_war", "crop_growth_chance": 0.0},
+        "red": {"name": "passive"},
+        "blue": {"name": "balanced"},
+        "episodes": 3,
+        "episode_length": 10,
+        "seed": 4,
+        "display": "auto",
+        "experiment": None,
+        "parallel": None,
+        "resume": None,
+    }
     (tmp_path / "manifest.json").write_text(json.dumps({"config": config}))
     title, specs, dirs = load_experiment(tmp_path)
     assert title == "run" and len(specs) == 1

@@ -16,17 +16,30 @@ from pathlib import Path
 import psutil
 import pytest
 
-from pillagerbench.report.build import build_report, main as report_main
+from pillagerbench.report.build import build_report
+from pillagerbench.report.build import main as report_main
 
 EPISODES = 3
-ARGS = ["experiment=round_robin_mushroom_war", "experiment.red_teams=[do_nothing,passive]",
-        "experiment.blue_teams=[balanced]", f"experiment.episodes={EPISODES}", "episode_length=10", "parallel=2",
-        "display=plain"]
+ARGS = [
+    "experiment=round_robin_mushroom_war",
+    "experiment.red_teams=[do_nothing,passive]",
+    "experiment.blue_teams=[balanced]",
+    f"experiment.episodes={EPISODES}",
+    "episode_length=10",
+    "parallel=2",
+    "display=plain",
+]
 
 
 def pillagerbench(*args: str, **kw) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "pillagerbench.cli", "run", *args], stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True, start_new_session=True, **kw)
+    return subprocess.Popen(
+        [sys.executable, "-m", "pillagerbench.cli", "run", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+        **kw,
+    )
 
 
 def lines(path: Path) -> list[dict]:
@@ -61,8 +74,9 @@ def killed_and_resumed(tmp_path_factory):
     _, alive = psutil.wait_procs(children, timeout=15)
     assert not alive, f"processes outlived the killed run: {[p.pid for p in alive]}"
     before = {d.name: lines(d / "episodes.jsonl") for d in (run / "series").iterdir()}
-    kept = {d.name: (d / "episode_000" / "timeline.json").read_text() for d in (run / "series").iterdir()
-            if before[d.name]}
+    kept = {
+        d.name: (d / "episode_000" / "timeline.json").read_text() for d in (run / "series").iterdir() if before[d.name]
+    }
     assert before["000_mushroom_war_do_nothing_vs_balanced"][0]["episode"] == 0
     assert (first / "episode_001").exists()  # half-written
 
@@ -78,7 +92,7 @@ def test_resume_loses_and_repeats_nothing_and_replays_the_half_written_episode(k
         recs = lines(d / "episodes.jsonl")
         assert [r["episode"] for r in recs] == list(range(EPISODES)), d.name
         assert all(r["status"] == "ok" for r in recs)
-        assert recs[:len(before[d.name])] == before[d.name]              # finished ones untouched
+        assert recs[: len(before[d.name])] == before[d.name]  # finished ones untouched
         if d.name in kept:
             assert (d / "episode_000" / "timeline.json").read_text() == kept[d.name]
         for i in range(EPISODES):
@@ -93,8 +107,21 @@ def test_resume_loses_and_repeats_nothing_and_replays_the_half_written_episode(k
 
 def test_a_different_command_cannot_resume_the_run(killed_and_resumed):
     run = killed_and_resumed[0]
-    proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "run", *ARGS[:-2], "parallel=1",
-                           "episode_length=12", f"resume={run}"], capture_output=True, text=True, timeout=60)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pillagerbench.cli",
+            "run",
+            *ARGS[:-2],
+            "parallel=1",
+            "episode_length=12",
+            f"resume={run}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert proc.returncode == 2
     assert "differs from the stored one in config.episode_length" in proc.stderr
 
@@ -105,8 +132,13 @@ def test_report_writes_every_file(killed_and_resumed, tmp_path, capsys):
     names = {p.name for p in (tmp_path / "report").iterdir()}
     tables = ["summary", "per_scenario", "pairings", "groups", "learning_curve", "calibration", "skipped"]
     expected = {f"{t}.{ext}" for t in tables for ext in ("md", "csv")} | {
-        "heatmaps_mushroom_war.png", "timeline_mushroom_war.png", "learning_curve.png", "groups.png",
-        "series_scores.png", "report.html"}
+        "heatmaps_mushroom_war.png",
+        "timeline_mushroom_war.png",
+        "learning_curve.png",
+        "groups.png",
+        "series_scores.png",
+        "report.html",
+    }
     assert expected <= names
     for name in expected:
         assert (tmp_path / "report" / name).stat().st_size > 0, name

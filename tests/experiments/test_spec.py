@@ -14,14 +14,21 @@ def build(*argv):
 
 def test_builtin_teams_in_the_papers_order():
     assert builtin_teams("mushroom_war") == ["do_nothing", "aggressive", "balanced", "passive", "slimy"]
-    assert builtin_teams("dash_and_dine") == ["do_nothing", "berries", "cake_beetroot", "melon_pumpkin", "potato_cookie"]
+    assert builtin_teams("dash_and_dine") == [
+        "do_nothing",
+        "berries",
+        "cake_beetroot",
+        "melon_pumpkin",
+        "potato_cookie",
+    ]
 
 
 def test_round_robin_is_every_pairing_with_20_episodes():
     series = build("experiment=round_robin_dash_and_dine")
     assert len(series) == 25 and {s.episodes for s in series} == {20}
-    assert {(s.red, s.blue) for s in series} == {(r, b) for r in builtin_teams("dash_and_dine")
-                                                 for b in builtin_teams("dash_and_dine")}
+    assert {(s.red, s.blue) for s in series} == {
+        (r, b) for r in builtin_teams("dash_and_dine") for b in builtin_teams("dash_and_dine")
+    }
     assert all(s.config["scenario"]["name"] == "dash_and_dine" for s in series)
     assert len({s.id for s in series}) == 25 and len({s.seed for s in series}) == 25
 
@@ -37,8 +44,11 @@ def test_main_benchmark_is_150_episodes_in_series_of_5():
 def test_variants_set_team_options_and_models():
     series = build("experiment=ablation_models", "experiment.team=do_nothing", "experiment.repetitions=1")
     models = {s.red: s.config["llm"]["model"] for s in series}
-    assert models == {"gpt-4o": "gpt-4o-2024-08-06", "gemini-2.0-flash": "google/gemini-2.0-flash-001",
-                      "o3-mini": "openai/o3-mini"}
+    assert models == {
+        "gpt-4o": "gpt-4o-2024-08-06",
+        "gemini-2.0-flash": "google/gemini-2.0-flash-001",
+        "o3-mini": "openai/o3-mini",
+    }
     assert {s.config["llm"]["provider"] for s in series if s.red == "o3-mini"} == {"openrouter"}
     series = build("experiment=ablation_modules", "experiment.team=do_nothing", "experiment.repetitions=1")
     opts = {s.red: s.config["red"].get("enable_causal") for s in series}
@@ -46,8 +56,12 @@ def test_variants_set_team_options_and_models():
 
 
 def test_self_play_checkpoints_feed_evaluation_series():
-    series = build("experiment=self_play", "experiment.team=do_nothing", "experiment.repetitions=1",
-                   "experiment.scenarios=[mushroom_war]")
+    series = build(
+        "experiment=self_play",
+        "experiment.team=do_nothing",
+        "experiment.repetitions=1",
+        "experiment.scenarios=[mushroom_war]",
+    )
     play = series[0]
     assert (play.red_team, play.blue_team, play.episodes) == ("do_nothing", "do_nothing", 20)
     assert play.checkpoint_at == [4, 9, 14, 19]
@@ -58,8 +72,12 @@ def test_self_play_checkpoints_feed_evaluation_series():
 
 
 def test_adaptation_trains_then_meets_same_and_different_opponents():
-    series = build("experiment=adaptation", "experiment.team=do_nothing", "experiment.repetitions=1",
-                   "experiment.scenarios=[dash_and_dine]")
+    series = build(
+        "experiment=adaptation",
+        "experiment.team=do_nothing",
+        "experiment.repetitions=1",
+        "experiment.scenarios=[dash_and_dine]",
+    )
     train = [s for s in series if s.group == "training"]
     evals = [s for s in series if s.group in ("same", "different")]
     assert len(train) == 5 and {s.episodes for s in train} == {5} and all(s.checkpoint_at == [4] for s in train)

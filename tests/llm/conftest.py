@@ -46,6 +46,7 @@ async def make_client(fake_llm, tmp_path):
 def ledger_of(tmp_path):
     def records(run_dir: Path | None = None) -> list[dict]:
         return list(read_ledger(run_dir or tmp_path / "run"))
+
     return records
 
 

@@ -39,8 +39,7 @@ async def test_input_token_budget(fake_llm, make_client):
 
 async def test_cost_budget_and_ledger_cost(fake_llm, make_client, ledger_of):
     fake_llm.default_reply = "y" * 400  # 100 output tokens
-    client = make_client("llm.price.input_per_1m=1000", "llm.price.output_per_1m=2000",
-                         "llm.budget.max_cost_usd=0.3")
+    client = make_client("llm.price.input_per_1m=1000", "llm.price.output_per_1m=2000", "llm.budget.max_cost_usd=0.3")
     await client.complete("q", role="action")
     expected = ((count_tokens("q") + 4) * 1000 + 100 * 2000) / 1e6
     assert ledger_of()[0]["cost_usd"] == pytest.approx(expected)
@@ -74,7 +73,6 @@ async def test_concurrent_calls_cannot_overshoot_the_call_budget(fake_llm, make_
 
     fake_llm.add(Rule(delay=0.3))
     client = make_client("llm.budget.max_calls=2")
-    results = await asyncio.gather(*(client.complete(f"q{i}", role="action") for i in range(3)),
-                                   return_exceptions=True)
+    results = await asyncio.gather(*(client.complete(f"q{i}", role="action") for i in range(3)), return_exceptions=True)
     assert sum(isinstance(r, BudgetExceeded) for r in results) == 1
     assert fake_llm.count == 2

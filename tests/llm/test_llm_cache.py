@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from pillagerbench.llm import CacheMiss
+from pillagerbench.llm import CacheMiss, LLMError
 from pillagerbench.llm.fake_server import Rule
 
 
@@ -35,13 +35,15 @@ async def test_readwrite_then_replay_in_a_new_run(fake_llm, make_client, ledger_
 async def test_sample_index_separates_identical_requests(fake_llm, make_client, tmp_path):
     fake_llm.default_reply = counter_reply()
     cache_dir = tmp_path / "cache"
-    writer = make_client("llm.temperature=0.7", "llm_cache.mode=readwrite", f"llm_cache.dir={cache_dir}",
-                         run_dir=tmp_path / "r1")
+    writer = make_client(
+        "llm.temperature=0.7", "llm_cache.mode=readwrite", f"llm_cache.dir={cache_dir}", run_dir=tmp_path / "r1"
+    )
     got = [await writer.complete("roll", role="action") for _ in range(3)]
     assert [g.text for g in got] == ["answer 0", "answer 1", "answer 2"]
     assert [g.sample for g in got] == [0, 1, 2] and len(cache_files(cache_dir)) == 3
-    replay = make_client("llm.temperature=0.7", "llm_cache.mode=replay", f"llm_cache.dir={cache_dir}",
-                         run_dir=tmp_path / "r2")
+    replay = make_client(
+        "llm.temperature=0.7", "llm_cache.mode=replay", f"llm_cache.dir={cache_dir}", run_dir=tmp_path / "r2"
+    )
     again = [await replay.complete("roll", role="action") for _ in range(3)]
     assert [g.text for g in again] == ["answer 0", "answer 1", "answer 2"]
     assert fake_llm.count == 3
@@ -110,7 +112,7 @@ async def test_replay_miss_is_recorded_and_sends_nothing(fake_llm, make_client, 
 async def test_errors_are_not_cached(fake_llm, make_client, tmp_path):
     fake_llm.add(Rule(status=500))
     client = make_client("llm_cache.mode=readwrite", f"llm_cache.dir={tmp_path / 'c'}", "llm.max_retries=0")
-    with pytest.raises(Exception):
+    with pytest.raises(LLMError):
         await client.complete("q", role="action")
     assert cache_files(tmp_path / "c") == []
 

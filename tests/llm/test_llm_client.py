@@ -40,10 +40,10 @@ async def test_think_stripping_can_be_disabled(fake_llm, make_client):
 
 
 async def test_developer_role_and_reasoning_switches(fake_llm, make_client):
-    client = make_client("llm.system_role=developer", "llm.send_temperature=false",
-                         "llm.max_tokens_param=max_completion_tokens")
-    await client.complete([{"role": "system", "content": "rules"}, {"role": "user", "content": "hi"}],
-                          role="action")
+    client = make_client(
+        "llm.system_role=developer", "llm.send_temperature=false", "llm.max_tokens_param=max_completion_tokens"
+    )
+    await client.complete([{"role": "system", "content": "rules"}, {"role": "user", "content": "hi"}], role="action")
     body = fake_llm.requests[-1].body
     assert [m["role"] for m in body["messages"]] == ["developer", "user"]
     assert "temperature" not in body

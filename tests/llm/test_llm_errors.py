@@ -4,9 +4,19 @@ import time
 
 import pytest
 
-from pillagerbench.llm import (AuthenticationFailed, EmptyResponse, InvalidJSON, LLMConfigError,
-                               LLMConnectionError, LLMError, LLMTimeout, MalformedResponse,
-                               ModelNotFound, ProviderError, RateLimited)
+from pillagerbench.llm import (
+    AuthenticationFailed,
+    EmptyResponse,
+    InvalidJSON,
+    LLMConfigError,
+    LLMConnectionError,
+    LLMError,
+    LLMTimeout,
+    MalformedResponse,
+    ModelNotFound,
+    ProviderError,
+    RateLimited,
+)
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.llm.parsing import parse_json
 
@@ -114,8 +124,9 @@ async def test_missing_key_variable_names_it(monkeypatch, make_client):
 
 
 async def test_complete_json_reasks(fake_llm, make_client, ledger_of):
-    fake_llm.add(Rule(reply="Sure! Here is the plan: attack", times=1),
-                 Rule(reply='```json\n{"plan": "attack", "n": 2}\n```'))
+    fake_llm.add(
+        Rule(reply="Sure! Here is the plan: attack", times=1), Rule(reply='```json\n{"plan": "attack", "n": 2}\n```')
+    )
     value = await make_client().complete_json("plan as JSON", role="tactics")
     assert value == {"plan": "attack", "n": 2}
     assert fake_llm.count == 2
@@ -141,6 +152,16 @@ def test_parse_json_variants():
 
 
 def test_every_error_is_an_llm_error():
-    for kind in (AuthenticationFailed, EmptyResponse, InvalidJSON, LLMConfigError, LLMConnectionError,
-                 LLMTimeout, MalformedResponse, ModelNotFound, ProviderError, RateLimited):
+    for kind in (
+        AuthenticationFailed,
+        EmptyResponse,
+        InvalidJSON,
+        LLMConfigError,
+        LLMConnectionError,
+        LLMTimeout,
+        MalformedResponse,
+        ModelNotFound,
+        ProviderError,
+        RateLimited,
+    ):
         assert issubclass(kind, LLMError)

@@ -8,8 +8,9 @@ from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 
 
 def post(url, body, headers=None):
-    req = urllib.request.Request(url + "/chat/completions", json.dumps(body).encode(),
-                                 {"Content-Type": "application/json", **(headers or {})})
+    req = urllib.request.Request(
+        url + "/chat/completions", json.dumps(body).encode(), {"Content-Type": "application/json", **(headers or {})}
+    )
     try:
         with urllib.request.urlopen(req, timeout=5) as resp:
             return resp.status, dict(resp.headers), resp.read()

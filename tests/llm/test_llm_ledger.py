@@ -4,11 +4,27 @@ import json
 
 import pytest
 
-from pillagerbench.llm import ProviderError, Ledger, read_ledger, summarize
+from pillagerbench.llm import Ledger, ProviderError, read_ledger, summarize
 from pillagerbench.llm.fake_server import Rule, count_tokens
 
-FIELDS = {"ts", "team", "role", "provider", "model", "latency_s", "input_tokens", "output_tokens",
-          "retries", "finish_reason", "cache_hit", "cache_key", "sample", "cost_usd", "error_type", "error"}
+FIELDS = {
+    "ts",
+    "team",
+    "role",
+    "provider",
+    "model",
+    "latency_s",
+    "input_tokens",
+    "output_tokens",
+    "retries",
+    "finish_reason",
+    "cache_hit",
+    "cache_key",
+    "sample",
+    "cost_usd",
+    "error_type",
+    "error",
+}
 
 
 async def test_record_fields_hash_mode(fake_llm, make_client, ledger_of):
@@ -49,13 +65,44 @@ async def test_failed_calls_are_recorded(fake_llm, make_client, ledger_of):
 def test_summarize_metrics(tmp_path):
     ledger = Ledger(tmp_path / "run", content="hash")
     for team, lat, out in (("red", 1.0, 10), ("red", 3.0, 30), ("blue", 2.0, 50)):
-        ledger.record(request={}, response={}, team=team, role="action", latency_s=lat,
-                      input_tokens=5, output_tokens=out, retries=0, cache_hit=False, error_type=None)
-    ledger.record(request={}, response={}, team="red", role="action", latency_s=0.001, orig_latency_s=2.0,
-                  input_tokens=5, output_tokens=20, retries=0, cache_hit=True, error_type=None)
-    ledger.record(request={}, response=None, team="red", role="action", latency_s=9.0,
-                  input_tokens=None, output_tokens=None, retries=2, cache_hit=False,
-                  error_type="LLMTimeout", error="x")
+        ledger.record(
+            request={},
+            response={},
+            team=team,
+            role="action",
+            latency_s=lat,
+            input_tokens=5,
+            output_tokens=out,
+            retries=0,
+            cache_hit=False,
+            error_type=None,
+        )
+    ledger.record(
+        request={},
+        response={},
+        team="red",
+        role="action",
+        latency_s=0.001,
+        orig_latency_s=2.0,
+        input_tokens=5,
+        output_tokens=20,
+        retries=0,
+        cache_hit=True,
+        error_type=None,
+    )
+    ledger.record(
+        request={},
+        response=None,
+        team="red",
+        role="action",
+        latency_s=9.0,
+        input_tokens=None,
+        output_tokens=None,
+        retries=2,
+        cache_hit=False,
+        error_type="LLMTimeout",
+        error="x",
+    )
     ledger.close()
     records = list(read_ledger(tmp_path / "run"))
     red = summarize(records, team="red")

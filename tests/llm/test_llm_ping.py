@@ -27,8 +27,9 @@ def test_ping_provider_error_and_refused(fake_llm, closed_port, capsys):
     fake_llm.add(Rule(status=500, message="boom"))
     assert cli_main(["llm-ping", "llm=fake", f"llm.base_url={fake_llm.url}"]) == 1
     assert "boom" in capsys.readouterr().err
-    assert cli_main(["llm-ping", "llm=fake", f"llm.base_url=http://127.0.0.1:{closed_port}/v1",
-                     "llm.max_retries=0"]) == 1
+    assert (
+        cli_main(["llm-ping", "llm=fake", f"llm.base_url=http://127.0.0.1:{closed_port}/v1", "llm.max_retries=0"]) == 1
+    )
     assert "LLMConnectionError" in capsys.readouterr().err
 
 

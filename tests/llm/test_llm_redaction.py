@@ -15,8 +15,13 @@ def all_text(root) -> str:
 async def test_key_never_written(monkeypatch, make_client, tmp_path):
     monkeypatch.setenv("PB_REDACT_KEY", KEY)
     with FakeLLMServer(api_key=KEY, default_reply="fine") as server:
-        client = make_client("llm.api_key_env=PB_REDACT_KEY", "llm_ledger.content=full",
-                             "llm_cache.mode=readwrite", f"llm_cache.dir={tmp_path / 'cache'}", url=server.url)
+        client = make_client(
+            "llm.api_key_env=PB_REDACT_KEY",
+            "llm_ledger.content=full",
+            "llm_cache.mode=readwrite",
+            f"llm_cache.dir={tmp_path / 'cache'}",
+            url=server.url,
+        )
         # A prompt that quotes the key by mistake must not leak it either.
         answer = await client.complete(f"my key is {KEY}", role="action")
         assert answer.text == "fine"

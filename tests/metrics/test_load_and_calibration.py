@@ -25,7 +25,7 @@ def test_skipped_episodes_are_listed_with_the_reason(tmp_path):
     (run / "episode_001" / "timeline.json").unlink()
     timeline = json.loads((run / "episode_002" / "timeline.json").read_text())
     (run / "episode_002" / "timeline.json").write_text(json.dumps(timeline[:2]))
-    (run / "episode_003").mkdir()                       # killed mid-episode: no line
+    (run / "episode_003").mkdir()  # killed mid-episode: no line
     with open(run / "episodes.jsonl", "a") as f:
         f.write('{"episode": 4, "status": "failed", "error": "ArenaServerError: died"}\n{"episode": 5, "sta')
     runs = load_runs([run])
@@ -54,13 +54,13 @@ def test_calibration_from_do_nothing_red_episodes_and_files(tmp_path):
     runs = load_runs([tmp_path / "cal", tmp_path / "dd"])
     cal = calib.calibration_from_runs(runs)
     assert cal["scenarios"]["mushroom_war"]["opponents"]["slimy"]["sigma_blue"] == 5.0
-    assert cal["scenarios"]["dash_and_dine"]["opponents"]["berries"]["sigma_blue"] == 120.0   # stored unscaled
+    assert cal["scenarios"]["dash_and_dine"]["opponents"]["berries"]["sigma_blue"] == 120.0  # stored unscaled
     (tmp_path / "calibration.json").write_text(json.dumps(cal))
 
     write_run(tmp_path / "main", "dash_and_dine", "berries", "berries", [(50, 100)])
     main = load_runs([tmp_path / "main"])
     sigma, notes = calib.resolve(main, tmp_path / "calibration.json")
-    assert sigma[("dash_and_dine", "berries")].mean == pytest.approx(12.0)                    # scaled ×0.1
+    assert sigma[("dash_and_dine", "berries")].mean == pytest.approx(12.0)  # scaled ×0.1
     assert any("from" in n for n in notes)
 
     cal["scenarios"]["dash_and_dine"]["version"] = "9"

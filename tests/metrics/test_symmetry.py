@@ -17,7 +17,7 @@ def test_welch_interval_matches_the_textbook_formula():
     e = welch(a, b)
     va, vb = np.var(a, ddof=1) / 4, np.var(b, ddof=1) / 5
     assert math.isclose(e.mean, np.mean(a) - np.mean(b))
-    df = (va + vb) ** 2 / (va ** 2 / 3 + vb ** 2 / 4)
+    df = (va + vb) ** 2 / (va**2 / 3 + vb**2 / 4)
     assert 4 < df < 5
     # t(0.975, df≈4.6) lies between t(4)=2.776 and t(5)=2.571
     assert 2.571 * math.sqrt(va + vb) < e.ci < 2.776 * math.sqrt(va + vb)

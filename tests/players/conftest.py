@@ -63,4 +63,3 @@ async def make_player(server, tmp_path):
 async def count(server: ArenaServer, player: str, item: str) -> int:
     """How many of `item` the server says the player holds."""
     return sum(s["count"] for s in await server.request("inventory", player=player) if s["name"] == item)
-

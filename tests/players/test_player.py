@@ -11,20 +11,42 @@ import time
 from pillagerbench.players import primitives as prim_docs
 from pillagerbench.players.events import chats_by, errors, last_observation, without_state
 
-STATUS_KEYS = {"health", "food", "saturation", "oxygen", "position", "velocity", "yaw", "pitch", "onGround",
-               "equipment", "name", "timeSinceOnGround", "isInWater", "isInLava", "isInWeb",
-               "isCollidedHorizontally", "isCollidedVertically", "biome", "entities", "timeOfDay",
-               "inventoryUsed", "elapsedTime"}
+STATUS_KEYS = {
+    "health",
+    "food",
+    "saturation",
+    "oxygen",
+    "position",
+    "velocity",
+    "yaw",
+    "pitch",
+    "onGround",
+    "equipment",
+    "name",
+    "timeSinceOnGround",
+    "isInWater",
+    "isInLava",
+    "isInWeb",
+    "isCollidedHorizontally",
+    "isCollidedVertically",
+    "biome",
+    "entities",
+    "timeOfDay",
+    "inventoryUsed",
+    "elapsedTime",
+}
 
 
 async def test_observation_fields(server, area, make_player):
     await area.blocks((3, 4, 0, "chest"), (2, 4, 2, "slime_block"))
     p = await make_player(area, 0, 0, {"bread": 3, "iron_helmet": 1})
     await server.request("summon", mob="pig", pos=area.at(6.5, 4, 3.5))
-    await p.reset(position=area.at(0, 4, 0), inventory={"bread": 3}, equipment=["iron_helmet", None, None, None, "bread", None])
+    await p.reset(
+        position=area.at(0, 4, 0), inventory={"bread": 3}, equipment=["iron_helmet", None, None, None, "bread", None]
+    )
     events = await p.run("bot.chat('look'); bot.save('saved_it'); await bot.waitForTicks(2)")
     assert [e[0] for e in events] == ["onSave", "onChat", "observe"]
-    for kind, data in events:
+    for _kind, data in events:
         assert {"voxels", "status", "inventory", "nearbyChests", "blockRecords"} <= set(data)
     assert events[0][1]["onSave"] == "saved_it" and events[1][1]["onChat"] == f"<{p.name}> look"
     obs = last_observation(events)
@@ -47,8 +69,10 @@ async def test_events_stream_while_code_runs(area, make_player):
     p = await make_player(area)
     seen: list[tuple[float, list]] = []
     t0 = time.perf_counter()
-    events = await p.run("bot.chat('first'); await bot.waitForTicks(20); bot.chat('second')",
-                         on_event=lambda e: seen.append((time.perf_counter() - t0, e)))
+    events = await p.run(
+        "bot.chat('first'); await bot.waitForTicks(20); bot.chat('second')",
+        on_event=lambda e: seen.append((time.perf_counter() - t0, e)),
+    )
     end = time.perf_counter() - t0
     first = next(t for t, e in seen if e[0] == "onChat" and e[1]["onChat"].endswith("first"))
     assert first < end - 0.6  # delivered long before the run ended
@@ -70,11 +94,14 @@ async def test_chat_between_runs_is_delivered_with_the_next_run(server, area, ma
 
 
 async def test_stop_settles_fast_and_stops_everything(server, area, make_player):
-    await area.blocks(*[(dx, 4, 6, "slime_block") for dx in range(0, 12)])
+    await area.blocks(*[(dx, 4, 6, "slime_block") for dx in range(12)])
     p = await make_player(area, 0, 0, {"wooden_pickaxe": 1})
-    run = asyncio.create_task(p.run(
-        "setInterval(() => bot.chat('tick'), 200)\n"
-        f"await bot.pathfinder.goto(new GoalNear({area.x0 + 60}, 4, 0, 1))"))
+    run = asyncio.create_task(
+        p.run(
+            "setInterval(() => bot.chat('tick'), 200)\n"
+            f"await bot.pathfinder.goto(new GoalNear({area.x0 + 60}, 4, 0, 1))"
+        )
+    )
     await asyncio.sleep(1.0)
     t0 = time.perf_counter()
     await p.stop()
@@ -129,9 +156,11 @@ async def test_reset_sets_inventory_and_position(server, area, make_player):
 
 async def test_primitive_selection(server, area, make_player):
     p = await make_player(area, primitives=["mineBlock", "sendSignal"])
-    events = await p.run("if (typeof mineBlock !== 'function' || typeof blockExists !== 'function' ||"
-                         " typeof sendSignal !== 'function') throw new Error('missing')\n"
-                         "craftItem(bot, 'bread', 1)")
+    events = await p.run(
+        "if (typeof mineBlock !== 'function' || typeof blockExists !== 'function' ||"
+        " typeof sendSignal !== 'function') throw new Error('missing')\n"
+        "craftItem(bot, 'bread', 1)"
+    )
     assert errors(events) == ["ReferenceError: craftItem is not defined\nat line 2: craftItem(bot, 'bread', 1)"]
 
 
@@ -149,15 +178,23 @@ def test_primitive_docs_next_to_code():
 def test_try_command(tmp_path):
     good = tmp_path / "good.js"
     good.write_text("await mineBlock(bot, 'slime_block', 1)\nbot.chat('done')\n")
-    proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Ryn",
-                           f"code={good}"], capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Ryn", f"code={good}"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert proc.returncode == 0, proc.stderr
     lines = [json.loads(line) for line in proc.stdout.splitlines()]
     assert lines[-1][0] == "observe" and "<Ryn> done" in [v for k, v in lines if k == "onChat"]
     bad = tmp_path / "bad.js"
     bad.write_text("bot.chat('before')\nnotAFunction()\n")
-    proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Byte",
-                           f"code={bad}"], capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Byte", f"code={bad}"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert proc.returncode == 1
     assert "at line 2: notAFunction()" in proc.stderr
     kinds = [json.loads(line)[0] for line in proc.stdout.splitlines()]

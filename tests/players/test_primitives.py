@@ -16,7 +16,9 @@ async def test_mine_slime_and_mushroom_blocks(server, area, make_player):
     # a slime plus and a red mushroom (2-high stem, 5 cap blocks) as in Mushroom War
     await area.blocks(*[(4 + dx, 4, dz, "slime_block") for dx, dz in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)]])
     stem = [(8, 4, 4, "mushroom_stem"), (8, 5, 4, "mushroom_stem")]
-    cap = [(8 + dx, 5, 4 + dz, "red_mushroom_block") for dx, dz in [(1, 0), (-1, 0), (0, 1), (0, -1)]] + [(8, 6, 4, "red_mushroom_block")]
+    cap = [(8 + dx, 5, 4 + dz, "red_mushroom_block") for dx, dz in [(1, 0), (-1, 0), (0, 1), (0, -1)]] + [
+        (8, 6, 4, "red_mushroom_block")
+    ]
     await area.blocks(*stem, *cap)
     p = await make_player(area, 0, 0)
     events = await p.run("await mineBlock(bot, 'slime_block', 5)\nawait mineBlock(bot, 'red_mushroom_block', 5)")
@@ -45,8 +47,10 @@ async def test_mine_block_missing_counts_failures(server, area, make_player):
 async def test_place_item(server, area, make_player):
     p = await make_player(area, 0, 0, {"slime_block": 2})
     target = area.at(2, 4, 1)
-    events = await p.run(f"await placeItem(bot, 'slime_block', new Vec3({target[0]}, 4, 1))\n"
-                         "await placeItem(bot, 'slime_block', new Vec3(%d, 9, 1))" % target[0])
+    events = await p.run(
+        f"await placeItem(bot, 'slime_block', new Vec3({target[0]}, 4, 1))\n"
+        "await placeItem(bot, 'slime_block', new Vec3(%d, 9, 1))" % target[0]
+    )
     assert (await server.request("get_block", pos=target))["name"] == "slime_block"
     said = chats_by(events, p.name)
     assert "Placed slime_block" in said
@@ -58,7 +62,9 @@ async def test_place_item(server, area, make_player):
 async def test_craft_bread_and_cake(server, area, make_player):
     await area.blocks((2, 4, 2, "crafting_table"))
     p = await make_player(area, 0, 0, {"wheat": 9, "milk_bucket": 3, "sugar": 2, "egg": 1})
-    events = await p.run("await craftItem(bot, 'bread', 2)\nawait craftItem(bot, 'cake', 1)\nawait craftItem(bot, 'bread', 5)")
+    events = await p.run(
+        "await craftItem(bot, 'bread', 2)\nawait craftItem(bot, 'cake', 1)\nawait craftItem(bot, 'bread', 5)"
+    )
     said = chats_by(events, p.name)
     assert "I can make bread" in said and "I did the recipe for bread 2 times" in said
     assert "I did the recipe for cake 1 times" in said
@@ -85,10 +91,12 @@ async def test_chest_take_eggs_deposit_and_check(server, area, make_player):
     await server.request("set_chest", pos=chest, items={"egg": 5, "bucket": 2})
     p = await make_player(area, 0, 0, {"bowl": 3})
     v = f"new Vec3({chest[0]}, 4, 0)"
-    events = await p.run(f"await getItemFromChest(bot, {v}, {{egg: 2, sugar: 1}})\n"
-                         f"await depositItemIntoChest(bot, {v}, {{bowl: 3}})\n"
-                         f"const c = await checkItemInsideChest(bot, {v})\n"
-                         "if (c.bowl !== 3) throw new Error('bad contents ' + JSON.stringify(c))")
+    events = await p.run(
+        f"await getItemFromChest(bot, {v}, {{egg: 2, sugar: 1}})\n"
+        f"await depositItemIntoChest(bot, {v}, {{bowl: 3}})\n"
+        f"const c = await checkItemInsideChest(bot, {v})\n"
+        "if (c.bowl !== 3) throw new Error('bad contents ' + JSON.stringify(c))"
+    )
     assert errors(events) == []
     assert "I don't see sugar in this chest" in chats_by(events, p.name)
     assert await count(server, p.name, "egg") == 2
@@ -151,7 +159,9 @@ async def test_kill_mob(server, area, make_player):
     await server.request("seed", seed=3)
     p = await make_player(area, 0, 0, {"wooden_sword": 1})
     mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
-    events = await p.run(SEE % "chicken" + "await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)")
+    events = await p.run(
+        SEE % "chicken" + "await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)"
+    )
     assert errors(events) == []
     assert "Killed chicken!" in chats_by(events, p.name)
     assert saves(events) == ["chicken_killed"]
@@ -178,7 +188,9 @@ async def test_give_food_to_another_player(server, area, make_player):
 async def test_signals_between_two_players(server, area, make_player):
     a = await make_player(area, 0, 0)
     b = await make_player(area, 2, 0)
-    waiting = asyncio.create_task(a.run("const got = await waitSignal(bot, null, 10000)\nif (!got) throw new Error('no signal')"))
+    waiting = asyncio.create_task(
+        a.run("const got = await waitSignal(bot, null, 10000)\nif (!got) throw new Error('no signal')")
+    )
     await asyncio.sleep(0.5)
     sent = await b.run(f"await sendSignal(bot, '{a.name}')")
     events = await asyncio.wait_for(waiting, 12)
@@ -193,8 +205,10 @@ async def test_signals_between_two_players(server, area, make_player):
 async def test_explore_until(server, area, make_player):
     p = await make_player(area, 0, 0)
     x_goal = area.x0 + 4
-    events = await p.run(f"const r = await exploreUntil(bot, new Vec3(1, 0, 0), 20, () => bot.entity.position.x > {x_goal})\n"
-                         "if (!r) throw new Error('did not get there')")
+    events = await p.run(
+        f"const r = await exploreUntil(bot, new Vec3(1, 0, 0), 20, () => bot.entity.position.x > {x_goal})\n"
+        "if (!r) throw new Error('did not get there')"
+    )
     assert errors(events) == []
     assert "Explore success." in chats_by(events, p.name)
     events = await p.run("await exploreUntil(bot, new Vec3(0, 0, 1), 0.5, () => false)")
@@ -203,8 +217,14 @@ async def test_explore_until(server, area, make_player):
 
 async def test_harvest_berries_and_destroy_crop(server, area, make_player):
     await server.request("seed", seed=11)
-    await area.blocks((4, 4, 0, "sweet_berry_bush", {"age": 3}), (5, 4, 0, "sweet_berry_bush", {"age": 1}),
-                      (4, 3, 3, "farmland"), (4, 4, 3, "carrots", {"age": 2}), (5, 3, 3, "farmland"), (5, 4, 3, "carrots", {"age": 5}))
+    await area.blocks(
+        (4, 4, 0, "sweet_berry_bush", {"age": 3}),
+        (5, 4, 0, "sweet_berry_bush", {"age": 1}),
+        (4, 3, 3, "farmland"),
+        (4, 4, 3, "carrots", {"age": 2}),
+        (5, 3, 3, "farmland"),
+        (5, 4, 3, "carrots", {"age": 5}),
+    )
     p = await make_player(area, 0, 0)
     events = await p.run(f"await harvestBerries(bot, new Vec3({area.x0 + 4}, 4, 0))\nawait destroyCrop(bot, 'carrots')")
     assert errors(events) == []

@@ -82,20 +82,26 @@ async def test_unhandled_rejection(pair):
     assert any("in a timer" in e for e in errors(events))
 
 
-@pytest.mark.parametrize("code, expected", [
-    ("require('fs')", "ReferenceError: require is not defined"),
-    ("process.exit(1)", "ReferenceError: process is not defined"),
-    ("bot.constructor.constructor('return process')().exit(1)", "EvalError"),
-    ("bot.chat.constructor('return process')().exit(1)", "EvalError"),
-    ("this.constructor.constructor('return process')()", "EvalError"),
-    ("mineBlock.constructor('return process')()", "EvalError"),
-    ("(async () => {}).constructor('return 1')()", "EvalError"),
-    ("eval('1 + 1')", "EvalError"),
-    ("bot.entity.position.constructor.constructor('return process')()", "EvalError"),
-    ("const e = await mineBlock(bot, 'x').catch(e => e)\ne.constructor.constructor('return process')()", "EvalError"),
-    ("bot._client.write('chat', {message: 'raw'})", "TypeError"),
-    ("await import('fs')", "TypeError"),
-])
+@pytest.mark.parametrize(
+    "code, expected",
+    [
+        ("require('fs')", "ReferenceError: require is not defined"),
+        ("process.exit(1)", "ReferenceError: process is not defined"),
+        ("bot.constructor.constructor('return process')().exit(1)", "EvalError"),
+        ("bot.chat.constructor('return process')().exit(1)", "EvalError"),
+        ("this.constructor.constructor('return process')()", "EvalError"),
+        ("mineBlock.constructor('return process')()", "EvalError"),
+        ("(async () => {}).constructor('return 1')()", "EvalError"),
+        ("eval('1 + 1')", "EvalError"),
+        ("bot.entity.position.constructor.constructor('return process')()", "EvalError"),
+        (
+            "const e = await mineBlock(bot, 'x').catch(e => e)\ne.constructor.constructor('return process')()",
+            "EvalError",
+        ),
+        ("bot._client.write('chat', {message: 'raw'})", "TypeError"),
+        ("await import('fs')", "TypeError"),
+    ],
+)
 async def test_escape_attempts(pair, code, expected):
     bad, other = pair
     events = await bad.run(code)
@@ -121,8 +127,10 @@ async def test_memory_bomb(pair):
     assert "memory" in errs[0] or "endless loop" in errs[0] or "blocked the bot" in errs[0]
     assert bad.alive
     # allocating between awaits: the heap limit ends the process; it is restarted with its inventory
-    events = await bad.run("await bot.waitForTicks(1)\nconst a = []\n"
-                           "for (let i = 0; ; i++) { a.push(new Array(1e5).fill(i)); if (i % 20 === 0) await bot.waitForTicks(1) }")
+    events = await bad.run(
+        "await bot.waitForTicks(1)\nconst a = []\n"
+        "for (let i = 0; ; i++) { a.push(new Array(1e5).fill(i)); if (i % 20 === 0) await bot.waitForTicks(1) }"
+    )
     assert "ran out of memory" in errors(events)[0]
     assert last_observation(events)["inventory"] == {"bread": 1}
     assert bad.alive and bad.restarts >= 1
@@ -133,7 +141,9 @@ async def test_memory_bomb(pair):
 
 async def test_chat_commands_are_refused(server, pair):
     bad, other = pair
-    events = await bad.run(f"bot.chat('/give {bad.name} diamond 64')\nbot.chat('/tp {other.name} 0 100 0')\nawait bot.waitForTicks(10)")
+    events = await bad.run(
+        f"bot.chat('/give {bad.name} diamond 64')\nbot.chat('/tp {other.name} 0 100 0')\nawait bot.waitForTicks(10)"
+    )
     lines = chat_log(events)
     assert any("/give refused" in line for line in lines), lines
     assert any("/tp refused" in line for line in lines), lines
@@ -164,5 +174,11 @@ async def test_timers_and_listeners_end_with_the_run(pair):
 async def test_bot_process_runs_under_the_permission_model(pair):
     bad, _ = pair
     perms = await bad._request("permissions")
-    assert perms == {"enabled": True, "fsWrite": False, "fsReadRoot": False, "childProcess": False,
-                     "worker": False, "addons": False}
+    assert perms == {
+        "enabled": True,
+        "fsWrite": False,
+        "fsReadRoot": False,
+        "childProcess": False,
+        "worker": False,
+        "addons": False,
+    }

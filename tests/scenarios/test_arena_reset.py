@@ -27,8 +27,9 @@ async def test_reset_restores_the_arena_exactly(server, name):
     assert len(before["blocks"]) > len(arena.blocks)  # the ground is in the scan too
     # wreck it: dig, place, loot chests, light a furnace, kill mobs, drop items
     first = arena.blocks[0]
-    await server.request("set_blocks", blocks=[[*first[:3], "air"], [first[0], 9, first[2], "stone"],
-                                               [first[0] + 1, 3, first[2], "air"]])
+    await server.request(
+        "set_blocks", blocks=[[*first[:3], "air"], [first[0], 9, first[2], "stone"], [first[0] + 1, 3, first[2], "air"]]
+    )
     for p in arena.chests:
         await server.request("set_chest", pos=list(p), items={"dirt": 1})
     for p in arena.furnaces:

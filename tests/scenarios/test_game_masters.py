@@ -10,7 +10,9 @@ from tests.support.bots import TestBot
 
 
 async def blocks_named(server, name, center):
-    return {tuple(b[:3]) for b in await server.request("find_blocks", names=[name], center=list(center), radius=AREA_RADIUS)}
+    return {
+        tuple(b[:3]) for b in await server.request("find_blocks", names=[name], center=list(center), radius=AREA_RADIUS)
+    }
 
 
 async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server):
@@ -51,7 +53,7 @@ async def test_slime_respawns_at_its_original_positions(server):
 
 async def test_mushroom_war_score_is_own_colour_mushrooms_held(server):
     sc = make_scenario("mushroom_war")
-    async with TestBot(server.port, "Ryn") as ryn, TestBot(server.port, "Byte") as byte:
+    async with TestBot(server.port, "Ryn"), TestBot(server.port, "Byte"):
         await server.request("set_inventory", player="Ryn", items={"red_mushroom": 3, "brown_mushroom": 5})
         await server.request("set_inventory", player="Byte", items={"brown_mushroom": 2})
         gm = sc.game_master(server, Always(0.99))
@@ -72,8 +74,7 @@ async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
         assert gm.locked["red"] == ["potato"]
         assert gm.points["red"] == 2 * REWARDS["potato"]
         assert await server.request("inventory", player="Red_Server") == []  # emptied, sticks lost too
-        await server.request("set_inventory", player="Red_Server",
-                             items={"bread": 1, "beef": 2, "cake": 1})
+        await server.request("set_inventory", player="Red_Server", items={"bread": 1, "beef": 2, "cake": 1})
         await gm.step()
         assert len(gm.locked["red"]) == 3 and gm.locked["red"][0] == "potato"
         first_two = gm.locked["red"][1:]

@@ -40,12 +40,27 @@ def sc_blue0(key):
 
 
 def test_every_builtin_opponent_has_a_scenario():
-    assert set(OPPONENTS) == {"aggressive", "balanced", "passive", "slimy", "berries", "cake_beetroot",
-                              "melon_pumpkin", "potato_cookie"}
+    assert set(OPPONENTS) == {
+        "aggressive",
+        "balanced",
+        "passive",
+        "slimy",
+        "berries",
+        "cake_beetroot",
+        "melon_pumpkin",
+        "potato_cookie",
+    }
 
 
-@pytest.mark.parametrize("pair", [("aggressive", "berries"), ("balanced", "cake_beetroot"),
-                                  ("passive", "melon_pumpkin"), ("slimy", "potato_cookie")])
+@pytest.mark.parametrize(
+    "pair",
+    [
+        ("aggressive", "berries"),
+        ("balanced", "cake_beetroot"),
+        ("passive", "melon_pumpkin"),
+        ("slimy", "potato_cookie"),
+    ],
+)
 async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
     # two matches at once (one per scenario), each on its own server
     recs = await asyncio.gather(*(one_episode(OPPONENTS[name], name, "do_nothing", tmp_path / name) for name in pair))

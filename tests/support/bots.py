@@ -27,13 +27,18 @@ class TestBot:
         self._pending: dict[int, asyncio.Future] = {}
         self._spawned: asyncio.Future | None = None
 
-    async def start(self, timeout: float = 30) -> "TestBot":
+    async def start(self, timeout: float = 30) -> TestBot:
         loop = asyncio.get_running_loop()
         self._spawned = loop.create_future()
         self.proc = await asyncio.create_subprocess_exec(
-            str(node_binary()), str(DRIVER), json.dumps({"host": self.host, "port": self.port, "username": self.username}),
-            stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.PIPE,
-            env=node_env(), limit=2**24,
+            str(node_binary()),
+            str(DRIVER),
+            json.dumps({"host": self.host, "port": self.port, "username": self.username}),
+            stdin=asyncio.subprocess.PIPE,
+            stdout=asyncio.subprocess.PIPE,
+            stderr=asyncio.subprocess.PIPE,
+            env=node_env(),
+            limit=2**24,
         )
         self._reader = asyncio.create_task(self._read())
         await asyncio.wait_for(self._spawned, timeout)

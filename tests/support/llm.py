@@ -24,8 +24,9 @@ def llm_client_fixture(*default_overrides: str):
         made: list[LLMClient] = []
 
         def make(team: str = "red", *overrides: str) -> LLMClient:
-            cfg = load_config(["llm=fake", f"llm.base_url={fake_llm.url}", "llm.timeout=10", *default_overrides,
-                               *overrides])
+            cfg = load_config(
+                ["llm=fake", f"llm.base_url={fake_llm.url}", "llm.timeout=10", *default_overrides, *overrides]
+            )
             client = LLMClient.from_config(cfg, team=team, run_dir=tmp_path / "llm")
             made.append(client)
             return client

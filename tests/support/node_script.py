@@ -9,7 +9,8 @@ from pillagerbench.node import JS_DIR, node_binary, node_env
 
 
 def run_node_script(script: str):
-    proc = subprocess.run([str(node_binary()), "-e", script, str(JS_DIR)], capture_output=True, text=True,
-                          env=node_env(), timeout=60)
+    proc = subprocess.run(
+        [str(node_binary()), "-e", script, str(JS_DIR)], capture_output=True, text=True, env=node_env(), timeout=60
+    )
     assert proc.returncode == 0, proc.stderr
     return json.loads(proc.stdout)

@@ -7,11 +7,11 @@ import json
 from pathlib import Path
 
 from pillagerbench.arena import ArenaServer
-from pillagerbench.llm.fake_server import Rule
+from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import TeamContext, make_team
-from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 (fixtures)
+from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
 
 # --- scripted answers (Mushroom War, red team) ---------------------------------------------------
 
@@ -25,15 +25,24 @@ GRAPH = [
 ]
 NEW_RELATION = ["mineBlock(bot, 'slime_block', 2, new Vec3(-9, 4, -10), 7)", [], ["slime_block"]]
 
-TACTICS_1 = ("Let me think: slime blocks stop regrowth, so one player clears them.\n"
-             "[tactics]\n1. Ryn removes slime blocks in the red area.\n"
-             "2. Raze harvests red mushroom blocks in the red area.\n[tactics end]")
-TACTICS_2 = ("Last round went fine; keep it and add sabotage.\n[tactics]\n"
-             "1. Ryn removes slime blocks in the red area.\n2. Raze harvests red mushroom blocks.\n"
-             "3. When the red area is clean, Ryn places slime blocks in the blue area.\n[tactics end]")
+TACTICS_1 = (
+    "Let me think: slime blocks stop regrowth, so one player clears them.\n"
+    "[tactics]\n1. Ryn removes slime blocks in the red area.\n"
+    "2. Raze harvests red mushroom blocks in the red area.\n[tactics end]"
+)
+TACTICS_2 = (
+    "Last round went fine; keep it and add sabotage.\n[tactics]\n"
+    "1. Ryn removes slime blocks in the red area.\n2. Raze harvests red mushroom blocks.\n"
+    "3. When the red area is clean, Ryn places slime blocks in the blue area.\n[tactics end]"
+)
 OPPONENT = "They mine slime and mushrooms.\n[tactics]\n1. Byte and Blink mine slime blocks and brown mushrooms in the blue area.\n[tactics end]"
-CRITIC = json.dumps({"reasoning": "The bot mined slime and stopped.", "success": True,
-                     "critique": "Keep looping instead of stopping after one pass."})
+CRITIC = json.dumps(
+    {
+        "reasoning": "The bot mined slime and stopped.",
+        "success": True,
+        "critique": "Keep looping instead of stopping after one pass.",
+    }
+)
 
 # a program that does one pass and ends (so the agent iterates)
 ONE_PASS = """\
@@ -82,11 +91,19 @@ def good_rules(model: str | None = None, *, first_action: str = ONE_PASS) -> lis
 llm_client = llm_client_fixture("llm.max_tokens=2000")
 
 
-def context(tmp_path: Path, llm, *, episode: int = 0, scenario: str = "mushroom_war", observations=None,
-            out: str = "red") -> TeamContext:
+def context(
+    tmp_path: Path, llm, *, episode: int = 0, scenario: str = "mushroom_war", observations=None, out: str = "red"
+) -> TeamContext:
     sc = make_scenario(scenario)
-    return TeamContext(scenario=sc, side=sc.side("red"), players={}, episode=episode, out_dir=tmp_path / out,
-                       observations=observations or {}, llm=llm)
+    return TeamContext(
+        scenario=sc,
+        side=sc.side("red"),
+        players={},
+        episode=episode,
+        out_dir=tmp_path / out,
+        observations=observations or {},
+        llm=llm,
+    )
 
 
 def requests_of(server: FakeLLMServer, role: str) -> list:

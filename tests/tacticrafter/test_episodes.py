@@ -4,16 +4,24 @@ checkpoint round trip, and a series full of bad inputs that keeps playing."""
 
 from __future__ import annotations
 
-import asyncio
 import json
 
 from pillagerbench.llm.fake_server import Rule
 from pillagerbench.teams import make_team
 from pillagerbench.teams.tacticrafter import TactiCrafter
-from pillagerbench.teams.tacticrafter.memory import Memory
 
-from .conftest import (CRITIC, LOOP, NO_CODE, ONE_PASS, THROWS, code_answer, context, good_rules, play_series,
-                       requests_of)
+from .conftest import (
+    CRITIC,
+    LOOP,
+    NO_CODE,
+    ONE_PASS,
+    THROWS,
+    code_answer,
+    context,
+    good_rules,
+    play_series,
+    requests_of,
+)
 
 
 def load(path):
@@ -34,7 +42,7 @@ async def test_two_episode_series_learns_and_checkpoints(tmp_path, fake_llm, llm
     assert len(load(ep0 / "causal_graph.json")["relations"]) == 6
     rec0 = load(ep0 / "tacticrafter.json")
     ryn0, raze0 = first.iterations["red"]
-    assert 2 <= ryn0 <= 4 and 2 <= raze0 <= 4                    # one pass, critique, new code, ...
+    assert 2 <= ryn0 <= 4 and 2 <= raze0 <= 4  # one pass, critique, new code, ...
     assert rec0["iterations"] == {"Ryn": ryn0, "Raze": raze0}
     its = rec0["agents"]["Ryn"]["iterations"]
     assert its[0]["entry"] == "onePass" and its[1]["entry"] == "keepFarming" and its[0]["success"] is True
@@ -58,20 +66,31 @@ async def test_two_episode_series_learns_and_checkpoints(tmp_path, fake_llm, llm
     assert len(opp) == 1 and ("<Byte> Mined" in opp[0].prompt or "<Blink> Mined" in opp[0].prompt)
     upd = [r for r in requests_of(fake_llm, "tactics") if "A round has been played" in r.prompt]
     assert len(upd) == 1 and "<Ryn> Clearing slime once" in upd[0].prompt
-    first_code_ep1 = [r for r in requests_of(fake_llm, "action") if "keepFarming" in r.prompt
-                      and "3. When the red area is clean" in r.prompt]
-    assert first_code_ep1                                           # last episode's code and new tactics
+    first_code_ep1 = [
+        r
+        for r in requests_of(fake_llm, "action")
+        if "keepFarming" in r.prompt and "3. When the red area is clean" in r.prompt
+    ]
+    assert first_code_ep1  # last episode's code and new tactics
     assert second.iterations["red"][0] >= 1
 
     # checkpoint round trip, and a team that starts from it continues (update, not a fresh start)
     ckpt = tmp_path / "ckpt"
     team.save_checkpoint(ckpt)
-    assert {p.name for p in ckpt.iterdir()} >= {"team.json", "tactics.json", "opponent_tactics.json",
-                                                 "causal_graph.json", "code.json"}
+    assert {p.name for p in ckpt.iterdir()} >= {
+        "team.json",
+        "tactics.json",
+        "opponent_tactics.json",
+        "causal_graph.json",
+        "code.json",
+    }
     again = make_team("tacticrafter", "mushroom_war", checkpoint=str(ckpt))
     assert again.state() == json.loads(json.dumps(team.state()))
-    from_dir = TactiCrafter(checkpoint=str(ep1))                  # an episode's directory works as well
-    assert from_dir.memory.tactics == team.memory.tactics and from_dir.memory.graph.relations == team.memory.graph.relations
+    from_dir = TactiCrafter(checkpoint=str(ep1))  # an episode's directory works as well
+    assert (
+        from_dir.memory.tactics == team.memory.tactics
+        and from_dir.memory.graph.relations == team.memory.graph.relations
+    )
     assert from_dir.memory.code["Ryn"]["code"] == team.memory.code["Ryn"]["code"]
     fake_llm.reset()
     fake_llm.add(*good_rules())

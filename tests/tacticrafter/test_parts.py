@@ -9,7 +9,7 @@ import pytest
 
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams.tacticrafter.causal import CausalGraph, Relation, parse_relations
-from pillagerbench.teams.tacticrafter.events import (dedupe, digest, opponent_chat, own_chat_with_inventory)
+from pillagerbench.teams.tacticrafter.events import dedupe, digest, opponent_chat, own_chat_with_inventory
 from pillagerbench.teams.tacticrafter.memory import Memory
 from pillagerbench.teams.tacticrafter.tactics import extract_tactics
 
@@ -26,9 +26,12 @@ def observe(**inv) -> list:
 
 # --- tactics tags ----------------------------------------------------------------------------------
 
+
 def test_tactics_between_tags_numbered_at_most_six():
-    text = ("Reasoning... [tactics] is the format.\n[tactics]\n1. Ryn mines slime.\n2. Raze harvests\n"
-            "   red mushrooms when they regrow.\n" + "".join(f"{k}. Item {k}.\n" for k in range(3, 9)) + "[tactics end]")
+    text = (
+        "Reasoning... [tactics] is the format.\n[tactics]\n1. Ryn mines slime.\n2. Raze harvests\n"
+        "   red mushrooms when they regrow.\n" + "".join(f"{k}. Item {k}.\n" for k in range(3, 9)) + "[tactics end]"
+    )
     got = extract_tactics(text)
     lines = got.splitlines()
     assert len(lines) == 6 and lines[0] == "1. Ryn mines slime."
@@ -49,6 +52,7 @@ def test_tactics_problems_are_reasons():
 
 # --- causal graph ----------------------------------------------------------------------------------
 
+
 def test_causal_graph_shapes_render_and_parse_back():
     lists = parse_relations(GRAPH)
     objects = parse_relations({"relations": [{"action": a, "causes": c, "effects": e} for a, c, e in GRAPH]})
@@ -63,9 +67,17 @@ def test_causal_graph_shapes_render_and_parse_back():
     assert graph.missing_modules(["mineBlock", "craftItem"]) == ["craftItem"]
 
 
-@pytest.mark.parametrize("bad,why", [("not json", "relations"), ([["a", "b"]], "relation 1"),
-                                     ([["", [], []]], "action"), ([["f()", [1, [2]], []]], "causes"),
-                                     ({"f()": ["x"]}, "causes"), (42, "JSON list")])
+@pytest.mark.parametrize(
+    "bad,why",
+    [
+        ("not json", "relations"),
+        ([["a", "b"]], "relation 1"),
+        ([["", [], []]], "action"),
+        ([["f()", [1, [2]], []]], "causes"),
+        ({"f()": ["x"]}, "causes"),
+        (42, "JSON list"),
+    ],
+)
 def test_invalid_graphs_say_why(bad, why):
     with pytest.raises(ValueError, match=why):
         parse_relations(bad)
@@ -74,24 +86,41 @@ def test_invalid_graphs_say_why(bad, why):
 def test_merge_adds_new_and_replaces_same_action():
     graph = CausalGraph(parse_relations(GRAPH))
     n = len(graph)
-    stats = graph.merge([Relation("mineBlock(bot, 'slime_block', 3)", (), ("slime_block", "dirt")),
-                         Relation("craftItem(bot, 'bread', 1)", ("wheat",), ("bread",)),
-                         Relation("sendSignal(bot, 'Raze')", (), ())])
+    stats = graph.merge(
+        [
+            Relation("mineBlock(bot, 'slime_block', 3)", (), ("slime_block", "dirt")),
+            Relation("craftItem(bot, 'bread', 1)", ("wheat",), ("bread",)),
+            Relation("sendSignal(bot, 'Raze')", (), ()),
+        ]
+    )
     assert stats == {"added": 1, "changed": 1, "total": n + 1}
     assert graph.relations[0].effects == ("slime_block", "dirt") and graph.relations[-1].action.startswith("craftItem")
 
 
 # --- deduplication ---------------------------------------------------------------------------------
 
+
 def test_dedup_removes_repeated_chat_sequences_of_agents_only():
     loop = [chat("<Ryn> Mined 1 slime_block"), chat("<Ryn> No red_mushroom_block nearby, please explore first")]
-    events = (loop * 5 + [chat("Team red is clean!")] * 3 + [["onError", {"onError": "boom"}]] +
-              [chat("<Byte> Placed slime_block")] * 4 + [chat("<Ryn> Done")] + [observe(slime_block=5)])
+    events = (
+        loop * 5
+        + [chat("Team red is clean!")] * 3
+        + [["onError", {"onError": "boom"}]]
+        + [chat("<Byte> Placed slime_block")] * 4
+        + [chat("<Ryn> Done")]
+        + [observe(slime_block=5)]
+    )
     out, stats = dedupe(events, ["Ryn", "Raze", "Byte", "Blink"])
     lines = [e[1]["onChat"] for e in out if e[0] == "onChat"]
-    assert lines == ["<Ryn> Mined 1 slime_block", "<Ryn> No red_mushroom_block nearby, please explore first",
-                     "Team red is clean!", "Team red is clean!", "Team red is clean!",
-                     "<Byte> Placed slime_block", "<Ryn> Done"]
+    assert lines == [
+        "<Ryn> Mined 1 slime_block",
+        "<Ryn> No red_mushroom_block nearby, please explore first",
+        "Team red is clean!",
+        "Team red is clean!",
+        "Team red is clean!",
+        "<Byte> Placed slime_block",
+        "<Ryn> Done",
+    ]
     assert out[-1][0] == "observe" and any(e[0] == "onError" for e in out)
     assert stats.before == len(events) and stats.after == len(out)
     assert stats.chat_before == 18 and stats.chat_after == 7
@@ -110,30 +139,45 @@ def test_dedup_keeps_sequences_that_do_not_repeat_back_to_back():
 
 def test_digests_feed_the_causal_and_opponent_prompts():
     sc = make_scenario("dash_and_dine")
-    ryn = [chat("<Ryn> Harvested 4 wheat", wheat=4), chat("<Byte> Harvested 3 potato"),
-           chat("Locked-in baked_potato as a submission item for blue_team"),
-           chat("Scored 6 points for red_team"), chat("<Blue_Server> thanks"), chat("<Raze> Milked cow"),
-           observe(wheat=4)]
+    ryn = [
+        chat("<Ryn> Harvested 4 wheat", wheat=4),
+        chat("<Byte> Harvested 3 potato"),
+        chat("Locked-in baked_potato as a submission item for blue_team"),
+        chat("Scored 6 points for red_team"),
+        chat("<Blue_Server> thanks"),
+        chat("<Raze> Milked cow"),
+        observe(wheat=4),
+    ]
     raze = [chat("<Raze> Milked cow", milk_bucket=1), observe(milk_bucket=1)]
     digests = {"Ryn": digest(ryn), "Raze": digest(raze)}
     assert digests["Ryn"][0] == ["onChat", {"inventory": {"wheat": 4}, "onChat": "<Ryn> Harvested 4 wheat"}]
-    assert digests["Ryn"][-1][1]["voxels"] == ["slime_block"]          # the last observe is kept whole
+    assert digests["Ryn"][-1][1]["voxels"] == ["slime_block"]  # the last observe is kept whole
     evidence = own_chat_with_inventory(digests)
     assert "Ryn:\nChat: Harvested 4 wheat; Inventory: {'wheat': 4}" in evidence
     assert "Raze:\nChat: Milked cow; Inventory: {'milk_bucket': 1}" in evidence
     opp = opponent_chat(digests, sc, sc.side("blue"))
-    assert opp.splitlines() == ["<Byte> Harvested 3 potato", "Locked-in baked_potato as a submission item for blue_team",
-                                "<Blue_Server> thanks"]
+    assert opp.splitlines() == [
+        "<Byte> Harvested 3 potato",
+        "Locked-in baked_potato as a submission item for blue_team",
+        "<Blue_Server> thanks",
+    ]
 
 
 # --- memory ----------------------------------------------------------------------------------------
 
+
 def test_memory_files_round_trip(tmp_path):
-    mem = Memory(tactics="1. Ryn mines.", previous_tactics="1. Ryn waits.", tactics_source="updated",
-                 opponent_tactics="1. Byte mines.", opponent_source="inferred",
-                 graph=CausalGraph(parse_relations(GRAPH)),
-                 code={"Ryn": {"code": "async function m(bot) {}", "critique": "ok", "success": True, "error": None}},
-                 events={"Ryn": digest([chat("<Ryn> hi"), observe()])}, episodes=3)
+    mem = Memory(
+        tactics="1. Ryn mines.",
+        previous_tactics="1. Ryn waits.",
+        tactics_source="updated",
+        opponent_tactics="1. Byte mines.",
+        opponent_source="inferred",
+        graph=CausalGraph(parse_relations(GRAPH)),
+        code={"Ryn": {"code": "async function m(bot) {}", "critique": "ok", "success": True, "error": None}},
+        events={"Ryn": digest([chat("<Ryn> hi"), observe()])},
+        episodes=3,
+    )
     mem.write(tmp_path / "ep", episode=2, iterations={"Ryn": 4})
     code = json.loads((tmp_path / "ep" / "code.json").read_text())
     assert code["Ryn"]["iterations"] == 4 and code["Ryn"]["events"][0][1]["onChat"] == "<Ryn> hi"
@@ -152,18 +196,26 @@ def test_memory_files_round_trip(tmp_path):
 
 def test_a_cut_off_graph_keeps_its_complete_relations():
     from pillagerbench.teams.tacticrafter.causal import _parse_answer, _Text, complete_items
+
     cut = 'Here:\n```json\n[\n  ["mineBlock(bot, \'slime_block\', 3)", [], ["slime_block"]],\n  ["sendSignal(bot, \'Raze\')", [], []],\n  ["placeItem(bot, \'slime'
-    assert complete_items(cut) == [["mineBlock(bot, 'slime_block', 3)", [], ["slime_block"]], ["sendSignal(bot, 'Raze')", [], []]]
-    assert [r.action for r in _parse_answer(_Text(cut, truncated=True))] == ["mineBlock(bot, 'slime_block', 3)",
-                                                                           "sendSignal(bot, 'Raze')"]
+    assert complete_items(cut) == [
+        ["mineBlock(bot, 'slime_block', 3)", [], ["slime_block"]],
+        ["sendSignal(bot, 'Raze')", [], []],
+    ]
+    assert [r.action for r in _parse_answer(_Text(cut, truncated=True))] == [
+        "mineBlock(bot, 'slime_block', 3)",
+        "sendSignal(bot, 'Raze')",
+    ]
     with pytest.raises(ValueError, match="relation 1 is neither"):
-        _parse_answer(_Text(cut, truncated=False))      # only an answer the token limit cut is salvaged
+        _parse_answer(_Text(cut, truncated=False))  # only an answer the token limit cut is salvaged
     assert complete_items("no list") == [] and complete_items("[") == []
 
 
 def test_code_answers_checked_with_acorn_and_an_empty_main_is_refused():
     from pillagerbench.teams.tacticrafter.base_agent import parse_code
+
     from .conftest import LOOP, code_answer
+
     sc = make_scenario("mushroom_war")
     assert parse_code(code_answer(LOOP), sc.primitives).entry == "keepFarming"
     template = "```javascript\n// helper functions first, then the main function last\nasync function main(bot) {\n  // ...\n}\n```"

@@ -14,9 +14,23 @@ from pillagerbench.teams.tacticrafter.events import digest
 
 from .conftest import CRITIC, GRAPH, LOOP, NO_CODE, OPPONENT, TACTICS_1, code_answer, context, good_rules, requests_of
 
-OBS = {"Ryn": [["observe", {"voxels": ["slime_block", "red_mushroom_block"], "inventory": {"dirt": 2},
-                            "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "health": 20, "food": 20,
-                                       "entities": {"cow": 4.0}}}]]}
+OBS = {
+    "Ryn": [
+        [
+            "observe",
+            {
+                "voxels": ["slime_block", "red_mushroom_block"],
+                "inventory": {"dirt": 2},
+                "status": {
+                    "position": {"x": -7.5, "y": 4, "z": -9.5},
+                    "health": 20,
+                    "food": 20,
+                    "entities": {"cow": 4.0},
+                },
+            },
+        ]
+    ]
+}
 
 
 def record(tmp_path, out="red") -> dict:
@@ -25,10 +39,12 @@ def record(tmp_path, out="red") -> dict:
 
 def played(team: TactiCrafter) -> None:
     """Pretend an episode was played: events in memory, as post_game leaves them."""
-    ryn = [["onChat", {"onChat": "<Ryn> Mined 2 slime_block", "inventory": {"slime_block": 2}}],
-           ["onChat", {"onChat": "<Byte> Mined 1 brown_mushroom_block", "inventory": {"slime_block": 2}}],
-           ["onChat", {"onChat": "Team blue is clean!", "inventory": {}}],
-           ["observe", {"inventory": {"slime_block": 2}, "voxels": ["slime_block"], "status": {}}]]
+    ryn = [
+        ["onChat", {"onChat": "<Ryn> Mined 2 slime_block", "inventory": {"slime_block": 2}}],
+        ["onChat", {"onChat": "<Byte> Mined 1 brown_mushroom_block", "inventory": {"slime_block": 2}}],
+        ["onChat", {"onChat": "Team blue is clean!", "inventory": {}}],
+        ["observe", {"inventory": {"slime_block": 2}, "voxels": ["slime_block"], "status": {}}],
+    ]
     team.memory.events = {"Ryn": digest(ryn), "Raze": digest(ryn[3:])}
     team.memory.episodes += 1
 
@@ -38,7 +54,7 @@ async def test_first_episode_prompts_hold_what_the_paper_lists(tmp_path, fake_ll
     team = make_team("tacticrafter", "mushroom_war")
     await team.pre_game(context(tmp_path, llm_client(), observations=OBS))
     assert [r.role for r in fake_llm.requests[:2]] == ["causal", "tactics"]
-    assert not requests_of(fake_llm, "opponent")                      # first episode: opponent unknown
+    assert not requests_of(fake_llm, "opponent")  # first episode: opponent unknown
     sc = make_scenario("mushroom_war")
     causal = requests_of(fake_llm, "causal")[0].prompt
     assert prim.doc("mineBlock") in causal and prim.doc("giveToPlayer") in causal and sc.description() in causal
@@ -49,8 +65,8 @@ async def test_first_episode_prompts_hold_what_the_paper_lists(tmp_path, fake_ll
     actions = requests_of(fake_llm, "action")
     assert len(actions) == 2
     ryn = next(r for r in actions if "You are Ryn" in r.prompt)
-    assert len({r.messages[0]["content"] for r in actions}) == 1          # one shared system prompt (caching)
-    assert "1. Ryn removes slime blocks in the red area." in ryn.prompt      # the tactics
+    assert len({r.messages[0]["content"] for r in actions}) == 1  # one shared system prompt (caching)
+    assert "1. Ryn removes slime blocks in the red area." in ryn.prompt  # the tactics
     assert "cow (4 blocks away)" in ryn.prompt and "red_mushroom_block, slime_block" in ryn.prompt
     assert "Inventory: dirt: 2" in ryn.prompt and prim.doc("mineflayer") in ryn.prompt
     assert team.memory.tactics.startswith("1. Ryn removes") and len(team.memory.graph) == len(GRAPH)
@@ -75,15 +91,15 @@ async def test_later_episode_updates_from_last_episodes_events(tmp_path, fake_ll
     assert [r.role for r in fake_llm.requests[:3]] == ["causal", "opponent", "tactics"]
     causal = requests_of(fake_llm, "causal")[0].prompt
     assert "Chat: Mined 2 slime_block; Inventory: {'slime_block': 2}" in causal
-    assert "Action: mineBlock(bot, 'slime_block', 3)" in causal                 # the graph so far
+    assert "Action: mineBlock(bot, 'slime_block', 3)" in causal  # the graph so far
     opp = requests_of(fake_llm, "opponent")[0].prompt
     assert "<Byte> Mined 1 brown_mushroom_block" in opp and "Team blue is clean!" in opp
     assert "<Ryn> Mined" not in opp and "unknown" in opp
     upd = requests_of(fake_llm, "tactics")[0].prompt
     assert "A round has been played" in upd and "Ryn (" in upd or "Ryn: slime_block: 2" in upd
-    assert "1. Ryn removes slime blocks in the red area." in upd               # previous tactics
-    assert "Byte and Blink mine slime blocks" in upd                          # opponent tactics
-    assert "Examples of good tactics" in upd                                  # few-shot
+    assert "1. Ryn removes slime blocks in the red area." in upd  # previous tactics
+    assert "Byte and Blink mine slime blocks" in upd  # opponent tactics
+    assert "Examples of good tactics" in upd  # few-shot
     assert team.memory.previous_tactics.startswith("1. Ryn removes") and "3. When the red area" in team.memory.tactics
     assert team.memory.opponent_tactics.startswith("1. Byte and Blink")
     assert any(r.action.startswith("mineBlock(bot, 'slime_block', 2, new Vec3") for r in team.memory.graph.relations)
@@ -94,13 +110,20 @@ async def test_later_episode_updates_from_last_episodes_events(tmp_path, fake_ll
 
 async def test_roles_switches_and_preset(tmp_path, fake_llm, llm_client):
     fake_llm.add(*good_rules())
-    team = make_team("tacticrafter", "mushroom_war", causal=False, opponent=False,
-                     preset_tactics="1. Ryn and Raze mine slime.",
-                     roles={"action": {"model": "coder", "temperature": 0.0, "max_tokens": 1500}})
+    team = make_team(
+        "tacticrafter",
+        "mushroom_war",
+        causal=False,
+        opponent=False,
+        preset_tactics="1. Ryn and Raze mine slime.",
+        roles={"action": {"model": "coder", "temperature": 0.0, "max_tokens": 1500}},
+    )
     await team.pre_game(context(tmp_path, llm_client()))
-    assert {r.role for r in fake_llm.requests} == {"action"}                  # no causal, preset tactics
-    assert all(r.body["model"] == "coder" and r.body["temperature"] == 0.0 and r.body["max_tokens"] == 1500
-               for r in fake_llm.requests)
+    assert {r.role for r in fake_llm.requests} == {"action"}  # no causal, preset tactics
+    assert all(
+        r.body["model"] == "coder" and r.body["temperature"] == 0.0 and r.body["max_tokens"] == 1500
+        for r in fake_llm.requests
+    )
     assert "1. Ryn and Raze mine slime." in fake_llm.requests[0].prompt
     ledger = [json.loads(x) for x in (tmp_path / "llm" / "llm_calls.jsonl").read_text().splitlines()]
     assert {x["model"] for x in ledger} == {"coder"}
@@ -108,7 +131,7 @@ async def test_roles_switches_and_preset(tmp_path, fake_llm, llm_client):
     fake_llm.reset()
     fake_llm.add(*good_rules())
     await team.pre_game(context(tmp_path, llm_client(), episode=1))
-    assert {r.role for r in fake_llm.requests} == {"tactics", "action"}       # updated, still no opponent
+    assert {r.role for r in fake_llm.requests} == {"tactics", "action"}  # updated, still no opponent
     assert "(opponent model disabled)" in requests_of(fake_llm, "tactics")[0].prompt
     assert "(causal model disabled)" in requests_of(fake_llm, "tactics")[0].prompt
     fixed = make_team("tacticrafter", "mushroom_war", preset_tactics="1. Ryn waits.", update_tactics=False)
@@ -123,10 +146,12 @@ async def test_roles_switches_and_preset(tmp_path, fake_llm, llm_client):
 
 
 async def test_bad_answers_are_retried_recorded_and_the_team_goes_on(tmp_path, fake_llm, llm_client):
-    fake_llm.add(Rule(role="causal", reply="Here is the graph: [[broken"),
-                 Rule(role="tactics", reply="1. Ryn mines slime.\n2. Raze harvests."),
-                 Rule(role="action", regex="You are Ryn", reply=NO_CODE),
-                 Rule(role="action", reply=code_answer("async function main(bot) {\n  await craftItem(bot, 'bread', 1)\n}")))
+    fake_llm.add(
+        Rule(role="causal", reply="Here is the graph: [[broken"),
+        Rule(role="tactics", reply="1. Ryn mines slime.\n2. Raze harvests."),
+        Rule(role="action", regex="You are Ryn", reply=NO_CODE),
+        Rule(role="action", reply=code_answer("async function main(bot) {\n  await craftItem(bot, 'bread', 1)\n}")),
+    )
     team = make_team("tacticrafter", "mushroom_war", attempts=2)
     await team.pre_game(context(tmp_path, llm_client()))
     assert len(requests_of(fake_llm, "causal")) == 2 and len(requests_of(fake_llm, "tactics")) == 2
@@ -150,8 +175,12 @@ async def test_bad_answers_are_retried_recorded_and_the_team_goes_on(tmp_path, f
     assert team.memory.tactics.startswith("1. Ryn removes") and len(team.memory.graph) == len(GRAPH)
     played(team)
     fake_llm.reset()
-    fake_llm.add(Rule(role="tactics", reply="No tags at all."), Rule(role="opponent", reply="I cannot tell."),
-                 Rule(role="causal", reply='{"oops": 1}'), *good_rules())
+    fake_llm.add(
+        Rule(role="tactics", reply="No tags at all."),
+        Rule(role="opponent", reply="I cannot tell."),
+        Rule(role="causal", reply='{"oops": 1}'),
+        *good_rules(),
+    )
     await team.pre_game(context(tmp_path, llm_client(), episode=2))
     assert team.memory.tactics.startswith("1. Ryn removes") and team.memory.tactics_source == "kept"
     assert team.memory.opponent_tactics == "unknown" and len(team.memory.graph) == len(GRAPH)
@@ -164,7 +193,7 @@ async def test_provider_errors_budget_and_no_client(tmp_path, fake_llm, llm_clie
     await team.pre_game(context(tmp_path, llm_client()))
     rec = record(tmp_path)
     assert "overloaded" in rec["modules"]["causal"]["error"] and len(team.memory.graph) == 0
-    assert team.memory.tactics is not None and all(a.program for a in team.agents)   # the rest went on
+    assert team.memory.tactics is not None and all(a.program for a in team.agents)  # the rest went on
 
     # the budget runs out after the causal graph: no action calls, last episode's code is the fallback
     team.memory.code = {"Ryn": {"code": LOOP}}
@@ -184,8 +213,11 @@ async def test_provider_errors_budget_and_no_client(tmp_path, fake_llm, llm_clie
 
 async def test_critic_prompt_and_answers(tmp_path, fake_llm, llm_client):
     from pillagerbench.teams.tacticrafter.base_agent import parse_critique
+
     fake_llm.add(Rule(role="critic", reply="success!", times=1), Rule(role="critic", reply=CRITIC), *good_rules())
-    team = make_team("tacticrafter", "mushroom_war", preset_tactics=TACTICS_1.split("[tactics]")[1].split("[tactics end]")[0])
+    team = make_team(
+        "tacticrafter", "mushroom_war", preset_tactics=TACTICS_1.split("[tactics]")[1].split("[tactics end]")[0]
+    )
     ctx = context(tmp_path, llm_client())
     await team.pre_game(ctx)
     ryn = team.agents[0]
@@ -196,5 +228,9 @@ async def test_critic_prompt_and_answers(tmp_path, fake_llm, llm_client):
     req = requests_of(fake_llm, "critic")[-1]
     assert "Error: No path" in req.prompt and "<Ryn> Mined 1 slime_block" in req.prompt and "Bot: Ryn" in req.prompt
     assert "your JSON" not in req.prompt and "no valid JSON" in req.messages[-1]["content"]
-    assert parse_critique('{"success": "false", "critique": null}') == {"reasoning": "", "success": False, "critique": ""}
+    assert parse_critique('{"success": "false", "critique": null}') == {
+        "reasoning": "",
+        "success": False,
+        "critique": "",
+    }
     assert OPPONENT

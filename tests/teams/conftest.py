@@ -9,14 +9,22 @@ from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import make_team
-from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 (fixtures)
-
+from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
 
 llm_client = llm_client_fixture()
 
 
-async def play_series(scenario_key: str, red, blue, run_dir: Path, *, episodes: int = 1, length: float = 20,
-                      llms: dict | None = None, seed: int = 1):
+async def play_series(
+    scenario_key: str,
+    red,
+    blue,
+    run_dir: Path,
+    *,
+    episodes: int = 1,
+    length: float = 20,
+    llms: dict | None = None,
+    seed: int = 1,
+):
     """Play `episodes` episodes on a fresh server; red/blue are team names or Team objects."""
     sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
     teams = {side: make_team(t, sc.key) if isinstance(t, str) else t for side, t in (("red", red), ("blue", blue))}

@@ -45,8 +45,10 @@ async function mainRaze(bot) {
 
 def answer(*blocks: str) -> str:
     code = "\n".join(f"Code for bot {i}:\n```javascript\n{b}\n```" for i, b in enumerate(blocks))
-    return ("Explain: first round, nothing to learn from yet.\n"
-            "Plan: Ryn clears slime so the mushrooms regrow, then harvests; Raze harvests red mushrooms.\n" + code)
+    return (
+        "Explain: first round, nothing to learn from yet.\n"
+        "Plan: Ryn clears slime so the mushrooms regrow, then harvests; Raze harvests red mushrooms.\n" + code
+    )
 
 
 SYNTAX_ERROR = "async function main(bot) {\n  await mineBlock(bot, 'red_mushroom_block', 3\n}"
@@ -56,21 +58,38 @@ WRONG_PRIMITIVE = "async function main(bot) {\n  await craftItem(bot, 'bread', 1
 def context(tmp_path, llm, last_episode=None, observations=None) -> TeamContext:
     sc = make_scenario("mushroom_war")
     side = sc.side("red")
-    return TeamContext(scenario=sc, side=side, players={}, episode=0, out_dir=tmp_path / "red",
-                       observations=observations or {}, last_episode=last_episode or {}, llm=llm)
+    return TeamContext(
+        scenario=sc,
+        side=side,
+        players={},
+        episode=0,
+        out_dir=tmp_path / "red",
+        observations=observations or {},
+        last_episode=last_episode or {},
+        llm=llm,
+    )
 
 
 async def test_prompt_holds_everything_the_paper_lists(tmp_path, fake_llm, llm_client):
     fake_llm.add(Rule(role="cot", reply=answer(RYN, RAZE)))
     team = make_team("cot", "mushroom_war")
-    obs = {"Ryn": [["observe", {"voxels": ["slime_block", "red_mushroom_block"],
-                                "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "entities": {"cow": 4.0}}}]]}
+    obs = {
+        "Ryn": [
+            [
+                "observe",
+                {
+                    "voxels": ["slime_block", "red_mushroom_block"],
+                    "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "entities": {"cow": 4.0}},
+                },
+            ]
+        ]
+    }
     await team.pre_game(context(tmp_path, llm_client(), observations=obs))
     assert fake_llm.count == 1
     req = fake_llm.requests[-1]
     system, user = req.messages[0]["content"], req.messages[1]["content"]
     assert prim.doc("mineBlock") in system and prim.doc("mineflayer") in system
-    assert prim.doc("craftItem") not in system                     # not a Mushroom War primitive
+    assert prim.doc("craftItem") not in system  # not a Mushroom War primitive
     assert "Code for Ryn:" in system and "Code for Raze:" in system
     sc = make_scenario("mushroom_war")
     assert sc.description() in user
@@ -91,12 +110,14 @@ async def test_last_episode_code_errors_and_chat_reach_the_next_prompt(tmp_path,
     events_dir = tmp_path / "events"
     events_dir.mkdir()
     lines = [["onChat", {"onChat": "<Ryn> Removing slime"}]] * 3 + [
-        ["onChat", {"onChat": "Team red is clean!"}], ["onError", {"onError": "Error: No path\nat line 3: x"}],
-        ["observe", {}]]
+        ["onChat", {"onChat": "Team red is clean!"}],
+        ["onError", {"onError": "Error: No path\nat line 3: x"}],
+        ["observe", {}],
+    ]
     (events_dir / "Ryn.jsonl").write_text("\n".join(json.dumps(e) for e in lines))
     await team.pre_game(context(tmp_path, client, last_episode={"events_dir": str(events_dir)}))
     user = fake_llm.requests[-1].messages[1]["content"]
-    assert "Ryn:\n```javascript\n" + RYN in user                       # last round's code
+    assert "Ryn:\n```javascript\n" + RYN in user  # last round's code
     assert "Your code was not used: Raze: the code does not parse" in user
     assert "Error: No path" in user
     assert user.count("<Ryn> Removing slime") == 1 and "Team red is clean!" in user
@@ -107,9 +128,11 @@ async def test_last_episode_code_errors_and_chat_reach_the_next_prompt(tmp_path,
 
 
 async def test_bad_answers_are_retried_with_the_problems_then_recorded(tmp_path, fake_llm, llm_client):
-    fake_llm.add(Rule(role="cot", reply="Explain: hmm.\nPlan: we will see.", times=1),
-                 Rule(role="cot", reply=answer(RYN), times=1),
-                 Rule(role="cot", reply=answer(RYN, WRONG_PRIMITIVE)))
+    fake_llm.add(
+        Rule(role="cot", reply="Explain: hmm.\nPlan: we will see.", times=1),
+        Rule(role="cot", reply=answer(RYN), times=1),
+        Rule(role="cot", reply=answer(RYN, WRONG_PRIMITIVE)),
+    )
     team = make_team("cot", "mushroom_war", attempts=3)
     await team.pre_game(context(tmp_path, llm_client()))
     assert fake_llm.count == 3
@@ -155,15 +178,31 @@ async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
     """Two matches at once: (1) the scripted answer mines slime and harvests mushrooms and scores;
     (2) a series whose first answer has no code (both players idle) and whose second has a syntax
     error for Raze (Ryn plays, Raze idles) goes on."""
-    fake_llm.add(Rule(role="cot", regex=r"Your code was not used", reply=answer(RYN, SYNTAX_ERROR)),
-                 Rule(role="cot", model="scorer", reply=answer(RYN, RAZE)),
-                 Rule(role="cot", reply="Explain: no idea.\nPlan: none."))
+    fake_llm.add(
+        Rule(role="cot", regex=r"Your code was not used", reply=answer(RYN, SYNTAX_ERROR)),
+        Rule(role="cot", model="scorer", reply=answer(RYN, RAZE)),
+        Rule(role="cot", reply="Explain: no idea.\nPlan: none."),
+    )
     good, series = llm_client("red", "llm.model=scorer"), llm_client("red")
     scoring, fallback = await asyncio.gather(
-        play_series("mushroom_war", make_team("cot", "mushroom_war"), "do_nothing", tmp_path / "good",
-                    length=30, llms={"red": good}),
-        play_series("mushroom_war", make_team("cot", "mushroom_war", attempts=2), "do_nothing", tmp_path / "series",
-                    episodes=2, length=12, llms={"red": series}))
+        play_series(
+            "mushroom_war",
+            make_team("cot", "mushroom_war"),
+            "do_nothing",
+            tmp_path / "good",
+            length=30,
+            llms={"red": good},
+        ),
+        play_series(
+            "mushroom_war",
+            make_team("cot", "mushroom_war", attempts=2),
+            "do_nothing",
+            tmp_path / "series",
+            episodes=2,
+            length=12,
+            llms={"red": series},
+        ),
+    )
 
     (rec,) = scoring
     assert rec.status == "ok", rec.error

@@ -20,7 +20,7 @@ from pillagerbench.teams.remote.protocol import schemas
 
 ROOT = Path(__file__).resolve().parents[2]
 
-TEAM_MODULE = '''
+TEAM_MODULE = """
 from pillagerbench.teams import Team
 
 class Idle(Team):
@@ -28,7 +28,7 @@ class Idle(Team):
     options_declared = {"patience": 3}
 
 NOT_A_TEAM = 42
-'''
+"""
 
 
 @pytest.fixture
@@ -36,8 +36,10 @@ def outside(tmp_path):
     """A folder on PYTHONPATH with a team module and two installed distributions with entry points."""
     (tmp_path / "my_teams.py").write_text(TEAM_MODULE)
     (tmp_path / "broken_team.py").write_text("raise RuntimeError('this package is broken')\n")
-    for dist, entries in (("good_dist", "idle_ep = my_teams:Idle\ndup = my_teams:Idle\nbad = broken_team:X\n"),
-                          ("other_dist", "dup = my_teams:Idle\n")):
+    for dist, entries in (
+        ("good_dist", "idle_ep = my_teams:Idle\ndup = my_teams:Idle\nbad = broken_team:X\n"),
+        ("other_dist", "dup = my_teams:Idle\n"),
+    ):
         info = tmp_path / f"{dist}-1.0.dist-info"
         info.mkdir()
         (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {dist}\nVersion: 1.0\n")
@@ -47,8 +49,14 @@ def outside(tmp_path):
 
 def pb(cwd, path, *args):
     env = dict(os.environ, PYTHONPATH=str(path))
-    return subprocess.run([sys.executable, "-m", "pillagerbench.cli", *args], cwd=cwd, capture_output=True, text=True,
-                          env=env, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "pillagerbench.cli", *args],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
 
 
 def test_teams_lists_entry_points_with_options(outside, tmp_path):
@@ -60,18 +68,24 @@ def test_teams_lists_entry_points_with_options(outside, tmp_path):
     assert any(line.startswith("dup") and "broken: two teams" in line for line in proc.stdout.splitlines())
 
 
-@pytest.mark.parametrize("args, expected", [
-    (["red=my_teams:Nope"], "red=my_teams:Nope: team 'my_teams:Nope': module my_teams has no Nope"),
-    (["red=my_teams:NOT_A_TEAM"], "team 'my_teams:NOT_A_TEAM' is 42, not a team: it must be a subclass"),
-    (["red=no_such_pkg.mod:X"], "cannot import no_such_pkg.mod: ModuleNotFoundError"),
-    (["red=bad"], "team 'bad': its entry point broken_team:X failed to import: RuntimeError: this package is broken"),
-    (["red=dup"], "two teams are registered under the name 'dup'"),
-    (["red=my_teams:Idle", "red.patiense=2"], "red.patiense: unknown key (options of my_teams:Idle: patience)"),
-    (["red=idle_ep", "red.patience=soon"], "red.patience='soon': input should be a valid integer"),
-    (["red=remote", "red.url=ftp://x"], "red.url='ftp://x': not an http(s) address"),
-    (["red=remote"], "red.url: the remote team needs the address of its server"),
-    (["red=remote", "red.url=http://127.0.0.1:9"], "remote team at http://127.0.0.1:9 does not answer"),
-])
+@pytest.mark.parametrize(
+    "args, expected",
+    [
+        (["red=my_teams:Nope"], "red=my_teams:Nope: team 'my_teams:Nope': module my_teams has no Nope"),
+        (["red=my_teams:NOT_A_TEAM"], "team 'my_teams:NOT_A_TEAM' is 42, not a team: it must be a subclass"),
+        (["red=no_such_pkg.mod:X"], "cannot import no_such_pkg.mod: ModuleNotFoundError"),
+        (
+            ["red=bad"],
+            "team 'bad': its entry point broken_team:X failed to import: RuntimeError: this package is broken",
+        ),
+        (["red=dup"], "two teams are registered under the name 'dup'"),
+        (["red=my_teams:Idle", "red.patiense=2"], "red.patiense: unknown key (options of my_teams:Idle: patience)"),
+        (["red=idle_ep", "red.patience=soon"], "red.patience='soon': input should be a valid integer"),
+        (["red=remote", "red.url=ftp://x"], "red.url='ftp://x': not an http(s) address"),
+        (["red=remote"], "red.url: the remote team needs the address of its server"),
+        (["red=remote", "red.url=http://127.0.0.1:9"], "remote team at http://127.0.0.1:9 does not answer"),
+    ],
+)
 def test_bad_outside_teams_are_one_line_before_anything_starts(outside, tmp_path, args, expected):
     proc = pb(tmp_path, outside, "run", *args)
     assert proc.returncode == 2, proc.stdout + proc.stderr
@@ -108,16 +122,24 @@ class Misbehaving(BaseHTTPRequestHandler):
         self.end_headers()
         self.wfile.write(raw)
 
-    def do_GET(self):  # noqa: N802
+    def do_GET(self):
         self.answer(b'{"protocol": 1}')
 
-    def do_POST(self):  # noqa: N802
+    def do_POST(self):
         body = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
         Misbehaving.calls.append(self.path)
         if self.path == "/pregame":
             me = body["side"]["players"][0]["name"]
-            return self.answer(json.dumps({"programs": {"Stranger": "bot.chat('x')",
-                                                        me: "bot.chat('first program'); while (true) { await bot.waitForTicks(10); bot.chat('tick') }"}}).encode())
+            return self.answer(
+                json.dumps(
+                    {
+                        "programs": {
+                            "Stranger": "bot.chat('x')",
+                            me: "bot.chat('first program'); while (true) { await bot.waitForTicks(10); bot.chat('tick') }",
+                        }
+                    }
+                ).encode()
+            )
         if self.path == "/postgame":
             return self.answer(b"{}")
         n = Misbehaving.calls.count("/events")
@@ -142,10 +164,27 @@ def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
     threading.Thread(target=server.serve_forever, daemon=True).start()
     try:
         url = f"http://127.0.0.1:{server.server_address[1]}"
-        proc = subprocess.run([sys.executable, "-m", "pillagerbench.cli", "run", "red=remote", f"red.url={url}",
-                               "red.call_timeout_s=0.5", "red.max_answer_bytes=2000", "red.events_every_s=0.5",
-                               "blue=do_nothing", "episode_length=12", "display=plain", "run_dir=out"],
-                              cwd=tmp_path, capture_output=True, text=True, timeout=240)
+        proc = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "pillagerbench.cli",
+                "run",
+                "red=remote",
+                f"red.url={url}",
+                "red.call_timeout_s=0.5",
+                "red.max_answer_bytes=2000",
+                "red.events_every_s=0.5",
+                "blue=do_nothing",
+                "episode_length=12",
+                "display=plain",
+                "run_dir=out",
+            ],
+            cwd=tmp_path,
+            capture_output=True,
+            text=True,
+            timeout=240,
+        )
     finally:
         server.shutdown()
     assert proc.returncode in (0, 1), proc.stdout + proc.stderr

@@ -8,7 +8,6 @@ import json
 from pillagerbench.agents.code import parse_js
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.teams import make_team
 from pillagerbench.teams.random_team import RandomActions
 from tests.teams.conftest import play_series
 
@@ -16,13 +15,18 @@ DD = make_scenario("dash_and_dine").primitives
 MW = make_scenario("mushroom_war").primitives
 
 OBS = [
-    {"voxels": ["grass_block", "wheat", "chest", "furnace"],
-     "inventory": {"bucket": 1, "wheat_seeds": 3, "netherite_hoe": 1, "potato": 2},
-     "status": {"position": {"x": -5.5, "y": 4, "z": -9.5}, "entities": {"cow": 3.2, "chicken": 8}},
-     "nearbyChests": {"(-7, 4, -7)": {"bucket": 16}, "(-7, 4, 5)": "Unknown"}},
+    {
+        "voxels": ["grass_block", "wheat", "chest", "furnace"],
+        "inventory": {"bucket": 1, "wheat_seeds": 3, "netherite_hoe": 1, "potato": 2},
+        "status": {"position": {"x": -5.5, "y": 4, "z": -9.5}, "entities": {"cow": 3.2, "chicken": 8}},
+        "nearbyChests": {"(-7, 4, -7)": {"bucket": 16}, "(-7, 4, 5)": "Unknown"},
+    },
     {"voxels": ["grass_block"], "inventory": {}, "status": {"position": {"x": 0.5, "y": 4, "z": 0.5}, "entities": {}}},
-    {"voxels": ["slime_block", "red_mushroom_block", "mushroom_stem", "grass_block"], "inventory": {"slime_block": 2},
-     "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "entities": {}}},
+    {
+        "voxels": ["slime_block", "red_mushroom_block", "mushroom_stem", "grass_block"],
+        "inventory": {"slime_block": 2},
+        "status": {"position": {"x": -7.5, "y": 4, "z": -9.5}, "entities": {}},
+    },
 ]
 
 
@@ -35,8 +39,18 @@ def test_same_seed_same_actions_other_seed_other_actions():
     assert sequence(7, DD) == sequence(7, DD)
     assert sequence(7, DD) != sequence(8, DD)
     kinds = {a.kind for a in sequence(3, DD, n=400)}
-    assert {"mineBlock", "craftItem", "milkCow", "getItemFromChest", "tillLand", "plantWheatSeeds",
-            "bot.pathfinder.goto", "giveToPlayer", "smeltItem", "killMob"} <= kinds
+    assert {
+        "mineBlock",
+        "craftItem",
+        "milkCow",
+        "getItemFromChest",
+        "tillLand",
+        "plantWheatSeeds",
+        "bot.pathfinder.goto",
+        "giveToPlayer",
+        "smeltItem",
+        "killMob",
+    } <= kinds
 
 
 def test_actions_use_only_the_scenarios_primitives_and_parse():
@@ -53,8 +67,20 @@ def test_checks_keep_actions_executable():
     empty = {"voxels": [], "inventory": {}, "status": {"position": {"x": 0, "y": 4, "z": 0}, "entities": {}}}
     kinds = {a.kind for a in (RandomActions(1, DD, ()).next(empty) for _ in range(300))}
     # nothing to mine, place, give, attack, smelt, plant or open: none of those is tried
-    assert not kinds & {"mineBlock", "placeItem", "giveToPlayer", "killMob", "smeltItem", "plantWheatSeeds",
-                        "milkCow", "tillLand", "getItemFromChest", "destroyCrop", "bot.equip", "sendSignal"}
+    assert not kinds & {
+        "mineBlock",
+        "placeItem",
+        "giveToPlayer",
+        "killMob",
+        "smeltItem",
+        "plantWheatSeeds",
+        "milkCow",
+        "tillLand",
+        "getItemFromChest",
+        "destroyCrop",
+        "bot.equip",
+        "sendSignal",
+    }
     gen = RandomActions(2, DD, ("Raze",))
     for _ in range(300):
         a = gen.next(OBS[0])
@@ -69,7 +95,8 @@ def test_checks_keep_actions_executable():
 async def test_random_plays_whole_episodes_in_both_scenarios(tmp_path):
     recs = await asyncio.gather(
         play_series("mushroom_war", "random", "random", tmp_path / "mw", length=20),
-        play_series("dash_and_dine", "random", "do_nothing", tmp_path / "dd", length=20))
+        play_series("dash_and_dine", "random", "do_nothing", tmp_path / "dd", length=20),
+    )
     for (rec,), key in zip(recs, ("mw", "dd")):
         assert rec.status == "ok", rec.error
         assert all(n >= 1 for n in rec.iterations["red"]), rec.iterations

@@ -24,8 +24,9 @@ from __future__ import annotations
 import asyncio
 import dataclasses
 import time
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from pillagerbench.llm import BudgetExceeded, LLMClient, LLMError
 
@@ -52,16 +53,24 @@ class RoleLLM:
             return self.client
         if model not in self._clients:
             base = self.client
-            self._clients[model] = LLMClient(dataclasses.replace(base.settings, model=model), team=base.team,
-                                             ledger=base.ledger, cache=base.cache, budget=base.budget,
-                                             _sdk=base._sdk)
+            self._clients[model] = LLMClient(
+                dataclasses.replace(base.settings, model=model),
+                team=base.team,
+                ledger=base.ledger,
+                cache=base.cache,
+                budget=base.budget,
+                _sdk=base._sdk,
+            )
         return self._clients[model]
 
     def settings_for(self, role: str) -> dict[str, Any]:
         """The effective model/temperature/max_tokens of a role (for the record)."""
         s = getattr(self.client, "settings", None)
-        out = {"model": getattr(s, "model", None), "temperature": getattr(s, "temperature", None),
-               "max_tokens": getattr(s, "max_tokens", None)}
+        out = {
+            "model": getattr(s, "model", None),
+            "temperature": getattr(s, "temperature", None),
+            "max_tokens": getattr(s, "max_tokens", None),
+        }
         out.update(self.roles.get(role, {}))
         return out
 
@@ -80,9 +89,9 @@ class Asked:
     value: Any = None
     attempts: list[dict] = field(default_factory=list)
     messages: list[dict] = field(default_factory=list)
-    error: str | None = None          # why there is no value (last problem or the LLM error)
+    error: str | None = None  # why there is no value (last problem or the LLM error)
     budget_exceeded: bool = False
-    llm_failed: bool = False          # an LLMError (not a bad answer) ended the asking
+    llm_failed: bool = False  # an LLMError (not a bad answer) ended the asking
     out_of_time: bool = False
 
     @property
@@ -94,8 +103,16 @@ class Asked:
         return {"ok": self.ok, "error": self.error, "attempts": self.attempts, "messages": self.messages}
 
 
-async def ask(llm: Any, messages: list[dict], *, role: str, parse: Callable[[Any], Any], attempts: int = 3,
-              retry: Callable[[str], str] | None = None, deadline: float | None = None) -> Asked:
+async def ask(
+    llm: Any,
+    messages: list[dict],
+    *,
+    role: str,
+    parse: Callable[[Any], Any],
+    attempts: int = 3,
+    retry: Callable[[str], str] | None = None,
+    deadline: float | None = None,
+) -> Asked:
     """Call until `parse(answer)` returns a value (it raises ValueError with the problem otherwise)."""
     out = Asked(messages=list(messages))
     if llm is None:
@@ -112,8 +129,9 @@ async def ask(llm: Any, messages: list[dict], *, role: str, parse: Callable[[Any
             call = llm.complete(msgs, role=role)
             answer = await (call if left is None else asyncio.wait_for(call, timeout=left))
         except asyncio.TimeoutError:
-            out.attempts.append({"error": "the game ended before the answer came",
-                                 "latency_s": round(time.monotonic() - t0, 3)})
+            out.attempts.append(
+                {"error": "the game ended before the answer came", "latency_s": round(time.monotonic() - t0, 3)}
+            )
             out.error, out.out_of_time = "the game ended before the answer came", True
             break
         except LLMError as exc:
@@ -121,8 +139,13 @@ async def ask(llm: Any, messages: list[dict], *, role: str, parse: Callable[[Any
             out.error, out.llm_failed = f"{type(exc).__name__}: {exc}", True
             out.budget_exceeded = isinstance(exc, BudgetExceeded)
             break
-        entry = {"answer": answer.text, "finish_reason": answer.finish_reason, "latency_s": answer.latency_s,
-                 "input_tokens": answer.input_tokens, "output_tokens": answer.output_tokens}
+        entry = {
+            "answer": answer.text,
+            "finish_reason": answer.finish_reason,
+            "latency_s": answer.latency_s,
+            "input_tokens": answer.input_tokens,
+            "output_tokens": answer.output_tokens,
+        }
         out.attempts.append(entry)
         try:
             out.value = parse(answer)

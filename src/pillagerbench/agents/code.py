@@ -21,26 +21,92 @@ import atexit
 import json
 import subprocess
 import threading
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
 
 from pillagerbench.players import primitives as prim
 
 # What agent code may reference without defining it: the sandbox's names (see js/bot/sandbox.js)
-SANDBOX_NAMES = frozenset({
-    "bot", "mcData", "Vec3", "Movements", "setTimeout", "clearTimeout", "setInterval", "clearInterval", "console",
-    "GoalNear", "GoalBlock", "GoalXZ", "GoalNearXZ", "GoalY", "GoalGetToBlock", "GoalLookAtBlock", "GoalPlaceBlock",
-    "GoalBreakBlock", "GoalFollow", "GoalCompositeAny", "GoalCompositeAll", "GoalInvert",
-})
+SANDBOX_NAMES = frozenset(
+    {
+        "bot",
+        "mcData",
+        "Vec3",
+        "Movements",
+        "setTimeout",
+        "clearTimeout",
+        "setInterval",
+        "clearInterval",
+        "console",
+        "GoalNear",
+        "GoalBlock",
+        "GoalXZ",
+        "GoalNearXZ",
+        "GoalY",
+        "GoalGetToBlock",
+        "GoalLookAtBlock",
+        "GoalPlaceBlock",
+        "GoalBreakBlock",
+        "GoalFollow",
+        "GoalCompositeAny",
+        "GoalCompositeAll",
+        "GoalInvert",
+    }
+)
 # ... and the ECMAScript built-ins every vm context has
-JS_BUILTINS = frozenset({
-    "Array", "ArrayBuffer", "BigInt", "Boolean", "DataView", "Date", "Error", "EvalError", "Float32Array",
-    "Float64Array", "Int8Array", "Int16Array", "Int32Array", "Intl", "JSON", "Map", "Math", "Number", "Object",
-    "Promise", "Proxy", "RangeError", "ReferenceError", "Reflect", "RegExp", "Set", "String", "Symbol",
-    "SyntaxError", "TypeError", "URIError", "Uint8Array", "Uint8ClampedArray", "Uint16Array", "Uint32Array",
-    "WeakMap", "WeakSet", "AggregateError", "decodeURI", "decodeURIComponent", "encodeURI", "encodeURIComponent",
-    "isFinite", "isNaN", "parseFloat", "parseInt", "structuredClone", "queueMicrotask", "globalThis",
-})
+JS_BUILTINS = frozenset(
+    {
+        "Array",
+        "ArrayBuffer",
+        "BigInt",
+        "Boolean",
+        "DataView",
+        "Date",
+        "Error",
+        "EvalError",
+        "Float32Array",
+        "Float64Array",
+        "Int8Array",
+        "Int16Array",
+        "Int32Array",
+        "Intl",
+        "JSON",
+        "Map",
+        "Math",
+        "Number",
+        "Object",
+        "Promise",
+        "Proxy",
+        "RangeError",
+        "ReferenceError",
+        "Reflect",
+        "RegExp",
+        "Set",
+        "String",
+        "Symbol",
+        "SyntaxError",
+        "TypeError",
+        "URIError",
+        "Uint8Array",
+        "Uint8ClampedArray",
+        "Uint16Array",
+        "Uint32Array",
+        "WeakMap",
+        "WeakSet",
+        "AggregateError",
+        "decodeURI",
+        "decodeURIComponent",
+        "encodeURI",
+        "encodeURIComponent",
+        "isFinite",
+        "isNaN",
+        "parseFloat",
+        "parseInt",
+        "structuredClone",
+        "queueMicrotask",
+        "globalThis",
+    }
+)
 
 _PARSER_JS = r"""
 const acorn = require('acorn')
@@ -151,16 +217,16 @@ class ParsedJS:
     line: int | None = None
     column: int | None = None
     functions: tuple[JSFunction, ...] = ()
-    others: tuple[dict, ...] = ()          # top-level statements that are not function declarations
-    calls: tuple[str, ...] = ()            # plain identifiers called anywhere: foo(...), new Foo(...)
-    members: tuple[str, ...] = ()          # member calls: "bot.chat", "bot.pathfinder.goto", "x[]"
-    declared: tuple[str, ...] = ()         # every name bound anywhere (functions, variables, params)
+    others: tuple[dict, ...] = ()  # top-level statements that are not function declarations
+    calls: tuple[str, ...] = ()  # plain identifiers called anywhere: foo(...), new Foo(...)
+    members: tuple[str, ...] = ()  # member calls: "bot.chat", "bot.pathfinder.goto", "x[]"
+    declared: tuple[str, ...] = ()  # every name bound anywhere (functions, variables, params)
 
 
 class JSParser:
     """A long-lived Node process parsing JavaScript with acorn. Thread-safe; restarts if it dies."""
 
-    _shared: "JSParser | None" = None
+    _shared: JSParser | None = None
     _shared_lock = threading.Lock()
 
     def __init__(self) -> None:
@@ -169,7 +235,7 @@ class JSParser:
         self._next_id = 0
 
     @classmethod
-    def shared(cls) -> "JSParser":
+    def shared(cls) -> JSParser:
         with cls._shared_lock:
             if cls._shared is None:
                 cls._shared = JSParser()
@@ -179,19 +245,29 @@ class JSParser:
     def _start(self) -> subprocess.Popen:
         from pillagerbench.node import node_binary, node_env
 
-        return subprocess.Popen([str(node_binary()), "-e", _PARSER_JS], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                stderr=subprocess.DEVNULL, env=node_env(), text=True, encoding="utf-8", bufsize=1)
+        return subprocess.Popen(
+            [str(node_binary()), "-e", _PARSER_JS],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            env=node_env(),
+            text=True,
+            encoding="utf-8",
+            bufsize=1,
+        )
 
     def parse(self, code: str) -> ParsedJS:
         with self._lock:
-            for attempt in range(2):
+            for _attempt in range(2):
                 if self._proc is None or self._proc.poll() is not None:
                     self._proc = self._start()
                 self._next_id += 1
+                stdin, stdout = self._proc.stdin, self._proc.stdout
+                assert stdin is not None and stdout is not None  # _start opens both as pipes
                 try:
-                    self._proc.stdin.write(json.dumps({"id": self._next_id, "code": code}) + "\n")
-                    self._proc.stdin.flush()
-                    line = self._proc.stdout.readline()
+                    stdin.write(json.dumps({"id": self._next_id, "code": code}) + "\n")
+                    stdin.flush()
+                    line = stdout.readline()
                 except (BrokenPipeError, OSError):
                     line = ""
                 if line:
@@ -204,16 +280,22 @@ class JSParser:
             return ParsedJS(False, data.get("error"), data.get("line"), data.get("column"))
         return ParsedJS(
             True,
-            functions=tuple(JSFunction(f["name"], f["async"], tuple(f["params"]), f["start"], f["end"], f["line"])
-                            for f in data["functions"]),
-            others=tuple(data["others"]), calls=tuple(data["calls"]), members=tuple(data["members"]),
-            declared=tuple(data["declared"]))
+            functions=tuple(
+                JSFunction(f["name"], f["async"], tuple(f["params"]), f["start"], f["end"], f["line"])
+                for f in data["functions"]
+            ),
+            others=tuple(data["others"]),
+            calls=tuple(data["calls"]),
+            members=tuple(data["members"]),
+            declared=tuple(data["declared"]),
+        )
 
     def close_locked(self) -> None:
         proc, self._proc = self._proc, None
         if proc is not None:
             try:
-                proc.stdin.close()
+                if proc.stdin is not None:
+                    proc.stdin.close()
             except OSError:
                 pass
             try:
@@ -223,7 +305,8 @@ class JSParser:
                 pass
             for stream in (proc.stdout,):
                 try:
-                    stream.close()
+                    if stream is not None:
+                        stream.close()
                 except OSError:
                     pass
 
@@ -249,8 +332,8 @@ def extract_code_blocks(text: str, languages: Iterable[str] = ("javascript", "js
     while i < len(lines):
         stripped = lines[i].strip()
         if stripped.startswith("```"):
-            fence = stripped[:len(stripped) - len(stripped.lstrip("`"))]
-            tag = stripped[len(fence):].strip().split(" ")[0].lower()
+            fence = stripped[: len(stripped) - len(stripped.lstrip("`"))]
+            tag = stripped[len(fence) :].strip().split(" ")[0].lower()
             body: list[str] = []
             j = i + 1
             while j < len(lines) and not (lines[j].strip().startswith(fence) and lines[j].strip().strip("`") == ""):
@@ -273,12 +356,12 @@ def extract_code_blocks(text: str, languages: Iterable[str] = ("javascript", "js
 class Program:
     """One player's checked code."""
 
-    source: str                      # the block as the LLM wrote it
-    code: str                        # its top-level function declarations
-    entry: str                       # the entry point's name
+    source: str  # the block as the LLM wrote it
+    code: str  # its top-level function declarations
+    entry: str  # the entry point's name
     functions: tuple[str, ...]
-    primitives: tuple[str, ...]      # primitive functions it calls
-    dropped: tuple[str, ...] = ()    # top-level statements that were left out
+    primitives: tuple[str, ...]  # primitive functions it calls
+    dropped: tuple[str, ...] = ()  # top-level statements that were left out
     warnings: tuple[str, ...] = field(default_factory=tuple)
 
     @property
@@ -287,9 +370,15 @@ class Program:
         return f"{self.code}\n\nawait {self.entry}(bot);\n"
 
     def to_dict(self) -> dict:
-        return {"entry": self.entry, "functions": list(self.functions), "primitives": list(self.primitives),
-                "dropped": list(self.dropped), "warnings": list(self.warnings), "code": self.code,
-                "exec_code": self.exec_code}
+        return {
+            "entry": self.entry,
+            "functions": list(self.functions),
+            "primitives": list(self.primitives),
+            "dropped": list(self.dropped),
+            "warnings": list(self.warnings),
+            "code": self.code,
+            "exec_code": self.exec_code,
+        }
 
 
 def allowed_functions(allowed: Sequence[str] | None) -> set[str]:
@@ -297,8 +386,9 @@ def allowed_functions(allowed: Sequence[str] | None) -> set[str]:
     return set(prim.functions(list(allowed) if allowed is not None else None))
 
 
-def check_program(source: str, allowed: Sequence[str] | None = None, *, parser: JSParser | None = None,
-                  reject_undefined: bool = True) -> Program:
+def check_program(
+    source: str, allowed: Sequence[str] | None = None, *, parser: JSParser | None = None, reject_undefined: bool = True
+) -> Program:
     """Check one code block and make it a Program, or raise CodeError with the reason.
 
     `allowed`: the scenario's primitive modules (or function names); None allows every primitive."""
@@ -310,8 +400,9 @@ def check_program(source: str, allowed: Sequence[str] | None = None, *, parser: 
         raise CodeError(f"the code does not parse: {parsed.error}{where}")
     entries = [f for f in parsed.functions if f.is_async and f.params and f.params[0] == "bot"]
     if not entries:
-        raise CodeError("no entry point: the code needs a top-level `async function` taking `bot` "
-                        "(the last one is run)")
+        raise CodeError(
+            "no entry point: the code needs a top-level `async function` taking `bot` (the last one is run)"
+        )
     entry = entries[-1]
     every_primitive = allowed_functions(None)
     usable = allowed_functions(allowed)
@@ -319,23 +410,35 @@ def check_program(source: str, allowed: Sequence[str] | None = None, *, parser: 
     top = {f.name for f in parsed.functions}
     forbidden = sorted(c for c in parsed.calls if c in every_primitive and c not in usable and c not in top)
     if forbidden:
-        raise CodeError(f"calls primitive(s) not available in this scenario: {', '.join(forbidden)} "
-                        f"(available: {', '.join(sorted(usable))})")
-    unknown = sorted(c for c in parsed.calls
-                     if c not in every_primitive and c not in defined and c not in SANDBOX_NAMES and c not in JS_BUILTINS)
+        raise CodeError(
+            f"calls primitive(s) not available in this scenario: {', '.join(forbidden)} "
+            f"(available: {', '.join(sorted(usable))})"
+        )
+    unknown = sorted(
+        c
+        for c in parsed.calls
+        if c not in every_primitive and c not in defined and c not in SANDBOX_NAMES and c not in JS_BUILTINS
+    )
     warnings: list[str] = []
     if unknown:
         msg = f"calls function(s) defined nowhere: {', '.join(unknown)}"
         if reject_undefined:
             raise CodeError(msg)
         warnings.append(msg)
-    code = "\n\n".join(source[f.start:f.end] for f in parsed.functions)
+    code = "\n\n".join(source[f.start : f.end] for f in parsed.functions)
     dropped = tuple(f"line {o['line']}: {o['text']}" for o in parsed.others)
     if dropped:
         warnings.append(f"{len(dropped)} top-level statement(s) outside functions were left out")
     used = tuple(sorted(c for c in parsed.calls if c in usable and c not in top))
-    return Program(source=source, code=code, entry=entry.name, functions=tuple(f.name for f in parsed.functions),
-                   primitives=used, dropped=dropped, warnings=tuple(warnings))
+    return Program(
+        source=source,
+        code=code,
+        entry=entry.name,
+        functions=tuple(f.name for f in parsed.functions),
+        primitives=used,
+        dropped=dropped,
+        warnings=tuple(warnings),
+    )
 
 
 @dataclass
@@ -343,7 +446,7 @@ class ProgramsResult:
     """Per player: a Program or None, and why not."""
 
     programs: list[Program | None]
-    problems: list[str]               # one line per problem, naming the player
+    problems: list[str]  # one line per problem, naming the player
     blocks: list[str]
 
     @property
@@ -355,8 +458,14 @@ class ProgramsResult:
         return sum(p is not None for p in self.programs)
 
 
-def programs_from_answer(text: str, players: Sequence[str], allowed: Sequence[str] | None = None, *,
-                         parser: JSParser | None = None, reject_undefined: bool = True) -> ProgramsResult:
+def programs_from_answer(
+    text: str,
+    players: Sequence[str],
+    allowed: Sequence[str] | None = None,
+    *,
+    parser: JSParser | None = None,
+    reject_undefined: bool = True,
+) -> ProgramsResult:
     """Code block k is player k's program. Missing or bad blocks leave that player with None."""
     blocks = extract_code_blocks(text)
     programs: list[Program | None] = []
@@ -366,8 +475,9 @@ def programs_from_answer(text: str, players: Sequence[str], allowed: Sequence[st
     elif len(blocks) < len(players):
         problems.append(f"the answer has {len(blocks)} code block(s) for {len(players)} players")
     elif len(blocks) > len(players):
-        problems.append(f"the answer has {len(blocks)} code blocks for {len(players)} players; the extra ones "
-                        "were ignored")
+        problems.append(
+            f"the answer has {len(blocks)} code blocks for {len(players)} players; the extra ones were ignored"
+        )
     for k, name in enumerate(players):
         if k >= len(blocks):
             programs.append(None)

@@ -14,11 +14,12 @@ with a readable stand-in ("none") when there is nothing to show.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from pillagerbench.players import events as ev
-from pillagerbench.players.events import last_observation  # re-exported for agents
+from pillagerbench.players.events import last_observation as last_observation  # re-exported for agents
 
 NONE = "none"
 
@@ -38,8 +39,10 @@ def nearby_blocks(obs: Mapping[str, Any], *, records: bool = False) -> str:
 def nearby_entities(obs: Mapping[str, Any]) -> str:
     """Mobs within 32 blocks, nearest first: "cow (3.2 blocks away), chicken (5 blocks away)"."""
     ents = (obs.get("status") or {}).get("entities") or {}
-    return ", ".join(f"{name} ({_fmt(float(d))} blocks away)" for name, d in sorted(ents.items(), key=lambda kv: kv[1])) \
+    return (
+        ", ".join(f"{name} ({_fmt(float(d))} blocks away)" for name, d in sorted(ents.items(), key=lambda kv: kv[1]))
         or NONE
+    )
 
 
 def inventory_text(obs: Mapping[str, Any]) -> str:
@@ -85,11 +88,19 @@ def chests_text(obs: Mapping[str, Any]) -> str:
 
 def observation_text(obs: Mapping[str, Any]) -> str:
     """Everything above in one block (for a prompt about a single player)."""
-    return "\n".join([status_text(obs), f"Inventory: {inventory_text(obs)}", f"Nearby blocks: {nearby_blocks(obs)}",
-                      f"Nearby entities: {nearby_entities(obs)}", f"Nearby chests: {chests_text(obs)}"])
+    return "\n".join(
+        [
+            status_text(obs),
+            f"Inventory: {inventory_text(obs)}",
+            f"Nearby blocks: {nearby_blocks(obs)}",
+            f"Nearby entities: {nearby_entities(obs)}",
+            f"Nearby chests: {chests_text(obs)}",
+        ]
+    )
 
 
 # --- events of an episode ----------------------------------------------------------------------
+
 
 def read_events(path: str | Path) -> list[list]:
     """One player's events from a JSONL file (missing file: no events; a torn last line is skipped)."""
@@ -113,7 +124,7 @@ def episode_events(last_episode: Mapping[str, Any] | None, players: Iterable[str
 
 def _speaker(line: str) -> str | None:
     if line.startswith("<") and ">" in line:
-        return line[1:line.index(">")]
+        return line[1 : line.index(">")]
     return None
 
 
@@ -134,12 +145,15 @@ def compress_chat(events: Sequence[list], agents: Iterable[str]) -> list[list]:
         n, i = len(msgs), 0
         while i < n:
             for length in range(1, (n - i) // 2 + 1):
-                block = msgs[i:i + length]
-                if block == msgs[i + length:i + 2 * length]:
+                block = msgs[i : i + length]
+                if block == msgs[i + length : i + 2 * length]:
                     copies = 2
-                    while i + (copies + 1) * length <= n and msgs[i + copies * length:i + (copies + 1) * length] == block:
+                    while (
+                        i + (copies + 1) * length <= n
+                        and msgs[i + copies * length : i + (copies + 1) * length] == block
+                    ):
                         copies += 1
-                    drop.update(idxs[i + length:i + copies * length])
+                    drop.update(idxs[i + length : i + copies * length])
                     i += copies * length
                     break
             else:

@@ -28,10 +28,10 @@ class PromptTemplate:
     name: str = "<prompt>"
 
     @classmethod
-    def load(cls, path: str | Path) -> "PromptTemplate":
+    def load(cls, path: str | Path) -> PromptTemplate:
         path = Path(path)
         tpl = cls(path.read_text(encoding="utf-8"), path.name)
-        tpl.placeholders  # validate early: a bad `$` fails at load time
+        _ = tpl.placeholders  # validate early: a bad `$` fails at load time
         return tpl
 
     @property

@@ -10,7 +10,8 @@ from __future__ import annotations
 import asyncio
 import itertools
 import json
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 
 class ControlError(RuntimeError):
@@ -22,8 +23,9 @@ class ChannelClosed(ControlError):
 
 
 class ControlChannel:
-    def __init__(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter,
-                 on_close: Callable[[], str] | None = None):
+    def __init__(
+        self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter, on_close: Callable[[], str] | None = None
+    ):
         self._reader, self._writer = reader, writer
         self._ids = itertools.count(1)
         self._pending: dict[int, asyncio.Future] = {}
@@ -89,11 +91,14 @@ class ControlChannel:
                     fut.set_exception(ControlError(msg.get("error", "unknown error")))
         except (ConnectionError, asyncio.IncompleteReadError):
             pass
-        except Exception as exc:  # e.g. a line over the reader's limit: say so instead of dying silently
+        except Exception as exc:  # noqa: BLE001 - e.g. a line over the reader's limit: say so instead of dying silently
             self._failure = f"control channel failed: {type(exc).__name__}: {exc}"
         finally:
-            self._closed_reason = (getattr(self, "_failure", None) or (self._on_close() if self._on_close else None)
-                                   or "control channel closed")
+            self._closed_reason = (
+                getattr(self, "_failure", None)
+                or (self._on_close() if self._on_close else None)
+                or "control channel closed"
+            )
             err = ChannelClosed(self._closed_reason)
             for fut in self._pending.values():
                 if not fut.done():
@@ -106,6 +111,6 @@ class ControlChannel:
     async def close(self) -> None:
         try:
             self._writer.close()
-        except Exception:
+        except Exception:  # noqa: BLE001 - closing a transport that may already be gone
             pass
         self._task.cancel()

@@ -35,29 +35,48 @@ class ArenaServerError(RuntimeError):
 
 class ArenaServer:
     @classmethod
-    def from_config(cls, server_cfg, log_path: str | Path | None = None) -> "ArenaServer":
+    def from_config(cls, server_cfg, log_path: str | Path | None = None) -> ArenaServer:
         """Build from the `server` section of the Hydra config."""
         log_dir = server_cfg.get("log_dir")
-        return cls(host=server_cfg.host, port=int(server_cfg.port),
-                   log_path=log_path or (Path(log_dir) / "server.log" if log_dir else None),
-                   view_distance=int(server_cfg.view_distance), crop_growth_chance=float(server_cfg.crop_growth_chance),
-                   tps=int(server_cfg.tps), operators=list(server_cfg.operators))
+        return cls(
+            host=server_cfg.host,
+            port=int(server_cfg.port),
+            log_path=log_path or (Path(log_dir) / "server.log" if log_dir else None),
+            view_distance=int(server_cfg.view_distance),
+            crop_growth_chance=float(server_cfg.crop_growth_chance),
+            tps=int(server_cfg.tps),
+            operators=list(server_cfg.operators),
+        )
 
-    def __init__(self, host: str = "127.0.0.1", port: int = 0, log_path: str | Path | None = None,
-                 view_distance: int = 4, crop_growth_chance: float = 0.2, tps: int = 20,
-                 operators: list[str] | None = None):
+    def __init__(
+        self,
+        host: str = "127.0.0.1",
+        port: int = 0,
+        log_path: str | Path | None = None,
+        view_distance: int = 4,
+        crop_growth_chance: float = 0.2,
+        tps: int = 20,
+        operators: list[str] | None = None,
+    ):
         self.host = host
         self.requested_port = port
         self.port: int | None = None
-        self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
-        self.settings = {"host": host, "port": port, "viewDistance": view_distance,
-                         "cropGrowthChance": crop_growth_chance, "tps": tps,
-                         "operators": list(operators or [])}
+        self.log_path = (
+            Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
+        )
+        self.settings = {
+            "host": host,
+            "port": port,
+            "viewDistance": view_distance,
+            "cropGrowthChance": crop_growth_chance,
+            "tps": tps,
+            "operators": list(operators or []),
+        }
         self.process: asyncio.subprocess.Process | None = None
         self.control: ControlChannel | None = None
         self.ready_seconds: float | None = None
 
-    async def start(self, timeout: float = 30) -> "ArenaServer":
+    async def start(self, timeout: float = 30) -> ArenaServer:
         self.log_path.parent.mkdir(parents=True, exist_ok=True)
         parent_sock, child_sock = socket.socketpair()
         env = node_env()
@@ -65,9 +84,15 @@ class ArenaServer:
         t0 = time.perf_counter()
         with open(self.log_path, "ab") as log:
             self.process = await asyncio.create_subprocess_exec(
-                str(node_binary()), str(MAIN_JS), json.dumps(settings),
-                stdin=asyncio.subprocess.DEVNULL, stdout=log, stderr=asyncio.subprocess.STDOUT,
-                pass_fds=(child_sock.fileno(),), env=env, start_new_session=True,
+                str(node_binary()),
+                str(MAIN_JS),
+                json.dumps(settings),
+                stdin=asyncio.subprocess.DEVNULL,
+                stdout=log,
+                stderr=asyncio.subprocess.STDOUT,
+                pass_fds=(child_sock.fileno(),),
+                env=env,
+                start_new_session=True,
             )
         child_sock.close()
         reader, writer = await asyncio.open_unix_connection(sock=parent_sock, limit=MAX_LINE)
@@ -76,8 +101,10 @@ class ArenaServer:
             ready = await asyncio.wait_for(asyncio.shield(self.control.ready), timeout)
         except asyncio.TimeoutError:
             await self.stop()
-            raise ArenaServerError(f"arena server not ready within {timeout} s; log: {self.log_path}\n{self.log_tail()}") from None
-        except Exception as exc:
+            raise ArenaServerError(
+                f"arena server not ready within {timeout} s; log: {self.log_path}\n{self.log_tail()}"
+            ) from None
+        except Exception as exc:  # noqa: BLE001 - any start failure becomes ArenaServerError
             await self.stop()
             raise ArenaServerError(f"arena server failed to start: {exc}") from None
         self.port = int(ready["port"])
@@ -92,8 +119,7 @@ class ArenaServer:
                 code = os.waitstatus_to_exitcode(status) if pid else None
             except ChildProcessError:
                 pass
-        return (f"arena server process ended (exit code {code}); log: {self.log_path}\n"
-                f"{self.log_tail()}")
+        return f"arena server process ended (exit code {code}); log: {self.log_path}\n{self.log_tail()}"
 
     def log_tail(self, lines: int = 15) -> str:
         try:
@@ -126,7 +152,7 @@ class ArenaServer:
                 pass
             await proc.wait()
 
-    async def __aenter__(self) -> "ArenaServer":
+    async def __aenter__(self) -> ArenaServer:
         return await self.start()
 
     async def __aexit__(self, *exc) -> None:

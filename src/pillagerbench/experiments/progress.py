@@ -32,9 +32,20 @@ def fmt_duration(seconds: float | None) -> str:
 
 
 class ExperimentProgress:
-    def __init__(self, run_dir: Path, specs: list, title: str, *, parallel: int = 1, mode: str = "auto",
-                 episode_length: float = 120.0, interval: float = 1.0, plain_every: float = 60.0,
-                 stream=None, dirs: dict[str, Path] | None = None):
+    def __init__(
+        self,
+        run_dir: Path,
+        specs: list,
+        title: str,
+        *,
+        parallel: int = 1,
+        mode: str = "auto",
+        episode_length: float = 120.0,
+        interval: float = 1.0,
+        plain_every: float = 60.0,
+        stream=None,
+        dirs: dict[str, Path] | None = None,
+    ):
         self.dirs = dirs or {}
         self.run_dir, self.specs, self.title = Path(run_dir), specs, title
         self.parallel, self.episode_length = max(1, parallel), float(episode_length)
@@ -91,8 +102,14 @@ class ExperimentProgress:
             eta = remaining * elapsed / new
         else:  # no episode finished yet in this session: a guess from the episode length
             eta = remaining * (self.episode_length + 6.0) / min(self.parallel, max(1, len(self.specs)))
-        return {"done": done, "total": self.total, "failed": failed, "running": running, "eta_s": eta,
-                "elapsed_s": elapsed}
+        return {
+            "done": done,
+            "total": self.total,
+            "failed": failed,
+            "running": running,
+            "eta_s": eta,
+            "elapsed_s": elapsed,
+        }
 
     # -- rendering -------------------------------------------------------------------------------
     def _table(self, snap: dict) -> Table:
@@ -100,9 +117,13 @@ class ExperimentProgress:
         for col in ("series", "episode", "clock", "red", "blue"):
             table.add_column(col, justify="left" if col == "series" else "right")
         for spec, live in snap["running"]:
-            table.add_row(f"{spec.red} vs {spec.blue} ({spec.scenario})", f"{live.get('episode', 0) + 1}/{spec.episodes}",
-                          f"{live.get('t', 0):.0f}/{live.get('length', 0):.0f} s", f"{live.get('red', 0):g}",
-                          f"{live.get('blue', 0):g}")
+            table.add_row(
+                f"{spec.red} vs {spec.blue} ({spec.scenario})",
+                f"{live.get('episode', 0) + 1}/{spec.episodes}",
+                f"{live.get('t', 0):.0f}/{live.get('length', 0):.0f} s",
+                f"{live.get('red', 0):g}",
+                f"{live.get('blue', 0):g}",
+            )
         return table
 
     def _plain(self, snap: dict, force: bool = False) -> None:
@@ -111,24 +132,35 @@ class ExperimentProgress:
             seen = self._reported.get(spec.id, 0)
             for i in sorted(fin)[seen:]:
                 r = fin[i]
-                print(f"[{snap['done']}/{snap['total']}] {spec.id} episode {i}: red {spec.red} {r.get('red_score')} - "
-                      f"blue {spec.blue} {r.get('blue_score')} ({r.get('winner') or r.get('status')})",
-                      file=self.stream, flush=True)
+                print(
+                    f"[{snap['done']}/{snap['total']}] {spec.id} episode {i}: red {spec.red} {r.get('red_score')} - "
+                    f"blue {spec.blue} {r.get('blue_score')} ({r.get('winner') or r.get('status')})",
+                    file=self.stream,
+                    flush=True,
+                )
             self._reported[spec.id] = len(fin)
         now = time.monotonic()
         if force or now - self._last_plain >= self.plain_every:
             self._last_plain = now
-            playing = "; ".join(f"{s.red} vs {s.blue} ep {lv.get('episode')} t={lv.get('t', 0):.0f}s "
-                                f"{lv.get('red', 0):g}-{lv.get('blue', 0):g}" for s, lv in snap["running"])
-            print(f"{self.title}: {snap['done']}/{snap['total']} episodes ({snap['failed']} failed), "
-                  f"elapsed {fmt_duration(snap['elapsed_s'])}, ETA {fmt_duration(snap['eta_s'])}"
-                  + (f"; playing: {playing}" if playing else ""), file=self.stream, flush=True)
+            playing = "; ".join(
+                f"{s.red} vs {s.blue} ep {lv.get('episode')} t={lv.get('t', 0):.0f}s "
+                f"{lv.get('red', 0):g}-{lv.get('blue', 0):g}"
+                for s, lv in snap["running"]
+            )
+            print(
+                f"{self.title}: {snap['done']}/{snap['total']} episodes ({snap['failed']} failed), "
+                f"elapsed {fmt_duration(snap['elapsed_s'])}, ETA {fmt_duration(snap['eta_s'])}"
+                + (f"; playing: {playing}" if playing else ""),
+                file=self.stream,
+                flush=True,
+            )
 
     def update(self, force: bool = False) -> dict:
         snap = self.snapshot()
-        if self._progress is not None:
-            self._progress.update(self._bar, completed=snap["done"],
-                                  eta=fmt_duration(snap["eta_s"]), failed=snap["failed"])
+        if self._progress is not None and self._live is not None:
+            self._progress.update(
+                self._bar, completed=snap["done"], eta=fmt_duration(snap["eta_s"]), failed=snap["failed"]
+            )
             self._live.update(Group(self._progress, self._table(snap)))
         else:
             self._plain(snap, force)
@@ -139,23 +171,38 @@ class ExperimentProgress:
             self.update()
             await asyncio.sleep(self.interval)
 
-    def __enter__(self) -> "ExperimentProgress":
+    def __enter__(self) -> ExperimentProgress:
         snap = self.snapshot()
         for spec in self.specs:
             self._reported[spec.id] = len(self.finished(spec))
         if self.live_mode:
-            self._progress = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                                      TextColumn("episodes, {task.fields[failed]} failed"), TimeElapsedColumn(),
-                                      TextColumn("ETA {task.fields[eta]}"), console=Console(file=self.stream))
-            self._bar = self._progress.add_task(self.title, total=self.total, completed=snap["done"],
-                                                eta=fmt_duration(snap["eta_s"]), failed=snap["failed"])
-            self._live = Live(Group(self._progress, self._table(snap)), console=Console(file=self.stream),
-                              refresh_per_second=2)
+            self._progress = Progress(
+                TextColumn("[bold]{task.description}"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TextColumn("episodes, {task.fields[failed]} failed"),
+                TimeElapsedColumn(),
+                TextColumn("ETA {task.fields[eta]}"),
+                console=Console(file=self.stream),
+            )
+            self._bar = self._progress.add_task(
+                self.title,
+                total=self.total,
+                completed=snap["done"],
+                eta=fmt_duration(snap["eta_s"]),
+                failed=snap["failed"],
+            )
+            self._live = Live(
+                Group(self._progress, self._table(snap)), console=Console(file=self.stream), refresh_per_second=2
+            )
             self._live.__enter__()
         else:
             self._last_plain = time.monotonic()
-            print(f"{self.title}: {snap['done']}/{snap['total']} episodes already done; "
-                  f"{len(self.specs)} series", file=self.stream, flush=True)
+            print(
+                f"{self.title}: {snap['done']}/{snap['total']} episodes already done; {len(self.specs)} series",
+                file=self.stream,
+                flush=True,
+            )
         self._task = asyncio.get_running_loop().create_task(self._loop())
         return self
 

@@ -32,8 +32,7 @@ class RayLauncher:
         self.ray = ray
         self.started = not ray.is_initialized()
         if self.started:
-            ray.init(address=address or None, include_dashboard=False, log_to_driver=True,
-                     configure_logging=False)
+            ray.init(address=address or None, include_dashboard=False, log_to_driver=True, configure_logging=False)
         self.remote = ray.remote(num_cpus=cpus_per_series, max_retries=0)(_play_series)
 
     def cpus(self) -> int:
@@ -49,6 +48,7 @@ class RayLauncher:
             except asyncio.CancelledError:
                 self.ray.cancel(ref, force=True)
                 raise
+
         return launch
 
     def close(self) -> None:

@@ -23,12 +23,10 @@ import os
 import shutil
 import time
 import traceback
+from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Awaitable, Callable
 
-from omegaconf import OmegaConf
-
-from pillagerbench.config import ConfigError
+from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import count_finished, run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
@@ -49,15 +47,25 @@ def make_experiment_dir(cfg) -> Path:
 
 def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec]) -> None:
     from pillagerbench import __version__
-    from pillagerbench.run import git_revision
+    from pillagerbench.manifest import git_revision
 
     run_dir.mkdir(parents=True, exist_ok=True)
-    top = OmegaConf.to_container(cfg, resolve=True)
-    data = {"name": cfg.experiment.name, "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-            "experiment": top["experiment"], "overrides": list(argv), "series": [s.to_dict() for s in specs]}
+    top = to_dict(cfg)
+    data = {
+        "name": cfg.experiment.name,
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "experiment": top["experiment"],
+        "overrides": list(argv),
+        "series": [s.to_dict() for s in specs],
+    }
     (run_dir / "experiment.json").write_text(json.dumps(data, indent=1, default=str))
-    manifest = {"created": data["created"], "config": top, "versions": {"pillagerbench": __version__},
-                "git_revision": git_revision(), "experiment": cfg.experiment.name}
+    manifest = {
+        "created": data["created"],
+        "config": top,
+        "versions": {"pillagerbench": __version__},
+        "git_revision": git_revision(),
+        "experiment": cfg.experiment.name,
+    }
     (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
 
 
@@ -71,10 +79,19 @@ def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Pat
         config = json.loads((run_dir / "manifest.json").read_text())["config"]
         for k in RUNNER_KEYS:
             config.pop(k, None)
-        spec = SeriesSpec(id=run_dir.name, index=0, protocol="run", scenario=config["scenario"]["name"],
-                          red=config["red"]["name"], blue=config["blue"]["name"], red_team=config["red"]["name"],
-                          blue_team=config["blue"]["name"], episodes=int(config["episodes"]),
-                          seed=int(config["seed"]), config=config)
+        spec = SeriesSpec(
+            id=run_dir.name,
+            index=0,
+            protocol="run",
+            scenario=config["scenario"]["name"],
+            red=config["red"]["name"],
+            blue=config["blue"]["name"],
+            red_team=config["red"]["name"],
+            blue_team=config["blue"]["name"],
+            episodes=int(config["episodes"]),
+            seed=int(config["seed"]),
+            config=config,
+        )
         return "run", [spec], {spec.id: run_dir}
     raise ConfigError(f"resume={run_dir}: not a run directory (no experiment.json or manifest.json)")
 
@@ -87,22 +104,30 @@ def _comparable(spec: SeriesSpec) -> dict:
 
 def check_same(stored: list[SeriesSpec], rebuilt: list[SeriesSpec], run_dir: Path) -> None:
     if [s.id for s in stored] != [s.id for s in rebuilt]:
-        raise ConfigError(f"resume={run_dir}: this command builds other series than the run has "
-                          f"({len(rebuilt)} vs {len(stored)}; first stored {stored[0].id}, first now {rebuilt[0].id}); "
-                          "run the same command as the first time, or leave out experiment=... to use the stored one")
+        raise ConfigError(
+            f"resume={run_dir}: this command builds other series than the run has "
+            f"({len(rebuilt)} vs {len(stored)}; first stored {stored[0].id}, first now {rebuilt[0].id}); "
+            "run the same command as the first time, or leave out experiment=... to use the stored one"
+        )
     for a, b in zip(stored, rebuilt):
         da, db = _comparable(a), _comparable(b)
         if da != db:
             keys = sorted(k for k in set(da) | set(db) if da.get(k) != db.get(k))
             if keys == ["config"]:
-                keys = ["config." + k for k in sorted(set(da["config"]) | set(db["config"]))
-                        if da["config"].get(k) != db["config"].get(k)]
-            raise ConfigError(f"resume={run_dir}: series {a.id} differs from the stored one in {', '.join(keys)}; "
-                              "run the same command as the first time")
+                keys = [
+                    "config." + k
+                    for k in sorted(set(da["config"]) | set(db["config"]))
+                    if da["config"].get(k) != db["config"].get(k)
+                ]
+            raise ConfigError(
+                f"resume={run_dir}: series {a.id} differs from the stored one in {', '.join(keys)}; "
+                "run the same command as the first time"
+            )
 
 
-async def run_all(specs: list[SeriesSpec], dirs: dict[str, Path], parallel: int,
-                  launch: Callable[[SeriesSpec, Path], Awaitable[dict]]) -> dict[str, dict]:
+async def run_all(
+    specs: list[SeriesSpec], dirs: dict[str, Path], parallel: int, launch: Callable[[SeriesSpec, Path], Awaitable[dict]]
+) -> dict[str, dict]:
     """Run every unfinished series, at most `parallel` at once, each after the series it depends on."""
     results: dict[str, dict] = {}
     pending = {s.id: s for s in specs}
@@ -116,8 +141,12 @@ async def run_all(specs: list[SeriesSpec], dirs: dict[str, Path], parallel: int,
             for sid, s in list(pending.items()):
                 if len(running) >= parallel:
                     break
-                blocked = [d for d in s.after if results.get(d, {}).get("status") in ("error", "skipped")
-                           or (d not in results and d not in pending and d not in {r.id for r in running.values()})]
+                blocked = [
+                    d
+                    for d in s.after
+                    if results.get(d, {}).get("status") in ("error", "skipped")
+                    or (d not in results and d not in pending and d not in {r.id for r in running.values()})
+                ]
                 if blocked:
                     results[sid] = {"id": sid, "status": "skipped", "error": f"needs series {', '.join(blocked)}"}
                     pending.pop(sid)
@@ -139,8 +168,10 @@ async def run_all(specs: list[SeriesSpec], dirs: dict[str, Path], parallel: int,
                     dirs[s.id].mkdir(parents=True, exist_ok=True)
                     (dirs[s.id] / "series_error.txt").write_text(text)
                     results[s.id] = {"id": s.id, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
-                    print(f"[{s.id}] series failed: {type(exc).__name__}: {exc} (see {dirs[s.id] / 'series_error.txt'})",
-                          flush=True)
+                    print(
+                        f"[{s.id}] series failed: {type(exc).__name__}: {exc} (see {dirs[s.id] / 'series_error.txt'})",
+                        flush=True,
+                    )
     finally:
         for fut in running:
             fut.cancel()
@@ -152,6 +183,7 @@ async def run_all(specs: list[SeriesSpec], dirs: dict[str, Path], parallel: int,
 def local_launcher(run_dir: Path):
     async def launch(spec: SeriesSpec, series_dir: Path) -> dict:
         return await run_series(spec, series_dir, run_dir)
+
     return launch
 
 
@@ -170,11 +202,20 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
     else:
         raise ConfigError(f"launcher={launcher!r}: valid launchers are local, ray")
     length = float(specs[0].config.get("episode_length", 120)) if specs else 120.0
-    print(f"{title}: {len(specs)} series, {sum(s.episodes for s in specs)} episodes, "
-          f"{parallel} at once ({launcher})", flush=True)
+    print(
+        f"{title}: {len(specs)} series, {sum(s.episodes for s in specs)} episodes, {parallel} at once ({launcher})",
+        flush=True,
+    )
     try:
-        with ExperimentProgress(run_dir, specs, title, parallel=parallel, mode=str(cfg.get("display") or "auto"),
-                                episode_length=length, dirs=dirs):
+        with ExperimentProgress(
+            run_dir,
+            specs,
+            title,
+            parallel=parallel,
+            mode=str(cfg.get("display") or "auto"),
+            episode_length=length,
+            dirs=dirs,
+        ):
             return await run_all(specs, dirs, parallel, launch)
     finally:
         if closer:
@@ -215,7 +256,9 @@ def main_experiment(cfg, argv: list[str]) -> int:
         return 130
     errors = [r for r in results.values() if r["status"] in ("error", "skipped")]
     episodes = sum(count_finished(dirs[s.id]) for s in specs)
-    print(f"{episodes}/{sum(s.episodes for s in specs)} episodes finished; "
-          f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else ""))
+    print(
+        f"{episodes}/{sum(s.episodes for s in specs)} episodes finished; "
+        f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else "")
+    )
     print(f"run directory: {run_dir}")
     return 1 if errors else 0

@@ -22,40 +22,15 @@ import json
 import os
 import shutil
 import time
+from collections.abc import Callable
 from dataclasses import asdict
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from omegaconf import OmegaConf
 
+from pillagerbench.experiments.layout import EPISODES, LEDGER, checkpoint_dir, episode_dir, episode_index, state_dir
 from pillagerbench.experiments.spec import SeriesSpec
-
-EPISODES = "episodes.jsonl"
-LEDGER = "llm_calls.jsonl"
-
-
-def episode_dir(series_dir: Path, episode: int) -> Path:
-    return Path(series_dir) / f"episode_{episode:03d}"
-
-
-def state_dir(series_dir: Path, episode: int) -> Path:
-    return Path(series_dir) / "state" / f"episode_{episode:03d}"
-
-
-def checkpoint_dir(series_dir: Path, episode: int, side: str) -> Path:
-    return Path(series_dir) / "checkpoints" / f"episode_{episode:03d}" / side
-
-
-def _index(name: str) -> int | None:
-    try:
-        return int(name.split("_", 1)[1])
-    except (IndexError, ValueError):
-        return None
-
-
-def read_series_index(run_dir: Path) -> list[SeriesSpec]:
-    data = json.loads((Path(run_dir) / "experiment.json").read_text())
-    return [SeriesSpec.from_dict(s) for s in data["series"]]
 
 
 def read_finished(series_dir: Path) -> tuple[dict[int, dict], int, int]:
@@ -103,20 +78,22 @@ def recover(series_dir: Path) -> tuple[dict[int, dict], list[str]]:
             f.truncate(good)
         note.append(f"a torn last line of {EPISODES} ({len(tail)} bytes)")
     for d in sorted(series_dir.glob("episode_*")):
-        i = _index(d.name)
+        i = episode_index(d.name)
         if d.is_dir() and i is not None and i not in finished:
             _discard(series_dir, d, note)
     for parent in (series_dir / "state", series_dir / "checkpoints"):
         for d in sorted(parent.glob("episode_*")) if parent.exists() else []:
-            i = _index(d.name)
+            i = episode_index(d.name)
             if i is not None and i not in finished:
                 shutil.rmtree(d, ignore_errors=True)
     ledger = series_dir / LEDGER
     if ledger.exists():
         offset = 0
         if finished:
-            f = state_dir(series_dir, max(finished)) / "ledger_offset"
-            offset = int(f.read_text()) if f.exists() else ledger.stat().st_size  # older run: keep all
+            offset_file = state_dir(series_dir, max(finished)) / "ledger_offset"
+            offset = (
+                int(offset_file.read_text()) if offset_file.exists() else ledger.stat().st_size
+            )  # older run: keep all
         if ledger.stat().st_size > offset:
             data = ledger.read_bytes()
             (series_dir / "discarded").mkdir(exist_ok=True)
@@ -157,22 +134,30 @@ def _free_log_path(series_dir: Path) -> Path:
     return path
 
 
-async def run_series(spec: SeriesSpec, series_dir: Path, run_dir: Path | None = None, *,
-                     on_episode: Callable[[Any], None] | None = None, on_tick: Callable[[dict], None] | None = None,
-                     say: Callable[[str], None] = print) -> dict:
+async def run_series(
+    spec: SeriesSpec,
+    series_dir: Path,
+    run_dir: Path | None = None,
+    *,
+    on_episode: Callable[[Any], None] | None = None,
+    on_tick: Callable[[dict], None] | None = None,
+    say: Callable[[str], None] = print,
+) -> dict:
     """Play the unfinished episodes of a series. Returns {"id", "finished", "failed", "played"}."""
     from pillagerbench.arena import ArenaServer
+    from pillagerbench.llm.presets import make_llms
+    from pillagerbench.manifest import write_manifest
     from pillagerbench.match import Match
-    from pillagerbench.run import make_llms, team_options, write_manifest
     from pillagerbench.scenarios import make_scenario
-    from pillagerbench.teams import make_team
+    from pillagerbench.teams import team_from_config
 
     series_dir = Path(series_dir)
     series_dir.mkdir(parents=True, exist_ok=True)
     cfg = OmegaConf.create(spec.config)
     if not (series_dir / "series.json").exists() and run_dir is not None and Path(run_dir) != series_dir:
-        (series_dir / "series.json").write_text(json.dumps({k: v for k, v in spec.to_dict().items() if k != "config"},
-                                                           indent=1))
+        (series_dir / "series.json").write_text(
+            json.dumps({k: v for k, v in spec.to_dict().items() if k != "config"}, indent=1)
+        )
     finished, discarded = recover(series_dir)
     if discarded:
         say(f"[{spec.id}] resume: discarded {', '.join(discarded)}")
@@ -180,8 +165,7 @@ async def run_series(spec: SeriesSpec, series_dir: Path, run_dir: Path | None = 
     summary = {"id": spec.id, "played": 0}
     if remaining:
         scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
-        teams = {"red": make_team(cfg.red.name, scenario.key, **team_options(cfg.red)),
-                 "blue": make_team(cfg.blue.name, scenario.key, **team_options(cfg.blue))}
+        teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
         if finished:
             last = state_dir(series_dir, max(finished))
             for side, team in teams.items():
@@ -194,10 +178,24 @@ async def run_series(spec: SeriesSpec, series_dir: Path, run_dir: Path | None = 
         if not (series_dir / "manifest.json").exists():
             write_manifest(series_dir, cfg, scenario)
         else:
-            _append_line(series_dir / "resumes.jsonl", {"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-                                                         "finished": sorted(finished), "discarded": discarded})
-        await _play(spec, cfg, series_dir, scenario, teams, finished, remaining, on_episode, on_tick,
-                    ArenaServer, Match, make_llms)
+            _append_line(
+                series_dir / "resumes.jsonl",
+                {"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "finished": sorted(finished), "discarded": discarded},
+            )
+        await _play(
+            spec,
+            cfg,
+            series_dir,
+            scenario,
+            teams,
+            finished,
+            remaining,
+            on_episode,
+            on_tick,
+            ArenaServer,
+            Match,
+            make_llms,
+        )
         summary["played"] = len(remaining)
     finished, _, _ = read_finished(series_dir)
     summary["finished"] = len(finished)
@@ -205,8 +203,9 @@ async def run_series(spec: SeriesSpec, series_dir: Path, run_dir: Path | None = 
     return summary
 
 
-async def _play(spec, cfg, series_dir, scenario, teams, finished, remaining, on_episode, on_tick,
-                ArenaServer, Match, make_llms) -> None:
+async def _play(
+    spec, cfg, series_dir, scenario, teams, finished, remaining, on_episode, on_tick, ArenaServer, Match, make_llms
+) -> None:
     live = series_dir / "live.json"
 
     def tick(status: dict) -> None:
@@ -217,15 +216,19 @@ async def _play(spec, cfg, series_dir, scenario, teams, finished, remaining, on_
     server = ArenaServer.from_config(cfg.server, log_path=_free_log_path(series_dir))
     await server.start()
     llms = make_llms(cfg, teams, series_dir)
-    match = Match(server, scenario, teams, series_dir, episode_length=cfg.episode_length, seed=cfg.seed,
-                  on_tick=tick, llms=llms)
+    match = Match(
+        server, scenario, teams, series_dir, episode_length=cfg.episode_length, seed=cfg.seed, on_tick=tick, llms=llms
+    )
     ok = [i for i in sorted(finished) if finished[i].get("status") == "ok"]
     if ok:  # what the teams saw of the last episode before the kill
         last = episode_dir(series_dir, ok[-1])
         timeline = json.loads((last / "timeline.json").read_text()) if (last / "timeline.json").exists() else []
         for side in teams:
-            match.last_records[side] = {"record": finished[ok[-1]], "events_dir": str(last / "events"),
-                                        "timeline": timeline}
+            match.last_records[side] = {
+                "record": finished[ok[-1]],
+                "events_dir": str(last / "events"),
+                "timeline": timeline,
+            }
     try:
         await match.setup()
 
@@ -260,6 +263,6 @@ def _commit(spec: SeriesSpec, series_dir: Path, teams: dict, episode: int, rec) 
             shutil.copytree(state / side, target)
     _append_line(series_dir / EPISODES, asdict(rec))
     for old in (series_dir / "state").glob("episode_*"):
-        i = _index(old.name)
+        i = episode_index(old.name)
         if i is not None and i < episode:
             shutil.rmtree(old, ignore_errors=True)

@@ -17,6 +17,7 @@ Protocols (conf/experiment/*.yaml, key `protocol`):
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -24,7 +25,8 @@ from typing import Any
 
 from omegaconf import DictConfig, OmegaConf
 
-from pillagerbench.config import ConfigError, load_config
+from pillagerbench.config import ConfigError, load_config, to_dict
+from pillagerbench.experiments.layout import checkpoint_dir
 
 PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry")
 # keys of the top-level config that belong to the experiment machinery, not to one series
@@ -35,25 +37,25 @@ SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario"
 
 @dataclass
 class SeriesSpec:
-    id: str                       # unique in the experiment, also the series' directory name
+    id: str  # unique in the experiment, also the series' directory name
     index: int
     protocol: str
     scenario: str
-    red: str                      # the red row label (team name or variant label)
-    blue: str                     # the blue column label
+    red: str  # the red row label (team name or variant label)
+    blue: str  # the blue column label
     red_team: str
     blue_team: str
     episodes: int
     seed: int
-    config: dict[str, Any]        # full resolved config for this match
+    config: dict[str, Any]  # full resolved config for this match
     checkpoint: dict[str, Any] = field(default_factory=dict)  # side -> {"series": id, "episode": k} | {"path": p}
-    checkpoint_every: int | None = None   # keep checkpoints after episodes every, 2·every, ... (1-based count)
-    checkpoint_at: list[int] = field(default_factory=list)    # keep checkpoints after these episode indices
+    checkpoint_every: int | None = None  # keep checkpoints after episodes every, 2·every, ... (1-based count)
+    checkpoint_at: list[int] = field(default_factory=list)  # keep checkpoints after these episode indices
     variant: str | None = None
     repetition: int = 0
-    group: str | None = None      # e.g. "same"/"different" (adaptation), "after 5" (self-play evaluation)
+    group: str | None = None  # e.g. "same"/"different" (adaptation), "after 5" (self-play evaluation)
     group_x: float | None = None  # a number for the group (episodes of experience), for plots
-    episode_offset: int = 0       # episodes of experience before this series (learning curves)
+    episode_offset: int = 0  # episodes of experience before this series (learning curves)
 
     @property
     def after(self) -> list[str]:
@@ -68,7 +70,7 @@ class SeriesSpec:
         return asdict(self)
 
     @classmethod
-    def from_dict(cls, d: dict) -> "SeriesSpec":
+    def from_dict(cls, d: dict) -> SeriesSpec:
         return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
 
 
@@ -77,8 +79,9 @@ def builtin_teams(scenario: str) -> list[str]:
     from pillagerbench.teams import TEAMS
     from pillagerbench.teams.scripted import ScriptedTeam
 
-    return ["do_nothing"] + [n for n, c in TEAMS.items()
-                             if issubclass(c, ScriptedTeam) and c.scenarios and scenario in c.scenarios]
+    return ["do_nothing"] + [
+        n for n, c in TEAMS.items() if issubclass(c, ScriptedTeam) and c.scenarios and scenario in c.scenarios
+    ]
 
 
 def slug(text: str) -> str:
@@ -99,7 +102,8 @@ def check_overrides(argv: list[str]) -> list[str]:
             raise ConfigError(
                 f"{o!r}: an experiment chooses the scenario and both teams of each series itself; use "
                 "experiment.team=NAME, experiment.team_options.KEY=VALUE, experiment.scenarios=[...], "
-                "experiment.opponents=[...] (round robins: experiment.red_teams / experiment.blue_teams)")
+                "experiment.opponents=[...] (round robins: experiment.red_teams / experiment.blue_teams)"
+            )
         if top in RUNNER_KEYS or key == "experiment":
             continue
         keep.append(o)
@@ -127,8 +131,12 @@ class _Composer:
 
 
 def _variants(exp: DictConfig) -> dict[str, dict]:
-    base = {"team": exp.get("team"), "team_options": exp.get("team_options") or {},
-            "llm": exp.get("llm"), "llm_options": exp.get("llm_options") or {}}
+    base = {
+        "team": exp.get("team"),
+        "team_options": exp.get("team_options") or {},
+        "llm": exp.get("llm"),
+        "llm_options": exp.get("llm_options") or {},
+    }
     raw = exp.get("variants")
     if not raw:
         if not base["team"]:
@@ -157,9 +165,19 @@ class _Builder:
         self.series: list[SeriesSpec] = []
         self.seed = int(cfg.seed)
 
-    def add(self, scenario: str, red_team: str, blue_team: str, episodes: int, *, red: str | None = None,
-            blue: str | None = None, variant: dict | None = None, blue_variant: dict | None = None,
-            **extra) -> SeriesSpec:
+    def add(
+        self,
+        scenario: str,
+        red_team: str,
+        blue_team: str,
+        episodes: int,
+        *,
+        red: str | None = None,
+        blue: str | None = None,
+        variant: dict | None = None,
+        blue_variant: dict | None = None,
+        **extra,
+    ) -> SeriesSpec:
         llm = (variant or {}).get("llm")
         cfg = self.compose(scenario, red_team, blue_team, llm)
         if variant:
@@ -178,9 +196,20 @@ class _Builder:
         cfg.episodes = int(episodes)
         seed = self.seed * 1000 + index
         cfg.seed = seed
-        spec = SeriesSpec(id="_".join(parts), index=index, protocol=str(self.exp.protocol), scenario=scenario,
-                          red=red, blue=blue, red_team=red_team, blue_team=blue_team, episodes=int(episodes),
-                          seed=seed, config=OmegaConf.to_container(cfg, resolve=True), **extra)
+        spec = SeriesSpec(
+            id="_".join(parts),
+            index=index,
+            protocol=str(self.exp.protocol),
+            scenario=scenario,
+            red=red,
+            blue=blue,
+            red_team=red_team,
+            blue_team=blue_team,
+            episodes=int(episodes),
+            seed=seed,
+            config=to_dict(cfg),
+            **extra,
+        )
         self.series.append(spec)
         return spec
 
@@ -195,13 +224,16 @@ class _Builder:
     def symmetry(self) -> None:
         pairings = self.exp.get("pairings") or []
         if not pairings:
-            raise ConfigError(f"experiment {self.exp.get('name')!r} needs `pairings`: a list of "
-                              "{scenario: NAME, a: TEAM, b: TEAM}")
+            raise ConfigError(
+                f"experiment {self.exp.get('name')!r} needs `pairings`: a list of {{scenario: NAME, a: TEAM, b: TEAM}}"
+            )
         for i, p in enumerate(pairings):
             missing = [k for k in ("scenario", "a", "b") if not (p or {}).get(k)]
             if missing:
-                raise ConfigError(f"experiment.pairings[{i}] needs {', '.join(missing)} "
-                                  f"(a pairing is {{scenario: NAME, a: TEAM, b: TEAM}}), got {p}")
+                raise ConfigError(
+                    f"experiment.pairings[{i}] needs {', '.join(missing)} "
+                    f"(a pairing is {{scenario: NAME, a: TEAM, b: TEAM}}), got {p}"
+                )
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for p in pairings:
                 orders = [(p.a, p.b)] if p.a == p.b else [(p.a, p.b), (p.b, p.a)]
@@ -213,8 +245,17 @@ class _Builder:
             for label, v in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
                     for blue in _opponents(self.exp, "opponents", sc):
-                        self.add(sc, v["team"], blue, self.exp.episodes, red=label, variant=v, variant_label=label,
-                                 repetition=rep, checkpoint_every=self.exp.get("checkpoint_every"))
+                        self.add(
+                            sc,
+                            v["team"],
+                            blue,
+                            self.exp.episodes,
+                            red=label,
+                            variant=v,
+                            variant_label=label,
+                            repetition=rep,
+                            checkpoint_every=self.exp.get("checkpoint_every"),
+                        )
 
     def self_play(self) -> None:
         every = self.exp.get("checkpoint_every")
@@ -222,18 +263,40 @@ class _Builder:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for label, v in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
-                    play = self.add(sc, v["team"], v["team"], episodes, red=label, blue=label, variant=v,
-                                    blue_variant=v, variant_label=label, repetition=rep, checkpoint_every=every)
+                    play = self.add(
+                        sc,
+                        v["team"],
+                        v["team"],
+                        episodes,
+                        red=label,
+                        blue=label,
+                        variant=v,
+                        blue_variant=v,
+                        variant_label=label,
+                        repetition=rep,
+                        checkpoint_every=every,
+                    )
                     if not self.exp.get("evaluate"):
                         continue
-                    stages = [0] + ([k for k in range(every, episodes + 1, every)] if every else [episodes])
+                    stages = [0] + (list(range(every, episodes + 1, every)) if every else [episodes])
                     for k in stages:
                         ckpt = {"red": {"series": play.id, "episode": k - 1}} if k else {}
                         play.checkpoint_at = sorted(set(play.checkpoint_at) | ({k - 1} if k else set()))
                         for blue in _opponents(self.exp, "opponents", sc):
-                            self.add(sc, v["team"], blue, 1, red=label, variant=v, variant_label=label,
-                                     repetition=rep, checkpoint=ckpt, group=f"after {k}", group_x=k,
-                                     episode_offset=k)
+                            self.add(
+                                sc,
+                                v["team"],
+                                blue,
+                                1,
+                                red=label,
+                                variant=v,
+                                variant_label=label,
+                                repetition=rep,
+                                checkpoint=ckpt,
+                                group=f"after {k}",
+                                group_x=k,
+                                episode_offset=k,
+                            )
 
     def adaptation(self) -> None:
         train = int(self.exp.get("train_episodes", 5))
@@ -244,32 +307,65 @@ class _Builder:
                     opponents = _opponents(self.exp, "opponents", sc)
                     for trained_on in opponents:
                         if from_run:
-                            ckpt = {"red": {"path": str(find_checkpoint(Path(from_run), sc, label, trained_on, rep,
-                                                                         train - 1))}}
+                            ckpt: dict[str, dict[str, Any]] = {
+                                "red": {
+                                    "path": str(find_checkpoint(Path(from_run), sc, label, trained_on, rep, train - 1))
+                                }
+                            }
                         else:
-                            t = self.add(sc, v["team"], trained_on, train, red=label, variant=v,
-                                         variant_label=label, repetition=rep, checkpoint_at=[train - 1],
-                                         group="training")
+                            t = self.add(
+                                sc,
+                                v["team"],
+                                trained_on,
+                                train,
+                                red=label,
+                                variant=v,
+                                variant_label=label,
+                                repetition=rep,
+                                checkpoint_at=[train - 1],
+                                group="training",
+                            )
                             ckpt = {"red": {"series": t.id, "episode": train - 1}}
                         for blue in opponents:
                             group = "same" if blue == trained_on else "different"
-                            self.add(sc, v["team"], blue, 1, red=label, variant=v, variant_label=label,
-                                     repetition=rep, checkpoint=ckpt, group=group, group_x=None,
-                                     episode_offset=train)
+                            self.add(
+                                sc,
+                                v["team"],
+                                blue,
+                                1,
+                                red=label,
+                                variant=v,
+                                variant_label=label,
+                                repetition=rep,
+                                checkpoint=ckpt,
+                                group=group,
+                                group_x=None,
+                                episode_offset=train,
+                            )
+
+
+def read_series_index(run_dir: Path) -> list[SeriesSpec]:
+    """The series of an experiment's run directory, from its experiment.json."""
+    data = json.loads((Path(run_dir) / "experiment.json").read_text())
+    return [SeriesSpec.from_dict(s) for s in data["series"]]
 
 
 def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:
     """The red checkpoint after `episode` of the series (scenario, red, blue, repetition) of another run."""
-    from pillagerbench.experiments.series import checkpoint_dir, read_series_index
-
     for spec in read_series_index(run_dir):
-        if (spec.scenario, spec.red, spec.blue, spec.repetition) == (scenario, red, blue, repetition) \
-                and spec.group is None:
+        if (spec.scenario, spec.red, spec.blue, spec.repetition) == (
+            scenario,
+            red,
+            blue,
+            repetition,
+        ) and spec.group is None:
             path = checkpoint_dir(run_dir / "series" / spec.id, episode, "red")
             if (path / "team.json").exists():
                 return path.resolve()
-            raise ConfigError(f"from_run: series {spec.id} of {run_dir} kept no checkpoint after episode {episode} "
-                              f"(expected {path}); run it with experiment.checkpoint_every or checkpoint_at")
+            raise ConfigError(
+                f"from_run: series {spec.id} of {run_dir} kept no checkpoint after episode {episode} "
+                f"(expected {path}); run it with experiment.checkpoint_every or checkpoint_at"
+            )
     raise ConfigError(f"from_run: {run_dir} has no series {scenario} {red} vs {blue} (repetition {repetition})")
 
 
@@ -280,7 +376,9 @@ def build_series(cfg: DictConfig, argv: list[str] | None = None) -> list[SeriesS
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
     protocol = exp.get("protocol")
     if protocol not in PROTOCOLS:
-        raise ConfigError(f"experiment {exp.get('name')!r}: unknown protocol {protocol!r}; valid: {', '.join(PROTOCOLS)}")
+        raise ConfigError(
+            f"experiment {exp.get('name')!r}: unknown protocol {protocol!r}; valid: {', '.join(PROTOCOLS)}"
+        )
     builder = _Builder(cfg, list(argv or []))
     getattr(builder, protocol)()
     if not builder.series:

@@ -8,8 +8,9 @@ replayed episode runs out of budget at the same point as the original.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from .errors import BudgetExceeded
 
@@ -29,29 +30,34 @@ class Budget:
     output_tokens: int = 0
     cost_usd: float = 0.0
     in_flight: int = 0  # calls checked and not finished: they count against max_calls
-    failed: int = 0     # calls that raised an LLMError this episode (not counted in `calls`)
+    failed: int = 0  # calls that raised an LLMError this episode (not counted in `calls`)
     last_error: str | None = None
 
     @classmethod
-    def from_limits(cls, limits: Mapping[str, Any] | None, price_input_per_1m: float = 0.0,
-                    price_output_per_1m: float = 0.0) -> "Budget":
+    def from_limits(
+        cls, limits: Mapping[str, Any] | None, price_input_per_1m: float = 0.0, price_output_per_1m: float = 0.0
+    ) -> Budget:
         limits = dict(limits or {})
         unknown = sorted(set(limits) - set(LIMITS))
         if unknown:
             raise ValueError(f"unknown budget limits {unknown}; valid: {list(LIMITS)}")
-        return cls(**{k: v for k, v in limits.items() if v is not None},
-                   price_input_per_1m=float(price_input_per_1m or 0.0),
-                   price_output_per_1m=float(price_output_per_1m or 0.0))
+        return cls(
+            **{k: v for k, v in limits.items() if v is not None},
+            price_input_per_1m=float(price_input_per_1m or 0.0),
+            price_output_per_1m=float(price_output_per_1m or 0.0),
+        )
 
     def cost(self, input_tokens: int, output_tokens: int) -> float:
         return (input_tokens * self.price_input_per_1m + output_tokens * self.price_output_per_1m) / 1e6
 
     def exceeded(self) -> str | None:
         """Why no further call is allowed, or None."""
-        for used, limit, what in ((self.calls + self.in_flight, self.max_calls, "calls"),
-                                  (self.input_tokens, self.max_input_tokens, "input tokens"),
-                                  (self.output_tokens, self.max_output_tokens, "output tokens"),
-                                  (self.cost_usd, self.max_cost_usd, "cost (USD)")):
+        for used, limit, what in (
+            (self.calls + self.in_flight, self.max_calls, "calls"),
+            (self.input_tokens, self.max_input_tokens, "input tokens"),
+            (self.output_tokens, self.max_output_tokens, "output tokens"),
+            (self.cost_usd, self.max_cost_usd, "cost (USD)"),
+        ):
             if limit is not None and used >= limit:
                 return f"budget of {limit} {what} per episode used up ({used:g} used)"
         return None

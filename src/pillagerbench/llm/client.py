@@ -18,9 +18,10 @@ from __future__ import annotations
 import asyncio
 import email.utils
 import time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import openai
 
@@ -56,9 +57,16 @@ class LLMResponse:
 
 
 class LLMClient:
-    def __init__(self, settings: LLMSettings, *, team: str | None = None, ledger: Ledger | None = None,
-                 cache: LLMCache | None = None, budget: Budget | None = None,
-                 _sdk: openai.AsyncOpenAI | None = None):
+    def __init__(
+        self,
+        settings: LLMSettings,
+        *,
+        team: str | None = None,
+        ledger: Ledger | None = None,
+        cache: LLMCache | None = None,
+        budget: Budget | None = None,
+        _sdk: openai.AsyncOpenAI | None = None,
+    ):
         self.settings = settings
         self.team = team
         self.ledger = ledger
@@ -66,12 +74,19 @@ class LLMClient:
         self.budget = budget if budget is not None else self._default_budget()
         self._owns_sdk = _sdk is None
         self._sdk = _sdk or openai.AsyncOpenAI(
-            api_key=settings.api_key(), base_url=settings.base_url, max_retries=0,
-            timeout=settings.timeout)
+            api_key=settings.api_key(), base_url=settings.base_url, max_retries=0, timeout=settings.timeout
+        )
 
     @classmethod
-    def from_config(cls, cfg: Any, *, team: str | None = None, run_dir: str | Path | None = None,
-                    ledger: Ledger | None = None, cache: LLMCache | None = None) -> "LLMClient":
+    def from_config(
+        cls,
+        cfg: Any,
+        *,
+        team: str | None = None,
+        run_dir: str | Path | None = None,
+        ledger: Ledger | None = None,
+        cache: LLMCache | None = None,
+    ) -> LLMClient:
         """From the full config (sections llm, llm_cache, llm_ledger) or just its `llm` node.
         With run_dir, the ledger is `<run_dir>/llm_calls.jsonl` and the cache (unless mode off)
         is llm_cache.dir or `<run_dir>/llm_cache`."""
@@ -89,10 +104,9 @@ class LLMClient:
             cache = LLMCache(directory, mode)
         return cls(settings, team=team, ledger=ledger, cache=cache)
 
-    def for_team(self, team: str, budget: Budget | None = None) -> "LLMClient":
+    def for_team(self, team: str, budget: Budget | None = None) -> LLMClient:
         """A client for one team: same provider connection, ledger and cache; its own budget."""
-        return LLMClient(self.settings, team=team, ledger=self.ledger, cache=self.cache,
-                         budget=budget, _sdk=self._sdk)
+        return LLMClient(self.settings, team=team, ledger=self.ledger, cache=self.cache, budget=budget, _sdk=self._sdk)
 
     def _default_budget(self) -> Budget:
         s = self.settings
@@ -108,7 +122,7 @@ class LLMClient:
         if self.ledger is not None and self._owns_sdk:
             self.ledger.close()
 
-    async def __aenter__(self) -> "LLMClient":
+    async def __aenter__(self) -> LLMClient:
         return self
 
     async def __aexit__(self, *exc: object) -> None:
@@ -116,12 +130,15 @@ class LLMClient:
 
     def __repr__(self) -> str:
         s = self.settings
-        return (f"LLMClient(provider={s.provider!r}, model={s.model!r}, base_url={s.base_url!r}, "
-                f"team={self.team!r}, cache={self.cache.mode!r})")
+        return (
+            f"LLMClient(provider={s.provider!r}, model={s.model!r}, base_url={s.base_url!r}, "
+            f"team={self.team!r}, cache={self.cache.mode!r})"
+        )
 
     # -- requests --------------------------------------------------------------------------------
-    def build_request(self, messages: Messages, *, temperature: Any = _UNSET, max_tokens: Any = _UNSET,
-                      **params: Any) -> dict[str, Any]:
+    def build_request(
+        self, messages: Messages, *, temperature: Any = _UNSET, max_tokens: Any = _UNSET, **params: Any
+    ) -> dict[str, Any]:
         """The request body exactly as it is sent (and keyed in the cache)."""
         s = self.settings
         if isinstance(messages, str):
@@ -143,12 +160,13 @@ class LLMClient:
         request.update({k: v for k, v in params.items() if v is not None})
         return request
 
-    async def complete(self, messages: Messages, *, role: str, temperature: Any = _UNSET,
-                       max_tokens: Any = _UNSET, **params: Any) -> LLMResponse:
+    async def complete(
+        self, messages: Messages, *, role: str, temperature: Any = _UNSET, max_tokens: Any = _UNSET, **params: Any
+    ) -> LLMResponse:
         """One chat completion. `params` (stop, seed, top_p, response_format, ...) go into the body.
         Raises an LLMError subclass; every call, failed or not, is one ledger record."""
         s = self.settings
-        ctx = {"role": role, "team": self.team, "model": s.model, "provider": s.provider}
+        ctx: dict[str, Any] = {"role": role, "team": self.team, "model": s.model, "provider": s.provider}
         request = self.build_request(messages, temperature=temperature, max_tokens=max_tokens, **params)
         start = time.perf_counter()
         key, sample = "", 0
@@ -161,12 +179,14 @@ class LLMClient:
             if entry is not None:
                 return self._answer(role, request, entry["response"], start, 0, True, key, sample)
             if self.cache.mode == "replay":
-                raise E.CacheMiss(f"replay: request not in the cache {self.cache.dir} (key {key}, "
-                                  f"sample {sample})", key=key, **ctx)
+                raise E.CacheMiss(
+                    f"replay: request not in the cache {self.cache.dir} (key {key}, sample {sample})", key=key, **ctx
+                )
             response = await self._send(request, role, ctx)
             retries = response.pop("retries")
-            self.cache.put(key, {"key": key, "sample": sample, "provider": s.provider,
-                                 "request": request, "response": response})
+            self.cache.put(
+                key, {"key": key, "sample": sample, "provider": s.provider, "request": request, "response": response}
+            )
             return self._answer(role, request, response, start, retries, False, key, sample)
         except E.LLMError as err:
             self._log(role, request, None, start, getattr(err, "retries", 0), False, key, sample, err)
@@ -180,35 +200,79 @@ class LLMClient:
             if reserved:
                 self.budget.release()
 
-    def _answer(self, role: str, request: dict, response: dict, start: float, retries: int,
-                cache_hit: bool, key: str, sample: int) -> LLMResponse:
+    def _answer(
+        self,
+        role: str,
+        request: dict,
+        response: dict,
+        start: float,
+        retries: int,
+        cache_hit: bool,
+        key: str,
+        sample: int,
+    ) -> LLMResponse:
         raw = response.get("raw_text") or ""
         text = strip_think(raw) if self.settings.strip_think else raw
         tin, tout = response.get("input_tokens"), response.get("output_tokens")
         cost = self.budget.charge(tin or 0, tout or 0)
         latency = time.perf_counter() - start
         extra = {"orig_latency_s": response.get("latency_s")} if cache_hit else {}
-        self._log(role, request, response, start, retries, cache_hit, key, sample, None,
-                  latency=latency, cost=cost, **extra)
-        return LLMResponse(text=text, raw_text=raw, finish_reason=response.get("finish_reason"),
-                           input_tokens=tin, output_tokens=tout, latency_s=latency, retries=retries,
-                           cache_hit=cache_hit, model=response.get("model") or self.settings.model,
-                           sample=sample, cache_key=key)
+        self._log(
+            role, request, response, start, retries, cache_hit, key, sample, None, latency=latency, cost=cost, **extra
+        )
+        return LLMResponse(
+            text=text,
+            raw_text=raw,
+            finish_reason=response.get("finish_reason"),
+            input_tokens=tin,
+            output_tokens=tout,
+            latency_s=latency,
+            retries=retries,
+            cache_hit=cache_hit,
+            model=response.get("model") or self.settings.model,
+            sample=sample,
+            cache_key=key,
+        )
 
-    def _log(self, role: str, request: dict, response: dict | None, start: float, retries: int,
-             cache_hit: bool, key: str, sample: int, err: E.LLMError | None, *,
-             latency: float | None = None, cost: float = 0.0, **extra: Any) -> None:
+    def _log(
+        self,
+        role: str,
+        request: dict,
+        response: dict | None,
+        start: float,
+        retries: int,
+        cache_hit: bool,
+        key: str,
+        sample: int,
+        err: E.LLMError | None,
+        *,
+        latency: float | None = None,
+        cost: float = 0.0,
+        **extra: Any,
+    ) -> None:
         if self.ledger is None:
             return
         s = self.settings
         self.ledger.record(
-            request=request, response=response, team=self.team, role=role, provider=s.provider,
-            model=s.model, latency_s=round(time.perf_counter() - start if latency is None else latency, 6),
+            request=request,
+            response=response,
+            team=self.team,
+            role=role,
+            provider=s.provider,
+            model=s.model,
+            latency_s=round(time.perf_counter() - start if latency is None else latency, 6),
             input_tokens=(response or {}).get("input_tokens"),
-            output_tokens=(response or {}).get("output_tokens"), retries=retries,
-            finish_reason=(response or {}).get("finish_reason"), cache_hit=cache_hit, cache_key=key or None,
-            sample=sample, cost_usd=cost, error_type=type(err).__name__ if err else None,
-            error=str(err) if err else None, **extra)
+            output_tokens=(response or {}).get("output_tokens"),
+            retries=retries,
+            finish_reason=(response or {}).get("finish_reason"),
+            cache_hit=cache_hit,
+            cache_key=key or None,
+            sample=sample,
+            cost_usd=cost,
+            error_type=type(err).__name__ if err else None,
+            error=str(err) if err else None,
+            **extra,
+        )
 
     async def _send(self, request: dict, role: str, ctx: dict) -> dict:
         """POST with our retry loop; returns the cacheable answer plus `retries`."""
@@ -220,8 +284,12 @@ class LLMClient:
             t0 = time.perf_counter()
             try:
                 completion = await self._sdk.chat.completions.create(
-                    model=request["model"], messages=request["messages"], extra_body=body,
-                    extra_headers=headers, timeout=s.timeout)
+                    model=request["model"],
+                    messages=request["messages"],
+                    extra_body=body,
+                    extra_headers=headers,
+                    timeout=s.timeout,
+                )
                 answer = self._read(completion, ctx)
                 answer.update(latency_s=round(time.perf_counter() - t0, 6), retries=attempt)
                 return answer
@@ -231,7 +299,7 @@ class LLMClient:
                 err.retries = attempt  # type: ignore[attr-defined]
                 raise err from None  # the SDK's exception may quote headers: keep it off the chain
             if wait is None:
-                wait = s.retry_backoff_s * (2 ** attempt)
+                wait = s.retry_backoff_s * (2**attempt)
             await asyncio.sleep(max(0.0, min(wait, s.retry_max_wait_s)))
             attempt += 1
 
@@ -244,10 +312,13 @@ class LLMClient:
         if not text.strip():
             raise E.EmptyResponse(f"empty answer (finish_reason={choices[0].finish_reason})", **ctx)
         usage = getattr(completion, "usage", None)
-        return {"raw_text": raw, "finish_reason": choices[0].finish_reason,
-                "input_tokens": getattr(usage, "prompt_tokens", None),
-                "output_tokens": getattr(usage, "completion_tokens", None),
-                "model": getattr(completion, "model", None)}
+        return {
+            "raw_text": raw,
+            "finish_reason": choices[0].finish_reason,
+            "input_tokens": getattr(usage, "prompt_tokens", None),
+            "output_tokens": getattr(usage, "completion_tokens", None),
+            "model": getattr(completion, "model", None),
+        }
 
     @staticmethod
     def _map_error(exc: Exception, ctx: dict) -> tuple[E.LLMError, float | None]:
@@ -263,9 +334,14 @@ class LLMClient:
             status = exc.status_code
             body = exc.body
             message = body.get("message") if isinstance(body, dict) and body.get("message") else exc.message
-            kind: type[E.LLMError] = {401: E.AuthenticationFailed, 403: E.AuthenticationFailed,
-                                      404: E.ModelNotFound, 400: E.BadRequest, 422: E.BadRequest,
-                                      429: E.RateLimited}.get(status, E.ProviderError)
+            kind: type[E.LLMError] = {
+                401: E.AuthenticationFailed,
+                403: E.AuthenticationFailed,
+                404: E.ModelNotFound,
+                400: E.BadRequest,
+                422: E.BadRequest,
+                429: E.RateLimited,
+            }.get(status, E.ProviderError)
             if kind is E.ProviderError and 400 <= status < 500 and status not in (408, 409):
                 kind = E.BadRequest
             return kind(f"HTTP {status}: {message}", status=status, **ctx), _retry_after(exc.response)
@@ -287,11 +363,19 @@ class LLMClient:
                 why = "It was cut off by the token limit; give a shorter answer." if answer.truncated else ""
                 msgs = msgs + [
                     {"role": "assistant", "content": answer.text},
-                    {"role": "user", "content": f"Your answer could not be parsed as JSON ({exc}). {why}"
-                                                "Send the JSON value again and nothing else."}]
-        raise E.InvalidJSON(f"no valid JSON after {attempts} attempts; last answer: {last[:200]!r}",
-                            role=role, team=self.team, model=self.settings.model,
-                            provider=self.settings.provider)
+                    {
+                        "role": "user",
+                        "content": f"Your answer could not be parsed as JSON ({exc}). {why}"
+                        "Send the JSON value again and nothing else.",
+                    },
+                ]
+        raise E.InvalidJSON(
+            f"no valid JSON after {attempts} attempts; last answer: {last[:200]!r}",
+            role=role,
+            team=self.team,
+            model=self.settings.model,
+            provider=self.settings.provider,
+        )
 
 
 def _retry_after(response: Any) -> float | None:

@@ -10,13 +10,23 @@ class LLMError(Exception):
 
     retryable = False
 
-    def __init__(self, message: str, *, status: int | None = None, role: str | None = None,
-                 team: str | None = None, model: str | None = None, provider: str | None = None):
+    def __init__(
+        self,
+        message: str,
+        *,
+        status: int | None = None,
+        role: str | None = None,
+        team: str | None = None,
+        model: str | None = None,
+        provider: str | None = None,
+    ):
         self.status = status
         self.role, self.team, self.model, self.provider = role, team, model, provider
-        where = ", ".join(f"{k}={v}" for k, v in
-                          (("provider", provider), ("model", model), ("team", team), ("role", role),
-                           ("status", status)) if v is not None)
+        where = ", ".join(
+            f"{k}={v}"
+            for k, v in (("provider", provider), ("model", model), ("team", team), ("role", role), ("status", status))
+            if v is not None
+        )
         self.detail = redact(str(message))
         super().__init__(f"{self.detail} [{where}]" if where else self.detail)
 

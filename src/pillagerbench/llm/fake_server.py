@@ -31,9 +31,10 @@ import json
 import re
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from typing import Any, Callable
+from typing import Any
 
 from pillagerbench.llm.protocol import ROLE_HEADER, TEAM_HEADER
 
@@ -60,7 +61,7 @@ class Rule:
     times: int | None = None  # how many requests this rule answers; None = unlimited
     used: int = 0
 
-    def matches(self, req: "Received") -> bool:
+    def matches(self, req: Received) -> bool:
         if self.times is not None and self.used >= self.times:
             return False
         if self.role is not None and req.role != self.role:
@@ -115,7 +116,7 @@ class FakeLLMServer:
         self._next_id = 0
 
     # -- lifecycle -------------------------------------------------------------------------------
-    def start(self) -> "FakeLLMServer":
+    def start(self) -> FakeLLMServer:
         server = self
 
         class Handler(_Handler):
@@ -124,8 +125,9 @@ class FakeLLMServer:
         self._httpd = ThreadingHTTPServer((self.host, self.port), Handler)
         self._httpd.daemon_threads = True
         self.port = self._httpd.server_address[1]
-        self._thread = threading.Thread(target=self._httpd.serve_forever, kwargs={"poll_interval": 0.05},
-                                        name="fake-llm-server", daemon=True)
+        self._thread = threading.Thread(
+            target=self._httpd.serve_forever, kwargs={"poll_interval": 0.05}, name="fake-llm-server", daemon=True
+        )
         self._thread.start()
         return self
 
@@ -135,7 +137,7 @@ class FakeLLMServer:
             self._httpd.server_close()
             self._httpd = None
 
-    def __enter__(self) -> "FakeLLMServer":
+    def __enter__(self) -> FakeLLMServer:
         return self.start()
 
     def __exit__(self, *exc: object) -> None:
@@ -147,7 +149,7 @@ class FakeLLMServer:
         return f"http://{self.host}:{self.port}/v1"
 
     # -- script ----------------------------------------------------------------------------------
-    def add(self, *rules: Rule) -> "FakeLLMServer":
+    def add(self, *rules: Rule) -> FakeLLMServer:
         with self._lock:
             self.rules.extend(rules)
         return self
@@ -188,10 +190,12 @@ class FakeLLMServer:
             "object": "chat.completion",
             "created": int(time.time()),
             "model": req.body.get("model", "fake"),
-            "choices": [{"index": 0, "finish_reason": finish,
-                         "message": {"role": "assistant", "content": text}}],
-            "usage": {"prompt_tokens": prompt_tokens, "completion_tokens": completion_tokens,
-                      "total_tokens": prompt_tokens + completion_tokens},
+            "choices": [{"index": 0, "finish_reason": finish, "message": {"role": "assistant", "content": text}}],
+            "usage": {
+                "prompt_tokens": prompt_tokens,
+                "completion_tokens": completion_tokens,
+                "total_tokens": prompt_tokens + completion_tokens,
+            },
         }
 
 
@@ -225,10 +229,9 @@ class _Handler(BaseHTTPRequestHandler):
         if key is None or got == f"Bearer {key}":
             return None
         received = got.removeprefix("Bearer ")
-        return json.dumps(_error(401, f"Incorrect API key provided: {received}",
-                                 "invalid_request_error")).encode()
+        return json.dumps(_error(401, f"Incorrect API key provided: {received}", "invalid_request_error")).encode()
 
-    def do_GET(self) -> None:  # noqa: N802
+    def do_GET(self) -> None:
         if self.path.rstrip("/").endswith("/models"):
             names = self.fake.models or ["fake-model"]
             data = [{"id": n, "object": "model", "owned_by": "fake"} for n in names]
@@ -236,7 +239,7 @@ class _Handler(BaseHTTPRequestHandler):
         else:
             self._send(404, json.dumps(_error(404, f"no route {self.path}", "not_found")).encode())
 
-    def do_POST(self) -> None:  # noqa: N802
+    def do_POST(self) -> None:
         raw = self.rfile.read(int(self.headers.get("Content-Length") or 0))
         try:
             body = json.loads(raw or b"{}")
@@ -259,8 +262,10 @@ class _Handler(BaseHTTPRequestHandler):
         elif rule is not None and rule.status is not None:
             headers = {}
             if rule.retry_after is not None:
-                headers = {"retry-after": str(max(1, round(rule.retry_after))),
-                           "retry-after-ms": str(int(rule.retry_after * 1000))}
+                headers = {
+                    "retry-after": str(max(1, round(rule.retry_after))),
+                    "retry-after-ms": str(int(rule.retry_after * 1000)),
+                }
             msg = rule.message or f"injected error {rule.status}"
             self._send(rule.status, json.dumps(_error(rule.status, msg, "fake_error")).encode(), headers)
         elif rule is not None and rule.malformed:

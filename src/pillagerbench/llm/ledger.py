@@ -15,10 +15,11 @@ from __future__ import annotations
 import hashlib
 import json
 import threading
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from datetime import datetime, timezone
 from pathlib import Path
-from typing import Any, Iterable, Iterator
+from typing import Any
 
 from .redact import redact
 
@@ -98,8 +99,9 @@ class LedgerStats:
     r_tps: float | None  # sum output tokens / sum latency (tokens per second)
 
 
-def summarize(records: Iterable[dict], *, team: str | None = None, role: str | None = None,
-              original_latency: bool = True) -> LedgerStats:
+def summarize(
+    records: Iterable[dict], *, team: str | None = None, role: str | None = None, original_latency: bool = True
+) -> LedgerStats:
     """Metrics over successful calls (optionally of one team and/or role).
 
     With original_latency (the default), a cache hit counts with the latency of the call that
@@ -124,8 +126,14 @@ def summarize(records: Iterable[dict], *, team: str | None = None, role: str | N
         lat = r.get("orig_latency_s") if original_latency and r.get("cache_hit") else r.get("latency_s")
         latency += float(lat or 0.0)
     return LedgerStats(
-        calls=calls, ok=ok, errors=errors, cache_hits=hits, retries=retries, input_tokens=tin,
-        output_tokens=tout, cost_usd=cost,
+        calls=calls,
+        ok=ok,
+        errors=errors,
+        cache_hits=hits,
+        retries=retries,
+        input_tokens=tin,
+        output_tokens=tout,
+        cost_usd=cost,
         t_resp=latency / ok if ok else None,
         n_out=ok_out / ok if ok else None,
         r_tps=tout / latency if latency > 0 else None,

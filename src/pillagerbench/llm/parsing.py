@@ -17,7 +17,7 @@ def strip_think(text: str) -> str:
     text = _THINK.sub("", text)
     low = text.lower()
     if (end := low.rfind("</think>")) >= 0:
-        text, low = text[end + len("</think>"):], low[end + len("</think>"):]
+        text, low = text[end + len("</think>") :], low[end + len("</think>") :]
     if (start := low.find("<think>")) >= 0:
         text = text[:start]
     return text.strip()

@@ -7,8 +7,9 @@ client is made and handed straight to the SDK.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from typing import Any, Mapping
+from typing import Any, cast
 
 from .errors import LLMConfigError
 from .redact import register_secret
@@ -40,15 +41,15 @@ class LLMSettings:
     preflight: bool = True  # one short request before episode 0 (llm/preflight.py)
 
     @classmethod
-    def from_config(cls, cfg: Mapping[str, Any]) -> "LLMSettings":
+    def from_config(cls, cfg: Mapping[str, Any]) -> LLMSettings:
         """From the `llm` node of the Hydra config (a DictConfig or a plain dict)."""
         try:
             from omegaconf import OmegaConf
 
-            data = OmegaConf.to_container(cfg, resolve=True) if OmegaConf.is_config(cfg) else dict(cfg)
+            raw = OmegaConf.to_container(cfg, resolve=True) if OmegaConf.is_config(cfg) else dict(cfg)
         except ImportError:  # pragma: no cover
-            data = dict(cfg)
-        data = dict(data)
+            raw = dict(cfg)
+        data: dict[str, Any] = dict(cast(Mapping[str, Any], raw))
         price = data.pop("price", None) or {}
         data.setdefault("price_input_per_1m", price.get("input_per_1m", 0.0))
         data.setdefault("price_output_per_1m", price.get("output_per_1m", 0.0))
@@ -71,7 +72,9 @@ class LLMSettings:
             return NO_KEY
         value = os.environ.get(self.api_key_env)
         if not value:
-            raise LLMConfigError(f"environment variable {self.api_key_env} is not set "
-                                 f"(llm.api_key_env names the variable holding the key for {self.provider})")
+            raise LLMConfigError(
+                f"environment variable {self.api_key_env} is not set "
+                f"(llm.api_key_env names the variable holding the key for {self.provider})"
+            )
         register_secret(value)
         return value

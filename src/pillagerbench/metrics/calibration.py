@@ -33,13 +33,25 @@ def calibration_from_runs(runs: Runs) -> dict:
         ref = df[(df["red_team"] == "do_nothing") & df["group"].isna()]
         for (scenario, blue), g in ref.groupby(["scenario", "blue_team"], sort=False):
             e = mean_ci(g["blue_raw"])
-            entry = scenarios.setdefault(scenario, {"version": str(g["version"].iloc[0]),
-                                                    "episode_length": float(g["episode_length"].iloc[0]),
-                                                    "opponents": {}})
-            entry["opponents"][blue] = {"sigma_blue": e.mean, "ci": None if math.isnan(e.ci) else e.ci,
-                                        "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None, "n": e.n}
-    return {"created": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "sources": [str(r) for r in runs.runs],
-            "scenarios": scenarios}
+            entry = scenarios.setdefault(
+                scenario,
+                {
+                    "version": str(g["version"].iloc[0]),
+                    "episode_length": float(g["episode_length"].iloc[0]),
+                    "opponents": {},
+                },
+            )
+            entry["opponents"][blue] = {
+                "sigma_blue": e.mean,
+                "ci": None if math.isnan(e.ci) else e.ci,
+                "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None,
+                "n": e.n,
+            }
+    return {
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "sources": [str(r) for r in runs.runs],
+        "scenarios": scenarios,
+    }
 
 
 def read_calibration(path: Path) -> dict:
@@ -55,11 +67,16 @@ def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
     Order: an explicit file (must match the runs' scenario versions and episode lengths), then
     calibration.json files stored in the runs, then do_nothing-red episodes among the runs."""
     df = runs.episodes
-    want = {} if not len(df) else {sc: (str(g["version"].iloc[0]), float(g["episode_length"].iloc[0]))
-                                   for sc, g in df.groupby("scenario")}
-    sources = ([(explicit, read_calibration(explicit), True)] if explicit else []) + \
-              [(p, read_calibration(p), False) for p in runs.calibration_files] + \
-              [("the do_nothing-red episodes of these runs", calibration_from_runs(runs), False)]
+    want = (
+        {}
+        if not len(df)
+        else {sc: (str(g["version"].iloc[0]), float(g["episode_length"].iloc[0])) for sc, g in df.groupby("scenario")}
+    )
+    sources = (
+        ([(explicit, read_calibration(explicit), True)] if explicit else [])
+        + [(p, read_calibration(p), False) for p in runs.calibration_files]
+        + [("the do_nothing-red episodes of these runs", calibration_from_runs(runs), False)]
+    )
     table: dict[tuple[str, str], Estimate] = {}
     notes: list[str] = []
     for where, cal, strict in sources:
@@ -68,8 +85,10 @@ def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
                 continue
             have = (str(entry.get("version")), float(entry.get("episode_length", 0)))
             if have != want[scenario]:
-                msg = (f"calibration {where} for {scenario} is of version {have[0]} with {have[1]:g} s episodes; "
-                       f"the runs are version {want[scenario][0]} with {want[scenario][1]:g} s episodes")
+                msg = (
+                    f"calibration {where} for {scenario} is of version {have[0]} with {have[1]:g} s episodes; "
+                    f"the runs are version {want[scenario][0]} with {want[scenario][1]:g} s episodes"
+                )
                 if strict:
                     raise ReportError(msg)
                 notes.append(msg + ": not used")
@@ -80,8 +99,11 @@ def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
                 if (scenario, team) in table or o.get("sigma_blue") is None:
                     continue
                 ci = o.get("ci")
-                table[(scenario, team)] = Estimate(float(o["sigma_blue"]) * scale,
-                                                   float("nan") if ci is None else float(ci) * scale, int(o.get("n", 0)))
+                table[(scenario, team)] = Estimate(
+                    float(o["sigma_blue"]) * scale,
+                    float("nan") if ci is None else float(ci) * scale,
+                    int(o.get("n", 0)),
+                )
                 used.append(f"{team} (n={o.get('n')})")
             if used:
                 notes.append(f"σ_blue for {scenario} from {where}: {', '.join(used)}")

@@ -19,18 +19,51 @@ is added (Welch). Dash & Dine scores are multiplied by 0.1 as in the paper (SCOR
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 import numpy as np
+
+Values = Sequence[float] | np.ndarray  # scores, one per episode
 
 SCORE_SCALE = {"mushroom_war": 1.0, "dash_and_dine": 0.1}
 
 # t_{0.975, df}
-_T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228,
-         11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131, 16: 2.120, 17: 2.110, 18: 2.101, 19: 2.093,
-         20: 2.086, 21: 2.080, 22: 2.074, 23: 2.069, 24: 2.064, 25: 2.060, 26: 2.056, 27: 2.052, 28: 2.048,
-         29: 2.045, 30: 2.042, 40: 2.021, 60: 2.000, 120: 1.980}
+_T975: dict[float, float] = {
+    1: 12.706,
+    2: 4.303,
+    3: 3.182,
+    4: 2.776,
+    5: 2.571,
+    6: 2.447,
+    7: 2.365,
+    8: 2.306,
+    9: 2.262,
+    10: 2.228,
+    11: 2.201,
+    12: 2.179,
+    13: 2.160,
+    14: 2.145,
+    15: 2.131,
+    16: 2.120,
+    17: 2.110,
+    18: 2.101,
+    19: 2.093,
+    20: 2.086,
+    21: 2.080,
+    22: 2.074,
+    23: 2.069,
+    24: 2.064,
+    25: 2.060,
+    26: 2.056,
+    27: 2.052,
+    28: 2.048,
+    29: 2.045,
+    30: 2.042,
+    40: 2.021,
+    60: 2.000,
+    120: 1.980,
+}
 
 
 def t_critical(df: float) -> float:
@@ -53,7 +86,7 @@ def t_critical(df: float) -> float:
 @dataclass(frozen=True)
 class Estimate:
     mean: float
-    ci: float          # half-width of the 95 % interval (nan with fewer than 2 values)
+    ci: float  # half-width of the 95 % interval (nan with fewer than 2 values)
     n: int
 
     @property
@@ -80,20 +113,20 @@ def mean_ci(values: Iterable[float]) -> Estimate:
     return Estimate(float(x.mean()), float(t_critical(n - 1) * x.std(ddof=1) / math.sqrt(n)), n)
 
 
-def win_outcomes(red: Sequence[float], blue: Sequence[float]) -> np.ndarray:
+def win_outcomes(red: Values, blue: Values) -> np.ndarray:
     r, b = np.asarray(red, dtype=float), np.asarray(blue, dtype=float)
     return (r > b).astype(float) + 0.5 * (r == b)
 
 
-def points(red: Sequence[float]) -> Estimate:
+def points(red: Values) -> Estimate:
     return mean_ci(red)
 
 
-def difference(red: Sequence[float], blue: Sequence[float]) -> Estimate:
+def difference(red: Values, blue: Values) -> Estimate:
     return mean_ci(np.asarray(red, dtype=float) - np.asarray(blue, dtype=float))
 
 
-def win_rate(red: Sequence[float], blue: Sequence[float]) -> Estimate:
+def win_rate(red: Values, blue: Values) -> Estimate:
     e = mean_ci(win_outcomes(red, blue))
     return e
 
@@ -112,10 +145,10 @@ def sabotage(blue: Sequence[float], sigma_blue: float | None, sigma: Estimate | 
     if sigma is None or sigma.n < 2 or math.isnan(sigma.ci):
         return Estimate(mean, t_critical(b.n - 1) * sb, b.n)
     ss = sigma.se
-    var = sb ** 2 + ss ** 2
+    var = sb**2 + ss**2
     if var == 0:
         return Estimate(mean, 0.0, b.n)
-    df = var ** 2 / ((sb ** 4) / (b.n - 1) + (ss ** 4) / (sigma.n - 1))  # Welch–Satterthwaite
+    df = var**2 / ((sb**4) / (b.n - 1) + (ss**4) / (sigma.n - 1))  # Welch–Satterthwaite
     return Estimate(mean, t_critical(df) * math.sqrt(var), b.n)
 
 
@@ -128,25 +161,35 @@ def mean_of_estimates(estimates: Sequence[Estimate]) -> Estimate:
     ses = [e.se for e in es]
     if any(math.isnan(s) for s in ses):
         return Estimate(mean, float("nan"), sum(e.n for e in es))
-    se = math.sqrt(sum(s ** 2 for s in ses)) / len(es)
+    se = math.sqrt(sum(s**2 for s in ses)) / len(es)
     df = max(1, min(e.n for e in es) - 1)  # conservative
     return Estimate(mean, t_critical(df) * se, sum(e.n for e in es))
 
 
-def pairing(red: Sequence[float], blue: Sequence[float], sigma_blue: float | None = None,
-            sigma: Estimate | None = None) -> dict[str, Estimate]:
+def pairing(
+    red: Sequence[float], blue: Sequence[float], sigma_blue: float | None = None, sigma: Estimate | None = None
+) -> dict[str, Estimate]:
     """P, S, D, W of one pairing from the final scores of its episodes (already scaled)."""
-    return {"P": points(red), "S": sabotage(blue, sigma_blue, sigma), "D": difference(red, blue),
-            "W": win_rate(red, blue)}
+    return {
+        "P": points(red),
+        "S": sabotage(blue, sigma_blue, sigma),
+        "D": difference(red, blue),
+        "W": win_rate(red, blue),
+    }
 
 
-def over_opponents(groups: Sequence[tuple[Sequence[float], Sequence[float], float | None, Estimate | None]]
-                   ) -> dict[str, Estimate]:
+def over_opponents(
+    groups: Sequence[tuple[Sequence[float], Sequence[float], float | None, Estimate | None]],
+) -> dict[str, Estimate]:
     """The "all opponents" column: groups are (red, blue, σ_blue, σ estimate) per opponent."""
     red = np.concatenate([np.asarray(g[0], dtype=float) for g in groups]) if groups else np.array([])
     blue = np.concatenate([np.asarray(g[1], dtype=float) for g in groups]) if groups else np.array([])
-    return {"P": points(red), "S": mean_of_estimates([sabotage(g[1], g[2], g[3]) for g in groups]),
-            "D": difference(red, blue), "W": win_rate(red, blue)}
+    return {
+        "P": points(red),
+        "S": mean_of_estimates([sabotage(g[1], g[2], g[3]) for g in groups]),
+        "D": difference(red, blue),
+        "W": win_rate(red, blue),
+    }
 
 
 def llm_metrics(records: Iterable[dict], original_latency: bool = True) -> dict[str, float | int | None]:
@@ -162,9 +205,13 @@ def llm_metrics(records: Iterable[dict], original_latency: bool = True) -> dict[
         return {"calls": 0, "T_resp": None, "N_out": None, "R_tps": None, "r_tps_total": None}
     lat_a, out_a = np.array(lat), np.array(out, dtype=float)
     pos = lat_a > 0
-    return {"calls": len(lat), "T_resp": float(lat_a.mean()), "N_out": float(out_a.mean()),
-            "R_tps": float((out_a[pos] / lat_a[pos]).mean()) if pos.any() else None,
-            "r_tps_total": float(out_a.sum() / lat_a.sum()) if lat_a.sum() > 0 else None}
+    return {
+        "calls": len(lat),
+        "T_resp": float(lat_a.mean()),
+        "N_out": float(out_a.mean()),
+        "R_tps": float((out_a[pos] / lat_a[pos]).mean()) if pos.any() else None,
+        "r_tps_total": float(out_a.sum() / lat_a.sum()) if lat_a.sum() > 0 else None,
+    }
 
 
 def iterations(per_episode: Iterable[Sequence[int]]) -> Estimate:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -46,9 +47,9 @@ class SeriesInfo:
 
 @dataclass
 class Runs:
-    episodes: pd.DataFrame                       # one row per usable episode
+    episodes: pd.DataFrame  # one row per usable episode
     series: list[SeriesInfo]
-    ledger: list[dict]                           # red-team LLM calls, each with "label" (row) and "scenario"
+    ledger: list[dict]  # red-team LLM calls, each with "label" (row) and "scenario"
     skipped: list[tuple[str, str]] = field(default_factory=list)  # (where, why)
     calibration_files: list[Path] = field(default_factory=list)
     runs: list[Path] = field(default_factory=list)
@@ -57,8 +58,14 @@ class Runs:
 def _series_of(run: Path) -> list[SeriesInfo]:
     def info(series_dir: Path, cfg: dict, manifest: dict, **extra) -> SeriesInfo:
         sc = manifest.get("scenario", {})
-        return SeriesInfo(run=run, dir=series_dir, scenario=cfg["scenario"]["name"], version=str(sc.get("version", "?")),
-                          episode_length=float(cfg.get("episode_length", 120)), **extra)
+        return SeriesInfo(
+            run=run,
+            dir=series_dir,
+            scenario=cfg["scenario"]["name"],
+            version=str(sc.get("version", "?")),
+            episode_length=float(cfg.get("episode_length", 120)),
+            **extra,
+        )
 
     if (run / "experiment.json").exists():
         data = json.loads((run / "experiment.json").read_text())
@@ -66,17 +73,43 @@ def _series_of(run: Path) -> list[SeriesInfo]:
         for s in data["series"]:
             d = run / "series" / s["id"]
             manifest = json.loads((d / "manifest.json").read_text()) if (d / "manifest.json").exists() else {}
-            out.append(info(d, s["config"], manifest, id=s["id"], red=s["red"], blue=s["blue"], red_team=s["red_team"],
-                            blue_team=s["blue_team"], episodes=int(s["episodes"]), protocol=s["protocol"],
-                            variant=s.get("variant"), repetition=int(s.get("repetition", 0)), group=s.get("group"),
-                            group_x=s.get("group_x"), episode_offset=int(s.get("episode_offset", 0))))
+            out.append(
+                info(
+                    d,
+                    s["config"],
+                    manifest,
+                    id=s["id"],
+                    red=s["red"],
+                    blue=s["blue"],
+                    red_team=s["red_team"],
+                    blue_team=s["blue_team"],
+                    episodes=int(s["episodes"]),
+                    protocol=s["protocol"],
+                    variant=s.get("variant"),
+                    repetition=int(s.get("repetition", 0)),
+                    group=s.get("group"),
+                    group_x=s.get("group_x"),
+                    episode_offset=int(s.get("episode_offset", 0)),
+                )
+            )
         return out
     if (run / "manifest.json").exists():
         manifest = json.loads((run / "manifest.json").read_text())
         cfg = manifest["config"]
         red = cfg["red"]["name"]
-        return [info(run, cfg, manifest, id=run.name, red=red, blue=cfg["blue"]["name"], red_team=red,
-                     blue_team=cfg["blue"]["name"], episodes=int(cfg.get("episodes", 1)))]
+        return [
+            info(
+                run,
+                cfg,
+                manifest,
+                id=run.name,
+                red=red,
+                blue=cfg["blue"]["name"],
+                red_team=red,
+                blue_team=cfg["blue"]["name"],
+                episodes=int(cfg.get("episodes", 1)),
+            )
+        ]
     raise ReportError(f"{run}: not a run directory (no experiment.json or manifest.json)")
 
 
@@ -108,8 +141,9 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
         except ValueError:
             continue
         if i not in finished:
-            skipped.append((str(d), "half-written: no line in episodes.jsonl (killed mid-episode; "
-                                    "resume=RUN_DIR plays it again)"))
+            skipped.append(
+                (str(d), "half-written: no line in episodes.jsonl (killed mid-episode; resume=RUN_DIR plays it again)")
+            )
     missing = s.episodes - len(finished)
     if missing > 0:
         skipped.append((where, f"{missing} of {s.episodes} episode(s) not played (unfinished run? resume=RUN_DIR)"))
@@ -133,19 +167,36 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
             skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
             continue
         red_it = (rec.get("iterations") or {}).get("red") or []
-        rows.append({
-            "run": str(s.run), "series": s.id, "scenario": s.scenario, "version": s.version,
-            "episode_length": s.episode_length, "red": s.red, "blue": s.blue, "red_team": s.red_team,
-            "blue_team": s.blue_team, "protocol": s.protocol, "variant": s.variant, "repetition": s.repetition,
-            "group": s.group, "group_x": s.group_x, "episode": i, "index": i + s.episode_offset,
-            "red_raw": float(rec["red_score"]), "blue_raw": float(rec["blue_score"]), "scale": scale,
-            "red_score": float(rec["red_score"]) * scale, "blue_score": float(rec["blue_score"]) * scale,
-            "iterations": float(np.mean(red_it)) if red_it else np.nan,
-            "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
-            "t": np.array([p["t"] for p in timeline], dtype=float),
-            "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
-            "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
-        })
+        rows.append(
+            {
+                "run": str(s.run),
+                "series": s.id,
+                "scenario": s.scenario,
+                "version": s.version,
+                "episode_length": s.episode_length,
+                "red": s.red,
+                "blue": s.blue,
+                "red_team": s.red_team,
+                "blue_team": s.blue_team,
+                "protocol": s.protocol,
+                "variant": s.variant,
+                "repetition": s.repetition,
+                "group": s.group,
+                "group_x": s.group_x,
+                "episode": i,
+                "index": i + s.episode_offset,
+                "red_raw": float(rec["red_score"]),
+                "blue_raw": float(rec["blue_score"]),
+                "scale": scale,
+                "red_score": float(rec["red_score"]) * scale,
+                "blue_score": float(rec["blue_score"]) * scale,
+                "iterations": float(np.mean(red_it)) if red_it else np.nan,
+                "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
+                "t": np.array([p["t"] for p in timeline], dtype=float),
+                "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
+                "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
+            }
+        )
 
 
 def _check_comparable(series: list[SeriesInfo]) -> None:
@@ -157,12 +208,18 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
         for scenario, values in seen.items():
             if len(values) > 1:
                 detail = "; ".join(f"{v} in {run}" for v, run in values.items())
-                raise ReportError(f"refusing to mix {what} of {scenario}: {detail}. Their scores do not compare; "
-                                  "report them separately")
+                raise ReportError(
+                    f"refusing to mix {what} of {scenario}: {detail}. Their scores do not compare; "
+                    "report them separately"
+                )
 
 
 def load_runs(paths: list[str | Path]) -> Runs:
-    series, skipped, rows, ledger, cals = [], [], [], [], []
+    series: list[Any] = []
+    skipped: list[Any] = []
+    rows: list[Any] = []
+    ledger: list[Any] = []
+    cals: list[Any] = []
     runs = [Path(p) for p in paths]
     for run in runs:
         series += _series_of(run)
@@ -175,7 +232,10 @@ def load_runs(paths: list[str | Path]) -> Runs:
         if path.exists():
             from pillagerbench.llm.ledger import read_ledger
 
-            ledger += [{**r, "label": s.red, "scenario": s.scenario, "series": s.id}
-                       for r in read_ledger(path) if r.get("team") == "red"]
+            ledger += [
+                {**r, "label": s.red, "scenario": s.scenario, "series": s.id}
+                for r in read_ledger(path)
+                if r.get("team") == "red"
+            ]
     df = pd.DataFrame(rows)
     return Runs(episodes=df, series=series, ledger=ledger, skipped=skipped, calibration_files=cals, runs=runs)

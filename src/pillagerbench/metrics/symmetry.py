@@ -19,21 +19,34 @@ import pandas as pd
 
 from pillagerbench.metrics.formulas import NAN, Estimate, mean_ci, t_critical
 
-COLUMNS = ["scenario", "team", "opponent", "n_red", "as_red", "as_red_ci", "n_blue", "as_blue", "as_blue_ci",
-           "red_minus_blue", "red_minus_blue_ci", "no_side_effect"]
+COLUMNS = [
+    "scenario",
+    "team",
+    "opponent",
+    "n_red",
+    "as_red",
+    "as_red_ci",
+    "n_blue",
+    "as_blue",
+    "as_blue_ci",
+    "red_minus_blue",
+    "red_minus_blue_ci",
+    "no_side_effect",
+]
 
 
 def welch(a, b) -> Estimate:
     """Mean of a − mean of b with a Welch–Satterthwaite 95 % interval (nan with < 2 values a side)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     if len(a) < 2 or len(b) < 2:
-        return Estimate(float(a.mean() - b.mean()) if len(a) and len(b) else float("nan"), float("nan"),
-                        len(a) + len(b))
+        return Estimate(
+            float(a.mean() - b.mean()) if len(a) and len(b) else float("nan"), float("nan"), len(a) + len(b)
+        )
     va, vb = a.var(ddof=1) / len(a), b.var(ddof=1) / len(b)
     diff = float(a.mean() - b.mean())
     if va + vb == 0:
         return Estimate(diff, 0.0, len(a) + len(b))
-    df = (va + vb) ** 2 / (va ** 2 / (len(a) - 1) + vb ** 2 / (len(b) - 1))
+    df = (va + vb) ** 2 / (va**2 / (len(a) - 1) + vb**2 / (len(b) - 1))
     return Estimate(diff, float(t_critical(df) * math.sqrt(va + vb)), len(a) + len(b))
 
 
@@ -61,8 +74,10 @@ def side_symmetry(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
         other = df[(df["scenario"] == sc) & (df["red"] == b) & (df["blue"] == a)]
         if a != b and (not len(one) or not len(other)):
             red, blue = (a, b) if len(one) else (b, a)
-            notes.append(f"side symmetry: {sc} {a} vs {b} was played in one order only ({red} red, {blue} blue); "
-                         f"play {blue} red vs {red} blue too to compare sides")
+            notes.append(
+                f"side symmetry: {sc} {a} vs {b} was played in one order only ({red} red, {blue} blue); "
+                f"play {blue} red vs {red} blue too to compare sides"
+            )
         teams = [(a, b, one, other)] if a == b else [(a, b, one, other), (b, a, other, one)]
         for team, opp, team_red, team_blue in teams:
             red_pts = team_red["red_score"].to_numpy()
@@ -70,9 +85,24 @@ def side_symmetry(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
             r, bl = (mean_ci(red_pts) if len(red_pts) else NAN), (mean_ci(blue_pts) if len(blue_pts) else NAN)
             diff = welch(red_pts, blue_pts)
             if len(red_pts) and len(blue_pts) and math.isnan(diff.ci):
-                notes.append(f"side symmetry: {sc} {team} vs {opp}: too few episodes for an interval "
-                             f"({len(red_pts)} as red, {len(blue_pts)} as blue; 2 each at least)")
-            rows.append({"scenario": sc, "team": team, "opponent": opp, "n_red": len(red_pts), "as_red": r.mean,
-                         "as_red_ci": r.ci, "n_blue": len(blue_pts), "as_blue": bl.mean, "as_blue_ci": bl.ci,
-                         "red_minus_blue": diff.mean, "red_minus_blue_ci": diff.ci, "no_side_effect": verdict(diff)})
+                notes.append(
+                    f"side symmetry: {sc} {team} vs {opp}: too few episodes for an interval "
+                    f"({len(red_pts)} as red, {len(blue_pts)} as blue; 2 each at least)"
+                )
+            rows.append(
+                {
+                    "scenario": sc,
+                    "team": team,
+                    "opponent": opp,
+                    "n_red": len(red_pts),
+                    "as_red": r.mean,
+                    "as_red_ci": r.ci,
+                    "n_blue": len(blue_pts),
+                    "as_blue": bl.mean,
+                    "as_blue_ci": bl.ci,
+                    "red_minus_blue": diff.mean,
+                    "red_minus_blue_ci": diff.ci,
+                    "no_side_effect": verdict(diff),
+                }
+            )
     return pd.DataFrame(rows, columns=COLUMNS), notes

@@ -7,7 +7,7 @@ inventory, nearbyChests, blockRecords); on* events add their own key with the me
 from __future__ import annotations
 
 import re
-from typing import Iterable
+from collections.abc import Iterable
 
 EVENT_TYPES = ("onChat", "onError", "onSave", "observe")
 STATE_KEYS = ("voxels", "status", "inventory", "nearbyChests", "blockRecords")

@@ -23,8 +23,9 @@ import json
 import os
 import signal
 import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any
 
 from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env
 
@@ -68,14 +69,23 @@ class _RunState:
         if self.on_event is not None:
             try:
                 self.on_event(event)
-            except Exception:  # a faulty callback must not break the run
+            except Exception:  # noqa: BLE001 - a faulty callback must not break the run
                 pass
 
 
 class Player:
-    def __init__(self, name: str, server_port: int, *, host: str = "127.0.0.1", log_dir: Path | None = None,
-                 primitives: list[str] | None = None, server: Any = None, watchdog_s: float = 1.0,
-                 login_timeout: float = 30.0):
+    def __init__(
+        self,
+        name: str,
+        server_port: int,
+        *,
+        host: str = "127.0.0.1",
+        log_dir: Path | None = None,
+        primitives: list[str] | None = None,
+        server: Any = None,
+        watchdog_s: float = 1.0,
+        login_timeout: float = 30.0,
+    ):
         self.name = name
         self.server_port = server_port
         self.host = host
@@ -94,19 +104,25 @@ class Player:
         self._last_line = 0.0
         self._spawned: asyncio.Future | None = None
         self._tasks: list[asyncio.Task] = []
+        self._recoveries: set[asyncio.Task] = set()  # held so a running recovery is not garbage-collected
         self._stderr_tail: collections.deque[str] = collections.deque(maxlen=40)
         self._fatal: str | None = None
         self._expect_exit = False
         self._closed = False
         self._generation = 0
-        self.position: list[float] | None = None
+        self.position: list[float | None] | None = None
         self._last_obs: dict = {}
 
     # ---- process ----------------------------------------------------------------------------
     @property
     def alive(self) -> bool:
-        return self.proc is not None and self.proc.returncode is None and self._spawned is not None \
-            and self._spawned.done() and not self._spawned.exception()
+        return (
+            self.proc is not None
+            and self.proc.returncode is None
+            and self._spawned is not None
+            and self._spawned.done()
+            and not self._spawned.exception()
+        )
 
     async def start(self) -> None:
         """Spawn the bot process, log in and wait until it has spawned."""
@@ -117,16 +133,26 @@ class Player:
             await asyncio.sleep(LOGIN_GAP_S)
 
     async def _spawn(self) -> None:
-        settings = {"host": self.host, "port": self.server_port, "username": self.name,
-                    "primitives": self.primitives, "heartbeatMs": 200}
+        settings = {
+            "host": self.host,
+            "port": self.server_port,
+            "username": self.name,
+            "primitives": self.primitives,
+            "heartbeatMs": 200,
+        }
         loop = asyncio.get_running_loop()
         self._generation += 1
         self._spawned = loop.create_future()
         self._fatal = None
         self._expect_exit = False
         self.proc = await asyncio.create_subprocess_exec(
-            *bot_command(settings), stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE,
-            stderr=asyncio.subprocess.PIPE, env=node_env(), start_new_session=True, limit=2**26,
+            *bot_command(settings),
+            stdin=asyncio.subprocess.PIPE,
+            stdout=asyncio.subprocess.PIPE,
+            stderr=asyncio.subprocess.PIPE,
+            env=node_env(),
+            start_new_session=True,
+            limit=2**26,
         )
         self._last_line = time.monotonic()
         gen = self._generation
@@ -139,7 +165,9 @@ class Player:
             await asyncio.wait_for(asyncio.shield(self._spawned), self.login_timeout)
         except asyncio.TimeoutError:
             await self._kill()
-            raise PlayerError(f"{self.name}: bot did not spawn within {self.login_timeout} s\n{self.stderr_tail()}") from None
+            raise PlayerError(
+                f"{self.name}: bot did not spawn within {self.login_timeout} s\n{self.stderr_tail()}"
+            ) from None
         except PlayerError:
             await self._kill()
             raise
@@ -155,6 +183,7 @@ class Player:
 
     async def _read_stderr(self, proc: asyncio.subprocess.Process) -> None:
         log = self._log_file()
+        assert proc.stderr is not None  # started with stderr=PIPE
         try:
             while line := await proc.stderr.readline():
                 text = line.decode(errors="replace").rstrip()
@@ -167,6 +196,7 @@ class Player:
                 log.close()
 
     async def _read_stdout(self, proc: asyncio.subprocess.Process, gen: int) -> None:
+        assert proc.stdout is not None  # started with stdout=PIPE
         try:
             while True:
                 try:
@@ -186,9 +216,13 @@ class Player:
             if gen == self._generation and not self._expect_exit and not self._closed:
                 reason = self._fatal or self._exit_reason(proc.returncode)
                 if self._spawned and not self._spawned.done():
-                    self._spawned.set_exception(PlayerError(f"{self.name}: bot process ended before spawning: {reason}"))
+                    self._spawned.set_exception(
+                        PlayerError(f"{self.name}: bot process ended before spawning: {reason}")
+                    )
                 else:
-                    asyncio.create_task(self._recover(reason, gen))
+                    task = asyncio.create_task(self._recover(reason, gen))
+                    self._recoveries.add(task)
+                    task.add_done_callback(self._recoveries.discard)
 
     def _exit_reason(self, code: int | None) -> str:
         tail = self.stderr_tail()
@@ -217,7 +251,7 @@ class Player:
         if "fatal" in msg:
             self._fatal = f"Error: the bot lost its connection ({msg['fatal']}) and was restarted"
             return
-        rid = msg.get("id")
+        rid: Any = msg.get("id")
         run = self._run
         if run is not None and rid == run.rid:
             if not run.done.done():
@@ -278,7 +312,9 @@ class Player:
                 if time.monotonic() - self._last_line > self.watchdog_s and self.alive:
                     await self._recover(
                         f"Error: the code blocked the bot for more than {self.watchdog_s:g} s "
-                        "(an endless loop?); the bot was restarted", self._generation)
+                        "(an endless loop?); the bot was restarted",
+                        self._generation,
+                    )
 
     async def _recover(self, reason: str, gen: int) -> None:
         """Kill (if needed), log in again, restore state, and end the pending run with onError."""
@@ -348,7 +384,7 @@ class Player:
             await self._teleport(snapshot["pos"])
 
     async def _teleport(self, pos: list[float]) -> None:
-        for attempt in range(3):
+        for _attempt in range(3):
             await self.server.request("teleport", player=self.name, pos=pos)
             settled = await self._request("settle", pos=pos, timeout=3, wait=6)
             if settled is True:
@@ -356,8 +392,9 @@ class Player:
         raise PlayerError(f"{self.name}: teleport to {pos} did not arrive (bot at {settled})")
 
     # ---- the API ------------------------------------------------------------------------------
-    async def run(self, code: str, *, timeout: float | None = None,
-                  on_event: Callable[[list], None] | None = None) -> list:
+    async def run(
+        self, code: str, *, timeout: float | None = None, on_event: Callable[[list], None] | None = None
+    ) -> list:
         """Run agent code; return its events, ending with ["observe", {...}]. Events also go to
         `on_event` as they happen."""
         async with self._run_lock:
@@ -403,8 +440,13 @@ class Player:
     async def observe(self) -> list:
         return [["observe", await self._request("observe")]]
 
-    async def reset(self, *, position: Sequence[float] | None = None, inventory: dict[str, int] | None = None,
-                    equipment: Sequence[str | None] | dict | None = None) -> list:
+    async def reset(
+        self,
+        *,
+        position: Sequence[float] | None = None,
+        inventory: dict[str, int] | None = None,
+        equipment: Sequence[str | None] | dict | None = None,
+    ) -> list:
         """Stop code, then set inventory/equipment/position (through the control channel) and return
         [["observe", {...}]]. Events from before the reset are dropped."""
         await self.stop()
@@ -413,7 +455,9 @@ class Player:
                 await self._relogin()
             needs_server = inventory is not None or position is not None or equipment is not None
             if needs_server and self.server is None:
-                raise PlayerError(f"{self.name}: reset with inventory/position/equipment needs `server=` (the arena's control channel)")
+                raise PlayerError(
+                    f"{self.name}: reset with inventory/position/equipment needs `server=` (the arena's control channel)"
+                )
             if inventory is not None or equipment is not None:
                 items = dict(inventory or {})
                 for name in _equipment_names(equipment):
@@ -446,7 +490,8 @@ class Player:
         if proc is not None and proc.returncode is None:
             self._expect_exit = True
             try:
-                proc.stdin.close()
+                if proc.stdin is not None:
+                    proc.stdin.close()
                 await asyncio.wait_for(proc.wait(), 2)
             except (asyncio.TimeoutError, BrokenPipeError, ConnectionResetError):
                 await self._kill()
@@ -455,7 +500,7 @@ class Player:
                 t.cancel()
         self._tasks.clear()
 
-    async def __aenter__(self) -> "Player":
+    async def __aenter__(self) -> Player:
         await self.start()
         return self
 

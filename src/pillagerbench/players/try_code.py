@@ -13,20 +13,13 @@ whole state, not only the final observe), log_dir.
 from __future__ import annotations
 
 import asyncio
-import importlib
 import json
 import sys
 from pathlib import Path
-from typing import Any
 
 from pillagerbench.arena import ArenaServer
 from pillagerbench.players.player import Player, PlayerError
-
-# Fallback spawns (upstream's, y shifted by +64) when the scenario module is not available.
-FALLBACK_SPAWNS: dict[str, dict[str, tuple[float, float, float]]] = {
-    "mushroom_war": {"Ryn": (-7, 4, -10), "Raze": (-11, 4, -10), "Byte": (-11, 4, 6), "Blink": (-7, 4, 6)},
-    "dash_and_dine": {"Ryn": (-5, 4, -10), "Raze": (-5, 4, -8), "Byte": (-5, 4, 6), "Blink": (-5, 4, 8)},
-}
+from pillagerbench.scenarios import SCENARIOS, Scenario, make_scenario
 
 USAGE = "usage: pillagerbench try scenario=mushroom_war player=Ryn code=FILE.js [timeout=120] [inventory='{...}'] [pos=x,y,z] [full=true]"
 
@@ -46,19 +39,9 @@ def parse_args(argv: list[str]) -> dict[str, str]:
     return out
 
 
-def load_scenario(key: str) -> Any | None:
-    """The scenario object if its module exists (duck-typed: arena, all_players(), primitives)."""
-    try:
-        mod = importlib.import_module(f"pillagerbench.scenarios.{key}")
-    except ImportError:
-        return None
-    for obj in vars(mod).values():
-        if isinstance(obj, type) and getattr(obj, "key", None) == key:
-            try:
-                return obj()
-            except TypeError:
-                return None
-    return None
+def load_scenario(key: str) -> Scenario | None:
+    """The registered scenario `key` (scenarios.SCENARIOS), or None when there is none by that name."""
+    return make_scenario(key) if key in SCENARIOS else None
 
 
 async def _main(opts: dict[str, str]) -> int:
@@ -77,13 +60,14 @@ async def _main(opts: dict[str, str]) -> int:
         for spec in scenario.all_players():
             if spec.name == player_name:
                 spawn = tuple(spec.spawn)
-        primitives = list(getattr(scenario, "primitives", None) or []) or None
-    if spawn is None:
-        spawn = FALLBACK_SPAWNS.get(scenario_key, {}).get(player_name)
+        primitives = list(scenario.primitives or []) or None
     if "pos" in opts:
         spawn = tuple(float(v) for v in opts["pos"].split(","))
     if spawn is None:
-        print(f"pillagerbench try: no player {player_name!r} in scenario {scenario_key!r}; give pos=x,y,z", file=sys.stderr)
+        print(
+            f"pillagerbench try: no player {player_name!r} in scenario {scenario_key!r}; give pos=x,y,z",
+            file=sys.stderr,
+        )
         return 2
 
     def show(event: list) -> None:
@@ -98,12 +82,20 @@ async def _main(opts: dict[str, str]) -> int:
                 await scenario.arena.build(server)
                 built = True
             except Exception as exc:  # noqa: BLE001 - a flat arena still lets the code run
-                print(f"pillagerbench try: could not build the {scenario_key} arena ({exc}); using a flat arena",
-                      file=sys.stderr)
+                print(
+                    f"pillagerbench try: could not build the {scenario_key} arena ({exc}); using a flat arena",
+                    file=sys.stderr,
+                )
         if not built:
             print(f"pillagerbench try: flat arena ({scenario_key} not built)", file=sys.stderr)
-        player = Player(player_name, server.port, server=server, primitives=primitives,
-                        log_dir=Path(opts["log_dir"]) if "log_dir" in opts else None)
+        assert server.port is not None  # the server has started
+        player = Player(
+            player_name,
+            server.port,
+            server=server,
+            primitives=primitives,
+            log_dir=Path(opts["log_dir"]) if "log_dir" in opts else None,
+        )
         try:
             await player.start()
             await player.reset(position=spawn, inventory=inventory)

@@ -32,7 +32,10 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
         "summary": (tables.summary(main, sigma, runs.ledger), "Summary per red team (all scenarios and opponents)"),
         "per_scenario": (tables.summary(main, sigma, runs.ledger, by_scenario=True), "Per red team and scenario"),
         "pairings": (tables.pairings(main, sigma), "Per pairing (heatmap values)"),
-        "groups": (tables.groups(df, sigma), "Groups (adaptation: same/different opponent; self-play: after k episodes)"),
+        "groups": (
+            tables.groups(df, sigma),
+            "Groups (adaptation: same/different opponent; self-play: after k episodes)",
+        ),
         "learning_curve": (tables.learning_curve(main), "Points difference per episode index"),
         "side_symmetry": (symmetry, "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)"),
         "calibration": (tables.calibration(sigma), "σ_blue used for the sabotage metric"),
@@ -44,20 +47,32 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     scenarios = tables.scenario_order(df) if len(df) else []
     figures = []
     for sc in scenarios:
-        figures.append((f"Heatmaps: {plots._title(sc)}", plots.heatmaps(t["pairings"][0], sc, out / f"heatmaps_{sc}.png")))
+        figures.append(
+            (f"Heatmaps: {plots._title(sc)}", plots.heatmaps(t["pairings"][0], sc, out / f"heatmaps_{sc}.png"))
+        )
         figures.append((f"Points over time: {plots._title(sc)}", plots.timeline(main, sc, out / f"timeline_{sc}.png")))
-    figures.append(("Points difference per episode", plots.learning_curve(t["learning_curve"][0], out / "learning_curve.png")))
+    figures.append(
+        ("Points difference per episode", plots.learning_curve(t["learning_curve"][0], out / "learning_curve.png"))
+    )
     figures.append(("Groups", plots.groups(t["groups"][0], out / "groups.png")))
     figures.append(("Self-play series", plots.series_scores(df, out / "series_scores.png")))
     files += [p for _, p in figures]
-    notes.insert(0, f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
-                    "± is the 95 % confidence interval")
-    without_model = [(r, side) for r in df.itertuples() for side in (getattr(r, "problems", None) or {})] \
-        if len(df) and "problems" in df else []
+    notes.insert(
+        0,
+        f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
+        "± is the 95 % confidence interval",
+    )
+    without_model = (
+        [(r, side) for r in df.itertuples() for side in (getattr(r, "problems", None) or {})]
+        if len(df) and "problems" in df
+        else []
+    )
     if without_model:
         r, side = without_model[-1]
-        notes.append(f"{len(without_model)} team-episode(s) with problems (model or team server not answering ...), e.g. "
-                     f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}")
+        notes.append(
+            f"{len(without_model)} team-episode(s) with problems (model or team server not answering ...), e.g. "
+            f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}"
+        )
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
     sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]

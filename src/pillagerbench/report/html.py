@@ -6,6 +6,7 @@ from __future__ import annotations
 import base64
 import html
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
 
@@ -32,11 +33,13 @@ def image_html(path: Path, alt: str) -> str:
     return f"<img alt='{html.escape(alt)}' src='data:image/png;base64,{data}'>"
 
 
-def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[str, str, object]]) -> str:
+def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[str, str, Any]]) -> str:
     """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path) or "text"."""
-    parts = [f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>",
-             f"<style>{STYLE}</style></head><body><h1>{html.escape(title)}</h1>",
-             "<p class='note'>Runs: " + ", ".join(f"<code>{html.escape(str(r))}</code>" for r in runs) + "</p>"]
+    parts = [
+        f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>",
+        f"<style>{STYLE}</style></head><body><h1>{html.escape(title)}</h1>",
+        "<p class='note'>Runs: " + ", ".join(f"<code>{html.escape(str(r))}</code>" for r in runs) + "</p>",
+    ]
     if notes:
         parts.append("<ul class='note'>" + "".join(f"<li>{html.escape(n)}</li>" for n in notes) + "</ul>")
     for heading, kind, content in sections:

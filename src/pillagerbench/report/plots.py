@@ -15,15 +15,19 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
 
-from pillagerbench.metrics.formulas import t_critical  # noqa: E402
-from pillagerbench.report.tables import ALL, opponent_order, red_order  # noqa: E402
+from pillagerbench.metrics.formulas import t_critical
+from pillagerbench.report.tables import ALL, opponent_order, red_order
 
-TITLES = {"P": "Points (red team)", "S": "Sabotage (red team)", "W": "Win rate (red team)",
-          "D": "Points difference (red − blue)"}
+TITLES = {
+    "P": "Points (red team)",
+    "S": "Sabotage (red team)",
+    "W": "Win rate (red team)",
+    "D": "Points difference (red − blue)",
+}
 CMAPS = {"P": "viridis", "S": "viridis", "W": "coolwarm", "D": "coolwarm"}
 SCENARIO_TITLES = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
 
@@ -46,7 +50,7 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
     if not len(sd):
         return _empty(path, f"{_title(scenario)}: no episodes")
     rows = red_order(sd)
-    cols = [c for c in opponent_order(sd[sd["blue"] != ALL], scenario)] + [ALL]
+    cols = [*opponent_order(sd[sd["blue"] != ALL], scenario), ALL]
     fig, axes = plt.subplots(1, 4, figsize=(4.2 * 4, 1.2 + 0.65 * len(rows) + 0.2 * max(0, len(cols) - 5)))
     for ax, metric in zip(axes, ("P", "S", "W", "D")):
         grid = np.full((len(rows), len(cols)), np.nan)
@@ -55,7 +59,7 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
             i, j = rows.index(r["red"]), cols.index(r["blue"])
             grid[i, j], ci[i, j] = r[metric], r[f"{metric}_ci"]
         masked = np.ma.masked_invalid(grid)
-        kw = {"vmin": 0, "vmax": 1} if metric == "W" else {}
+        kw: dict[str, float] = {"vmin": 0, "vmax": 1} if metric == "W" else {}
         if metric == "D" and np.isfinite(grid).any():
             lim = np.nanmax(np.abs(grid)) or 1.0
             kw = {"vmin": -lim, "vmax": lim}
@@ -64,7 +68,9 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
             for j in range(len(cols)):
                 if np.isfinite(grid[i, j]):
                     text = f"{grid[i, j]:.2f}" + (f"\n±{ci[i, j]:.2f}" if np.isfinite(ci[i, j]) else "")
-                    ax.text(j, i, text, ha="center", va="center", fontsize=7, color="white" if metric in "PS" else "black")
+                    ax.text(
+                        j, i, text, ha="center", va="center", fontsize=7, color="white" if metric in "PS" else "black"
+                    )
         ax.set_xticks(range(len(cols)), cols, rotation=45, ha="right", fontsize=8)
         ax.set_yticks(range(len(rows)), rows, fontsize=8)
         ax.set_title(TITLES[metric], fontsize=10)
@@ -89,7 +95,7 @@ def timeline(df: pd.DataFrame, scenario: str, path: Path) -> Path:
         t = rd["t"].iloc[0][:n_t]
         y = np.stack([v[:n_t] for v in rd["red_t"]])
         mean = y.mean(axis=0)
-        line, = ax.plot(t, mean, label=f"{red} (n={len(y)})")
+        (line,) = ax.plot(t, mean, label=f"{red} (n={len(y)})")
         if len(y) > 1:
             half = t_critical(len(y) - 1) * y.std(axis=0, ddof=1) / math.sqrt(len(y))
             ax.fill_between(t, mean - half, mean + half, color=line.get_color(), alpha=0.2)

@@ -27,6 +27,8 @@ def main(argv: list[str]) -> int:
     if len(table):
         print(to_markdown(table), end="")
         bad = (table["no_side_effect"] == "✗").sum()
-        print(f"{len(table)} comparison(s): {(table['no_side_effect'] == '✓').sum()} ✓, {bad} ✗, "
-              f"{(table['no_side_effect'] == '–').sum()} without an interval")
+        print(
+            f"{len(table)} comparison(s): {(table['no_side_effect'] == '✓').sum()} ✓, {bad} ✗, "
+            f"{(table['no_side_effect'] == '–').sum()} without an interval"
+        )
     return 0

@@ -38,7 +38,7 @@ def opponent_order(df: pd.DataFrame, scenario: str | None = None) -> list[str]:
     sub = df if scenario is None else df[df["scenario"] == scenario]
     present = list(dict.fromkeys(sub["blue"])) if len(sub) else []
     canon: list[str] = []
-    for sc in ([scenario] if scenario else scenario_order(df)):
+    for sc in [scenario] if scenario else scenario_order(df):
         canon += [t for t in builtin_teams(sc) if t not in canon]
     return [t for t in canon if t in present] + [t for t in present if t not in canon]
 
@@ -79,16 +79,30 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
             for blue in opponent_order(rd, scenario):
                 g = rd[rd["blue"] == blue]
                 s = sigma.get((scenario, g["blue_team"].iloc[0]))
-                rows.append({"scenario": scenario, "red": red, "blue": blue,
-                             **_row(pairing(g["red_score"], g["blue_score"], s.mean if s else None, s), len(g))})
-            rows.append({"scenario": scenario, "red": red, "blue": ALL,
-                         **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd))})
-    return pd.DataFrame(rows, columns=["scenario", "red", "blue", "episodes"] + [c for m in METRICS for c in (m, f"{m}_ci")])
+                rows.append(
+                    {
+                        "scenario": scenario,
+                        "red": red,
+                        "blue": blue,
+                        **_row(pairing(g["red_score"], g["blue_score"], s.mean if s else None, s), len(g)),
+                    }
+                )
+            rows.append(
+                {
+                    "scenario": scenario,
+                    "red": red,
+                    "blue": ALL,
+                    **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd)),
+                }
+            )
+    return pd.DataFrame(
+        rows, columns=["scenario", "red", "blue", "episodes"] + [c for m in METRICS for c in (m, f"{m}_ci")]
+    )
 
 
 def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool = False) -> pd.DataFrame:
     rows = []
-    keys = [(r, None) for r in red_order(df)]
+    keys: list[tuple[str, str | None]] = [(r, None) for r in red_order(df)]
     if by_scenario:
         keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df["scenario"] == sc])]
     for red, scenario in keys:
@@ -96,13 +110,25 @@ def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool
         calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
         llm = llm_metrics(calls)
         it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
-        row = {"red": red, **({"scenario": scenario} if by_scenario else {}),
-               **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd)),
-               "T_resp": llm["T_resp"], "N_out": llm["N_out"], "R_tps": llm["R_tps"], "llm_calls": llm["calls"],
-               "I": it.mean, "I_ci": it.ci}
+        row = {
+            "red": red,
+            **({"scenario": scenario} if by_scenario else {}),
+            **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd)),
+            "T_resp": llm["T_resp"],
+            "N_out": llm["N_out"],
+            "R_tps": llm["R_tps"],
+            "llm_calls": llm["calls"],
+            "I": it.mean,
+            "I_ci": it.ci,
+        }
         rows.append(row)
-    cols = ["red"] + (["scenario"] if by_scenario else []) + ["episodes"] + \
-        [c for m in METRICS for c in (m, f"{m}_ci")] + ["T_resp", "N_out", "R_tps", "llm_calls", "I", "I_ci"]
+    cols = (
+        ["red"]
+        + (["scenario"] if by_scenario else [])
+        + ["episodes"]
+        + [c for m in METRICS for c in (m, f"{m}_ci")]
+        + ["T_resp", "N_out", "R_tps", "llm_calls", "I", "I_ci"]
+    )
     return pd.DataFrame(rows, columns=cols)
 
 
@@ -117,10 +143,18 @@ def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
                 for group in order:
                     g = sd[sd["group"] == group]
                     if len(g):
-                        rows.append({"red": red, "scenario": scenario, "group": group, "group_x": _group_x(gd, group),
-                                     **_row(over_opponents(_groups_by_opponent(g, sigma)), len(g))})
-    return pd.DataFrame(rows, columns=["red", "scenario", "group", "group_x", "episodes"] +
-                        [c for m in METRICS for c in (m, f"{m}_ci")])
+                        rows.append(
+                            {
+                                "red": red,
+                                "scenario": scenario,
+                                "group": group,
+                                "group_x": _group_x(gd, group),
+                                **_row(over_opponents(_groups_by_opponent(g, sigma)), len(g)),
+                            }
+                        )
+    return pd.DataFrame(
+        rows, columns=["red", "scenario", "group", "group_x", "episodes"] + [c for m in METRICS for c in (m, f"{m}_ci")]
+    )
 
 
 def _group_x(df: pd.DataFrame, group: str) -> float:
@@ -144,8 +178,10 @@ def learning_curve(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def calibration(sigma: dict) -> pd.DataFrame:
-    rows = [{"scenario": sc, "opponent": team, "sigma_blue": e.mean, "sigma_blue_ci": e.ci, "episodes": e.n}
-            for (sc, team), e in sigma.items()]
+    rows = [
+        {"scenario": sc, "opponent": team, "sigma_blue": e.mean, "sigma_blue_ci": e.ci, "episodes": e.n}
+        for (sc, team), e in sigma.items()
+    ]
     return pd.DataFrame(rows, columns=["scenario", "opponent", "sigma_blue", "sigma_blue_ci", "episodes"])
 
 
@@ -169,8 +205,12 @@ def display_frame(df: pd.DataFrame) -> pd.DataFrame:
         if c.endswith("_ci") and c[:-3] in df.columns:
             continue
         if f"{c}_ci" in df.columns:
-            out[c] = [_fmt(m) if (ci is None or (isinstance(ci, float) and math.isnan(ci))) or _fmt(m) == "–"
-                      else f"{_fmt(m)} ± {_fmt(ci)}" for m, ci in zip(df[c], df[f"{c}_ci"])]
+            out[c] = [
+                _fmt(m)
+                if (ci is None or (isinstance(ci, float) and math.isnan(ci))) or _fmt(m) == "–"
+                else f"{_fmt(m)} ± {_fmt(ci)}"
+                for m, ci in zip(df[c], df[f"{c}_ci"])
+            ]
         else:
             out[c] = [_fmt(v) for v in df[c]]
     return pd.DataFrame(out, columns=list(out))

@@ -7,6 +7,7 @@ Coordinates are Minecraft 1.16.5 ones: upstream's 1.19.4 coordinates with y shif
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -33,7 +34,7 @@ class Arena:
     blocks: list[tuple] = field(default_factory=list)
     chests: dict[Pos, dict[str, int]] = field(default_factory=dict)
     furnaces: dict[Pos, dict[str, Any]] = field(default_factory=dict)
-    mobs: list[tuple[str, tuple[float, float, float]]] = field(default_factory=list)
+    mobs: Sequence[tuple[str, tuple[float, float, float]]] = field(default_factory=list)
     egg_farms: list[tuple[Pos, float]] = field(default_factory=list)  # (chest, seconds per egg)
 
     def block_names(self) -> dict[Pos, str]:
@@ -53,8 +54,8 @@ class Arena:
             await server.request("set_chest", pos=list(pos), items=items)
         for pos, contents in self.furnaces.items():
             await server.request("set_furnace", pos=list(pos), **contents)
-        for name, pos in self.mobs:
-            await server.request("summon", mob=name, pos=list(pos))
+        for name, at in self.mobs:
+            await server.request("summon", mob=name, pos=list(at))
         for chest, interval in self.egg_farms:
             await server.request("egg_farm", chest=list(chest), interval_s=interval)
 

@@ -19,11 +19,11 @@ class PlayerSpec:
 
 @dataclass(frozen=True)
 class Side:
-    key: str                     # "red" or "blue"
-    team_name: str               # "red_team"
+    key: str  # "red" or "blue"
+    team_name: str  # "red_team"
     color: str
     players: tuple[PlayerSpec, ...]
-    center: tuple[int, int, int]
+    center: tuple[float, float, float]
 
     @property
     def player_names(self) -> list[str]:
@@ -36,11 +36,11 @@ class GameMaster(ABC):
 
     period_s: ClassVar[float] = 1.0
 
-    def __init__(self, scenario: "Scenario", server, rng: random.Random):
+    def __init__(self, scenario: Scenario, server, rng: random.Random):
         self.scenario, self.server, self.rng = scenario, server, rng
         self.log: list[dict] = []  # what the game master did, for the episode record
 
-    async def start(self) -> None:
+    async def start(self) -> None:  # noqa: B027 - a hook with nothing to do by default
         """Called once when the clock starts."""
 
     @abstractmethod
@@ -69,7 +69,7 @@ class Scenario(ABC):
 
     @property
     @abstractmethod
-    def sides(self) -> tuple[Side, Side]: ...
+    def sides(self) -> tuple[Side, ...]: ...
 
     @property
     @abstractmethod
@@ -99,8 +99,12 @@ class Scenario(ABC):
     def placeholders(self, key: str) -> dict[str, Any]:
         """Values substituted into the built-in opponents' scripts ($team_name, ...)."""
         own, other = self.side(key), self.opponent(key)
-        return {"team_name": own.team_name, "opponent_name": other.team_name,
-                "team_center": vec(own.center), "opponent_center": vec(other.center)}
+        return {
+            "team_name": own.team_name,
+            "opponent_name": other.team_name,
+            "team_center": vec(own.center),
+            "opponent_center": vec(other.center),
+        }
 
     def all_players(self) -> list[PlayerSpec]:
         return [p for s in self.sides for p in s.players] + list(self.extra_players)

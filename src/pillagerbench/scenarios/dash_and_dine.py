@@ -21,25 +21,67 @@ SERVER_PERIOD_S = 2.0
 # Points per food item (hunger + saturation restored, as upstream). Raw beef and chicken use their
 # real item ids and score as the description says (upstream's keys never matched).
 REWARDS = {
-    "apple": 6.4, "baked_potato": 11, "beetroot": 2.2, "beetroot_soup": 13.2, "bread": 11, "cake": 16.8,
-    "carrot": 6.6, "chorus_fruit": 6.4, "cooked_beef": 20.8, "cooked_chicken": 13.2, "cooked_cod": 11,
-    "cooked_mutton": 15.6, "cooked_porkchop": 20.8, "cooked_rabbit": 11, "cooked_salmon": 15.6, "cookie": 2.4,
-    "dried_kelp": 1.6, "enchanted_golden_apple": 13.6, "golden_apple": 13.6, "golden_carrot": 20.4,
-    "honey_bottle": 7.2, "melon_slice": 3.2, "mushroom_stew": 13.2, "poisonous_potato": 3.2, "potato": 1.6,
-    "pufferfish": 1.2, "pumpkin_pie": 12.8, "rabbit_stew": 22, "beef": 4.8, "chicken": 3.2, "cod": 2.4,
-    "mutton": 3.2, "porkchop": 4.8, "rabbit": 4.8, "salmon": 2.4, "rotten_flesh": 4.8, "spider_eye": 5.2,
-    "suspicious_stew": 13.2, "sweet_berries": 2.4, "tropical_fish": 1.2,
+    "apple": 6.4,
+    "baked_potato": 11,
+    "beetroot": 2.2,
+    "beetroot_soup": 13.2,
+    "bread": 11,
+    "cake": 16.8,
+    "carrot": 6.6,
+    "chorus_fruit": 6.4,
+    "cooked_beef": 20.8,
+    "cooked_chicken": 13.2,
+    "cooked_cod": 11,
+    "cooked_mutton": 15.6,
+    "cooked_porkchop": 20.8,
+    "cooked_rabbit": 11,
+    "cooked_salmon": 15.6,
+    "cookie": 2.4,
+    "dried_kelp": 1.6,
+    "enchanted_golden_apple": 13.6,
+    "golden_apple": 13.6,
+    "golden_carrot": 20.4,
+    "honey_bottle": 7.2,
+    "melon_slice": 3.2,
+    "mushroom_stew": 13.2,
+    "poisonous_potato": 3.2,
+    "potato": 1.6,
+    "pufferfish": 1.2,
+    "pumpkin_pie": 12.8,
+    "rabbit_stew": 22,
+    "beef": 4.8,
+    "chicken": 3.2,
+    "cod": 2.4,
+    "mutton": 3.2,
+    "porkchop": 4.8,
+    "rabbit": 4.8,
+    "salmon": 2.4,
+    "rotten_flesh": 4.8,
+    "spider_eye": 5.2,
+    "suspicious_stew": 13.2,
+    "sweet_berries": 2.4,
+    "tropical_fish": 1.2,
 }
 
 # The food list shown to LLMs: item, how to get it.
 FOODS = [
-    ("baked_potato", "smelt a potato in a furnace"), ("beef", "dropped by a cow"), ("beetroot", "farmed"),
-    ("beetroot_soup", "craft 6 beetroot + 1 bowl"), ("bread", "craft 3 wheat"),
-    ("cake", "craft 3 milk_bucket + 2 sugar + 1 egg + 3 wheat (the buckets come back)"), ("carrot", "farmed"),
-    ("chicken", "dropped by a chicken"), ("cooked_beef", "smelt beef"), ("cooked_chicken", "smelt chicken"),
-    ("cookie", "craft 2 wheat + 1 cocoa_beans (makes 8)"), ("golden_carrot", "craft 8 gold_nugget + 1 carrot"),
-    ("melon_slice", "farmed (break a melon)"), ("potato", "farmed"), ("pumpkin_pie", "craft 1 pumpkin + 1 sugar + 1 egg"),
-    ("sweet_berries", "farmed (right-click a ripe bush)"), ("sugar", "craft 1 sugar_cane (not food, worth 0)"),
+    ("baked_potato", "smelt a potato in a furnace"),
+    ("beef", "dropped by a cow"),
+    ("beetroot", "farmed"),
+    ("beetroot_soup", "craft 6 beetroot + 1 bowl"),
+    ("bread", "craft 3 wheat"),
+    ("cake", "craft 3 milk_bucket + 2 sugar + 1 egg + 3 wheat (the buckets come back)"),
+    ("carrot", "farmed"),
+    ("chicken", "dropped by a chicken"),
+    ("cooked_beef", "smelt beef"),
+    ("cooked_chicken", "smelt chicken"),
+    ("cookie", "craft 2 wheat + 1 cocoa_beans (makes 8)"),
+    ("golden_carrot", "craft 8 gold_nugget + 1 carrot"),
+    ("melon_slice", "farmed (break a melon)"),
+    ("potato", "farmed"),
+    ("pumpkin_pie", "craft 1 pumpkin + 1 sugar + 1 egg"),
+    ("sweet_berries", "farmed (right-click a ripe bush)"),
+    ("sugar", "craft 1 sugar_cane (not food, worth 0)"),
 ]
 
 SERVERS = {"red": PlayerSpec("Red_Server", (-1, Y, -9)), "blue": PlayerSpec("Blue_Server", (-1, Y, 7))}
@@ -70,21 +112,33 @@ def build_arena() -> Arena:
     blocks += [(*BUCKET_CHEST, "chest"), (*EGG_CHEST, "chest")]
     # egg farm: chickens in a glass pen next to the egg chest
     blocks += [(x, y, z, "glass") for x, z in [(-8, 6), (-6, 6), (-7, 7), (-8, 7), (-6, 7)] for y in (Y, Y + 1)]
-    blocks += [(TOOL_CHEST[0], Y, TOOL_CHEST[2], "stone_bricks"), (*TOOL_CHEST, "chest"),
-               (-12, Y, -1, "crafting_table"), (-10, Y, -1, "crafting_table")]
+    blocks += [
+        (TOOL_CHEST[0], Y, TOOL_CHEST[2], "stone_bricks"),
+        (*TOOL_CHEST, "chest"),
+        (-12, Y, -1, "crafting_table"),
+        (-10, Y, -1, "crafting_table"),
+    ]
     # sugar cane: 3 wide, 3 high, on sand beside water
     for x in range(-12, -9):
-        blocks += [(x, GROUND_Y, -8, "sand"), (x, GROUND_Y, -9, "water")] + [(x, y, -8, "sugar_cane") for y in range(Y, Y + 3)]
+        blocks += [(x, GROUND_Y, -8, "sand"), (x, GROUND_Y, -9, "water")] + [
+            (x, y, -8, "sugar_cane") for y in range(Y, Y + 3)
+        ]
     blocks += [(x, Y, zz, "sweet_berry_bush", {"age": 3}) for x, zz in row(-12, 3, 6)]
     # cocoa: 2-high jungle logs with ripe pods on both sides
     for x in range(-16, -13):
         for y in (Y, Y + 1):
-            blocks += [(x, y, -8, "jungle_log"), (x, y, -9, "cocoa", {"age": 2, "facing": "south"}),
-                       (x, y, -7, "cocoa", {"age": 2, "facing": "north"})]
+            blocks += [
+                (x, y, -8, "jungle_log"),
+                (x, y, -9, "cocoa", {"age": 2, "facing": "south"}),
+                (x, y, -7, "cocoa", {"age": 2, "facing": "north"}),
+            ]
     # melons and pumpkins: 5 stems on farmland, fruit grown beside them
     for i, x in enumerate(range(-17, -12)):
-        fruit, stem, facing, dz = (("melon", "attached_melon_stem", "north", -1) if i % 2 == 0
-                                   else ("pumpkin", "attached_pumpkin_stem", "south", 1))
+        fruit, stem, facing, dz = (
+            ("melon", "attached_melon_stem", "north", -1)
+            if i % 2 == 0
+            else ("pumpkin", "attached_pumpkin_stem", "south", 1)
+        )
         blocks += [(x, GROUND_Y, -1, "farmland"), (x, Y, -1, stem, {"facing": facing}), (x, Y, -1 + dz, fruit)]
     blocks += crop_field(-16, 3, 6, "beetroots", 3)
     blocks += crop_field(-20, 3, -8, "carrots", 7)
@@ -93,8 +147,12 @@ def build_arena() -> Arena:
     return Arena(
         box=((-26, 1, -16), (6, Y + 8, 14)),
         blocks=blocks,
-        chests={BOWL_CHEST: {"bowl": 64}, BUCKET_CHEST: {"bucket": 16}, EGG_CHEST: {"egg": 16},  # eggs laid before the game
-                TOOL_CHEST: {"gold_nugget": 64, "netherite_hoe": 1}},
+        chests={
+            BOWL_CHEST: {"bowl": 64},
+            BUCKET_CHEST: {"bucket": 16},
+            EGG_CHEST: {"egg": 16},  # eggs laid before the game
+            TOOL_CHEST: {"gold_nugget": 64, "netherite_hoe": 1},
+        },
         furnaces={p: {"fuel": ["coal", 64]} for p in FURNACES},
         mobs=[("cow", (-6.5, Y, -8.5))] + [("chicken", (-6.5, Y, 6.5))] * 4,
         egg_farms=[(EGG_CHEST, 30.0)],
@@ -123,14 +181,25 @@ POINTS_OF_INTEREST = [
 class DashAndDine(Scenario):
     key = "dash_and_dine"
     title = "Dash and Dine"
-    primitives = ("mineBlock", "craftItem", "placeItem", "multiAgent", "farm", "smeltItem", "killMob",
-                  "giveToPlayer", "useChest")
+    primitives = (
+        "mineBlock",
+        "craftItem",
+        "placeItem",
+        "multiAgent",
+        "farm",
+        "smeltItem",
+        "killMob",
+        "giveToPlayer",
+        "useChest",
+    )
     crop_growth_chance: float = 0.3
 
     @property
-    def sides(self) -> tuple[Side, Side]:
-        return tuple(Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in PLAYERS[key]),
-                          SERVERS[key].spawn) for key in ("red", "blue"))
+    def sides(self) -> tuple[Side, ...]:
+        return tuple(
+            Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in PLAYERS[key]), SERVERS[key].spawn)
+            for key in ("red", "blue")
+        )
 
     @property
     def extra_players(self) -> tuple[PlayerSpec, ...]:
@@ -142,8 +211,9 @@ class DashAndDine(Scenario):
 
     def placeholders(self, key: str) -> dict:
         out = super().placeholders(key)
-        out.update(server_name=SERVERS[key].name, ground_y=GROUND_Y,
-                   **{key: vec(p) for key, _, p in POINTS_OF_INTEREST})
+        out.update(
+            server_name=SERVERS[key].name, ground_y=GROUND_Y, **{key: vec(p) for key, _, p in POINTS_OF_INTEREST}
+        )
         return out
 
     def description(self) -> str:
@@ -168,7 +238,7 @@ class DashAndDine(Scenario):
         ]
         return "\n".join(lines)
 
-    def game_master(self, server, rng: random.Random) -> "DashAndDineMaster":
+    def game_master(self, server, rng: random.Random) -> DashAndDineMaster:
         return DashAndDineMaster(self, server, rng)
 
 
@@ -183,7 +253,7 @@ class DashAndDineMaster(GameMaster):
         for key, server_player in SERVERS.items():
             try:
                 inventory = await self.server.request("inventory", player=server_player.name)
-            except Exception as exc:
+            except Exception as exc:  # noqa: BLE001 - logged; the other server is still emptied
                 self.log.append({"error": f"{server_player.name}: {exc}"})
                 continue
             if not inventory:

@@ -11,29 +11,39 @@ from __future__ import annotations
 import asyncio
 import random
 from dataclasses import dataclass
+from typing import Any
 
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
 
 Y = GROUND_Y + 1  # the layer players stand in
-WASTE_CUTOFF = 7        # a team's mushrooms regrow only while its area holds at most this many slime blocks
+WASTE_CUTOFF = 7  # a team's mushrooms regrow only while its area holds at most this many slime blocks
 AREA_RADIUS = 7
-P_REGROW = 0.1          # per missing cap block per second, while clean
-P_SLIME = 0.02          # per original slime position per second, always
+P_REGROW = 0.1  # per missing cap block per second, while clean
+P_SLIME = 0.02  # per original slime position per second, always
 
-RED = {"cap": "red_mushroom_block", "item": "red_mushroom", "center": (-9, Y, -10),
-       "mushrooms": [(-13, -8), (-5, -8), (-9, -12)], "slime": [(-9, -8), (-13, -12), (-5, -12)],
-       "players": [("Ryn", (-7, Y, -10)), ("Raze", (-11, Y, -10))]}
+RED: dict[str, Any] = {
+    "cap": "red_mushroom_block",
+    "item": "red_mushroom",
+    "center": (-9, Y, -10),
+    "mushrooms": [(-13, -8), (-5, -8), (-9, -12)],
+    "slime": [(-9, -8), (-13, -12), (-5, -12)],
+    "players": [("Ryn", (-7, Y, -10)), ("Raze", (-11, Y, -10))],
+}
 
 
 def mirror(z: float) -> float:
     return -4 - z
 
 
-BLUE = {"cap": "brown_mushroom_block", "item": "brown_mushroom", "center": (-9, Y, mirror(-10)),
-        "mushrooms": [(x, mirror(z)) for x, z in RED["mushrooms"]],
-        "slime": [(x, mirror(z)) for x, z in RED["slime"]],
-        "players": [("Byte", (-11, Y, mirror(-10))), ("Blink", (-7, Y, mirror(-10)))]}
+BLUE: dict[str, Any] = {
+    "cap": "brown_mushroom_block",
+    "item": "brown_mushroom",
+    "center": (-9, Y, mirror(-10)),
+    "mushrooms": [(x, mirror(z)) for x, z in RED["mushrooms"]],
+    "slime": [(x, mirror(z)) for x, z in RED["slime"]],
+    "players": [("Byte", (-11, Y, mirror(-10))), ("Blink", (-7, Y, mirror(-10)))],
+}
 TEAMS = {"red": RED, "blue": BLUE}
 PLUS = [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)]
 
@@ -43,8 +53,9 @@ def stems(data) -> list[tuple]:
 
 
 def caps(data) -> list[tuple]:
-    return [(x + dx, Y + 1, z + dz) for x, z in data["mushrooms"] for dx, dz in PLUS[1:]] + \
-           [(x, Y + 2, z) for x, z in data["mushrooms"]]
+    return [(x + dx, Y + 1, z + dz) for x, z in data["mushrooms"] for dx, dz in PLUS[1:]] + [
+        (x, Y + 2, z) for x, z in data["mushrooms"]
+    ]
 
 
 def slime(data) -> list[tuple]:
@@ -58,9 +69,11 @@ class MushroomWar(Scenario):
     primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
 
     @property
-    def sides(self) -> tuple[Side, Side]:
-        return tuple(Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in d["players"]), d["center"])
-                     for key, d in TEAMS.items())
+    def sides(self) -> tuple[Side, ...]:
+        return tuple(
+            Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in d["players"]), d["center"])
+            for key, d in TEAMS.items()
+        )
 
     @property
     def arena(self) -> Arena:
@@ -74,32 +87,33 @@ class MushroomWar(Scenario):
     def placeholders(self, key: str) -> dict:
         out = super().placeholders(key)
         other = "blue" if key == "red" else "red"
-        out.update(team_block=TEAMS[key]["cap"], opponent_block=TEAMS[other]["cap"],
-                   area_radius=AREA_RADIUS)
+        out.update(team_block=TEAMS[key]["cap"], opponent_block=TEAMS[other]["cap"], area_radius=AREA_RADIUS)
         return out
 
     def description(self) -> str:
         r, b = self.sides
-        return "\n".join([
-            f"Mushroom War: two teams of two compete. The red team is {' and '.join(r.player_names)}; "
-            f"the blue team is {' and '.join(b.player_names)}.",
-            f"The red team's area is centred at ({vec(r.center)}), the blue team's at ({vec(b.center)}). "
-            f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
-            f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas start "
-            f"polluted with slime blocks ({len(slime(RED))} in each).",
-            f"The red area holds {len(RED['mushrooms'])} giant mushrooms made of {len(caps(RED)) // len(RED['mushrooms'])} "
-            f"red_mushroom_block each; the blue area holds the same made of brown_mushroom_block.",
-            "Mining a mushroom block gives 0 to 2 mushrooms, most often none.",
-            f"Mined mushroom blocks grow back only while the team's area contains {WASTE_CUTOFF} slime blocks "
-            "or fewer. Removed slime blocks come back after a while.",
-            "The game lasts an unknown amount of time.",
-            "The red team scores 1 point for every red_mushroom its players hold; the blue team 1 point for every "
-            "brown_mushroom its players hold. Items given away or dropped no longer count. The team with the most "
-            "points at the end wins.",
-            "There are no chests. Sabotaging the other team is allowed.",
-        ])
+        return "\n".join(
+            [
+                f"Mushroom War: two teams of two compete. The red team is {' and '.join(r.player_names)}; "
+                f"the blue team is {' and '.join(b.player_names)}.",
+                f"The red team's area is centred at ({vec(r.center)}), the blue team's at ({vec(b.center)}). "
+                f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
+                f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas start "
+                f"polluted with slime blocks ({len(slime(RED))} in each).",
+                f"The red area holds {len(RED['mushrooms'])} giant mushrooms made of {len(caps(RED)) // len(RED['mushrooms'])} "
+                f"red_mushroom_block each; the blue area holds the same made of brown_mushroom_block.",
+                "Mining a mushroom block gives 0 to 2 mushrooms, most often none.",
+                f"Mined mushroom blocks grow back only while the team's area contains {WASTE_CUTOFF} slime blocks "
+                "or fewer. Removed slime blocks come back after a while.",
+                "The game lasts an unknown amount of time.",
+                "The red team scores 1 point for every red_mushroom its players hold; the blue team 1 point for every "
+                "brown_mushroom its players hold. Items given away or dropped no longer count. The team with the most "
+                "points at the end wins.",
+                "There are no chests. Sabotaging the other team is allowed.",
+            ]
+        )
 
-    def game_master(self, server, rng: random.Random) -> "MushroomWarMaster":
+    def game_master(self, server, rng: random.Random) -> MushroomWarMaster:
         return MushroomWarMaster(self, server, rng)
 
 
@@ -107,20 +121,25 @@ class MushroomWarMaster(GameMaster):
     period_s = 1.0
 
     async def start(self) -> None:
-        self.clean = {key: None for key in TEAMS}
+        self.clean: dict[str, bool | None] = {key: None for key in TEAMS}
         self.original_slime = [p for d in TEAMS.values() for p in slime(d)]
 
     async def step(self) -> None:
         for key, d in TEAMS.items():
-            waste = await self.server.request("find_blocks", names=["slime_block"], center=list(d["center"]),
-                                              radius=AREA_RADIUS)
+            waste = await self.server.request(
+                "find_blocks", names=["slime_block"], center=list(d["center"]), radius=AREA_RADIUS
+            )
             clean = len(waste) <= WASTE_CUTOFF
             if clean != self.clean[key]:
                 self.clean[key] = clean
                 await self.say(f"Team {key} is clean!" if clean else f"Team {key} is too dirty!")
             if clean:
-                present = {tuple(b[:3]) for b in await self.server.request(
-                    "find_blocks", names=[d["cap"]], center=list(d["center"]), radius=AREA_RADIUS)}
+                present = {
+                    tuple(b[:3])
+                    for b in await self.server.request(
+                        "find_blocks", names=[d["cap"]], center=list(d["center"]), radius=AREA_RADIUS
+                    )
+                }
                 regrow = [p for p in caps(d) if p not in present and self.rng.random() < P_REGROW]
                 if regrow:
                     await self.server.request("set_blocks", blocks=[[*p, d["cap"]] for p in regrow])
@@ -133,9 +152,13 @@ class MushroomWarMaster(GameMaster):
         # every inventory asked at once: the server answers them in one turn, so neither side's
         # holdings are read before the other's (a mushroom changing hands is counted once)
         names = [n for side in self.scenario.sides for n in side.player_names]
-        replies = await asyncio.gather(*(self.server.request("inventory", player=n) for n in names),
-                                       return_exceptions=True)
+        replies = await asyncio.gather(
+            *(self.server.request("inventory", player=n) for n in names), return_exceptions=True
+        )
         held = {n: [] if isinstance(r, BaseException) else r for n, r in zip(names, replies)}  # offline: nothing
-        return {side.key: float(sum(s["count"] for n in side.player_names for s in held[n]
-                                    if s["name"] == TEAMS[side.key]["item"]))
-                for side in self.scenario.sides}
+        return {
+            side.key: float(
+                sum(s["count"] for n in side.player_names for s in held[n] if s["name"] == TEAMS[side.key]["item"])
+            )
+            for side in self.scenario.sides
+        }

@@ -1,18 +1,55 @@
-"""Teams (multi-agent systems) by config name, entry point or import path (registry.py)."""
+"""Teams (multi-agent systems): the registry (`registry.py`: names, entry points, import paths)
+with the built-in teams."""
 
 from __future__ import annotations
 
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.cot import ChainOfThought
 from pillagerbench.teams.dash_and_dine import Berries, CakeBeetroot, MelonPumpkin, PotatoCookie
 from pillagerbench.teams.do_nothing import DoNothing
 from pillagerbench.teams.mushroom_war import Aggressive, Balanced, Passive, Slimy
-from pillagerbench.teams.registry import TEAMS, available, declared_options, find_team, make_team, register
+from pillagerbench.teams.random_team import RandomTeam
+from pillagerbench.teams.registry import (
+    TEAMS,
+    available,
+    declared_options,
+    find_team,
+    make_team,
+    register,
+    team_from_config,
+    team_options,
+)
+from pillagerbench.teams.remote import RemoteTeam
+from pillagerbench.teams.tacticrafter import TactiCrafter
 
-for _cls in (DoNothing, Aggressive, Balanced, Passive, Slimy, Berries, CakeBeetroot, MelonPumpkin, PotatoCookie):
+BUILT_IN: tuple[type[Team], ...] = (
+    DoNothing,
+    Aggressive,
+    Balanced,
+    Passive,
+    Slimy,
+    Berries,
+    CakeBeetroot,
+    MelonPumpkin,
+    PotatoCookie,  # scripted
+    ChainOfThought,
+    RandomTeam,  # the paper's baselines
+    TactiCrafter,  # the paper's own system
+    RemoteTeam,  # a team in any language behind HTTP (docs/remote-teams.md)
+)
+for _cls in BUILT_IN:
     register(_cls)
 
-__all__ = ["TEAMS", "Team", "TeamContext", "available", "declared_options", "find_team", "make_team", "register"]
-
-from pillagerbench.teams import cot, random_team  # noqa: E402,F401  (baselines; they register themselves)
-from pillagerbench.teams import tacticrafter  # noqa: E402,F401  (the paper's TactiCrafter; registers itself)
-from pillagerbench.teams.remote import team as _remote  # noqa: E402,F401  (remote teams; registers itself)
+__all__ = [
+    "BUILT_IN",
+    "TEAMS",
+    "Team",
+    "TeamContext",
+    "available",
+    "declared_options",
+    "find_team",
+    "make_team",
+    "register",
+    "team_from_config",
+    "team_options",
+]

@@ -23,15 +23,15 @@ class TeamContext:
 
     scenario: Scenario
     side: Side
-    players: dict[str, Any]              # player name -> Player handle (run/stop/observe/reset)
+    players: dict[str, Any]  # player name -> Player handle (run/stop/observe/reset)
     episode: int
-    out_dir: Path                        # this team's artefacts for this episode
+    out_dir: Path  # this team's artefacts for this episode
     observations: dict[str, list] = field(default_factory=dict)  # events from the players' reset
     episode_length: float = 120.0
-    deadline: float | None = None        # time.monotonic() at the whistle (set when the game starts)
-    last_episode: dict[str, Any] = field(default_factory=dict)   # what the match recorded last episode
+    deadline: float | None = None  # time.monotonic() at the whistle (set when the game starts)
+    last_episode: dict[str, Any] = field(default_factory=dict)  # what the match recorded last episode
     seed: int = 0
-    llm: Any = None                      # an LLM client for LLM teams (pillagerbench.llm)
+    llm: Any = None  # an LLM client for LLM teams (pillagerbench.llm)
 
     def time_left(self) -> float:
         return float("inf") if self.deadline is None else max(0.0, self.deadline - time.monotonic())
@@ -53,7 +53,7 @@ class Team:
     def __init__(self, **options: Any):
         self.options = options
         self.iterations: list[int] = []  # code iterations per player per episode (the paper's I)
-        self.problems: list[str] = []    # what went wrong this episode (the match records it)
+        self.problems: list[str] = []  # what went wrong this episode (the match records it)
 
     @classmethod
     def check_options(cls, options: dict[str, Any]) -> list[str]:

@@ -10,11 +10,16 @@ from pillagerbench.teams import available
 
 
 def rows() -> list[dict]:
-    return [{"team": e.name, "from": e.source,
-             "scenarios": ", ".join(e.cls.scenarios) if e.cls.scenarios else "all",
-             "llm": "yes" if e.cls.uses_llm else "no",
-             "options": ", ".join(f"{k}={json.dumps(v)}" for k, v in e.options.items()) or "–"}
-            for e in available()]
+    return [
+        {
+            "team": e.name,
+            "from": e.source,
+            "scenarios": ", ".join(e.cls.scenarios) if e.cls.scenarios else "all",
+            "llm": "yes" if e.cls.uses_llm else "no",
+            "options": ", ".join(f"{k}={json.dumps(v)}" for k, v in e.options.items()) or "–",
+        }
+        for e in available()
+    ]
 
 
 def main(argv: list[str]) -> int:
@@ -23,6 +28,8 @@ def main(argv: list[str]) -> int:
     print("  ".join(k.ljust(w) for k, w in widths.items()).rstrip())
     for r in table:
         print("  ".join(r[k].ljust(w) for k, w in widths.items()).rstrip())
-    print("\nAlso: any package.module:Class subclassing pillagerbench.teams.Team (red=package.module:Class); "
-          "options as red.KEY=VALUE. See docs/your-team.md.")
+    print(
+        "\nAlso: any package.module:Class subclassing pillagerbench.teams.Team (red=package.module:Class); "
+        "options as red.KEY=VALUE. See docs/your-team.md."
+    )
     return 0

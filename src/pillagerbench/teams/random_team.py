@@ -17,27 +17,75 @@ import asyncio
 import json
 import random
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, Callable, ClassVar, Sequence
+from typing import Any, ClassVar
 
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
-from pillagerbench.teams.registry import register
 from pillagerbench.teams.base import Team, TeamContext
 
 UNMINABLE = {"air", "cave_air", "void_air", "bedrock", "barrier", "water", "lava", "fire"}
-SEEDS = {"plantWheatSeeds": "wheat_seeds", "plantPotatoes": "potato", "plantCarrots": "carrot",
-         "plantBeetrootSeeds": "beetroot_seeds", "plantMelonSeeds": "melon_seeds", "plantPumpkinSeeds": "pumpkin_seeds",
-         "plantSweetBerryBushes": "sweet_berries", "plantCocoaBeans": "cocoa_beans", "plantSugarCane": "sugar_cane"}
-HARVESTS = ("harvestWheat", "harvestPotatoes", "harvestCarrots", "harvestBeetroot", "harvestBerries", "harvestCocoa",
-            "harvestMelons", "harvestPumpkins")
+SEEDS = {
+    "plantWheatSeeds": "wheat_seeds",
+    "plantPotatoes": "potato",
+    "plantCarrots": "carrot",
+    "plantBeetrootSeeds": "beetroot_seeds",
+    "plantMelonSeeds": "melon_seeds",
+    "plantPumpkinSeeds": "pumpkin_seeds",
+    "plantSweetBerryBushes": "sweet_berries",
+    "plantCocoaBeans": "cocoa_beans",
+    "plantSugarCane": "sugar_cane",
+}
+HARVESTS = (
+    "harvestWheat",
+    "harvestPotatoes",
+    "harvestCarrots",
+    "harvestBeetroot",
+    "harvestBerries",
+    "harvestCocoa",
+    "harvestMelons",
+    "harvestPumpkins",
+)
 # Things worth trying to craft (craftItem explains what is missing when the recipe cannot be done).
-CRAFTABLE = ("bread", "cookie", "cake", "pumpkin_pie", "beetroot_soup", "golden_carrot", "sugar", "mushroom_stew",
-             "bowl", "stick", "crafting_table", "oak_planks", "chest", "furnace", "wooden_hoe")
+CRAFTABLE = (
+    "bread",
+    "cookie",
+    "cake",
+    "pumpkin_pie",
+    "beetroot_soup",
+    "golden_carrot",
+    "sugar",
+    "mushroom_stew",
+    "bowl",
+    "stick",
+    "crafting_table",
+    "oak_planks",
+    "chest",
+    "furnace",
+    "wooden_hoe",
+)
 FUEL = "coal"
 # Furnace inputs (smelting anything else cannot work)
-SMELTABLE = ("potato", "beef", "chicken", "porkchop", "mutton", "rabbit", "cod", "salmon", "kelp", "sand",
-             "cobblestone", "iron_ore", "gold_ore", "cactus", "clay_ball", "oak_log", "wet_sponge")
+SMELTABLE = (
+    "potato",
+    "beef",
+    "chicken",
+    "porkchop",
+    "mutton",
+    "rabbit",
+    "cod",
+    "salmon",
+    "kelp",
+    "sand",
+    "cobblestone",
+    "iron_ore",
+    "gold_ore",
+    "cactus",
+    "clay_ball",
+    "oak_log",
+    "wet_sponge",
+)
 
 
 def js(value: Any) -> str:
@@ -48,15 +96,18 @@ def js(value: Any) -> str:
 def compact(obs: dict) -> dict:
     """The parts of an observation the random choices read (stored with each action in random.json)."""
     status = obs.get("status") or {}
-    return {"voxels": sorted(obs.get("voxels") or []), "inventory": dict(obs.get("inventory") or {}),
-            "nearbyChests": dict(obs.get("nearbyChests") or {}),
-            "status": {"position": status.get("position"), "entities": dict(status.get("entities") or {})}}
+    return {
+        "voxels": sorted(obs.get("voxels") or []),
+        "inventory": dict(obs.get("inventory") or {}),
+        "nearbyChests": dict(obs.get("nearbyChests") or {}),
+        "status": {"position": status.get("position"), "entities": dict(status.get("entities") or {})},
+    }
 
 
 @dataclass(frozen=True)
 class Action:
-    kind: str   # the function or bot method it calls
-    code: str   # the JavaScript run for it
+    kind: str  # the function or bot method it calls
+    code: str  # the JavaScript run for it
 
     def to_dict(self) -> dict:
         return {"kind": self.kind, "code": self.code}
@@ -73,7 +124,7 @@ class Seen:
     pos: tuple[int, int, int]
 
     @classmethod
-    def of(cls, obs: dict) -> "Seen":
+    def of(cls, obs: dict) -> Seen:
         status = obs.get("status") or {}
         p = status.get("position") or {"x": 0, "y": 4, "z": 0}
         chests = []
@@ -86,11 +137,13 @@ class Seen:
                 continue
             inside = tuple(sorted((k, int(v)) for k, v in content.items() if v)) if isinstance(content, dict) else ()
             chests.append((xyz, inside))
-        return cls(blocks=tuple(sorted(set(obs.get("voxels") or []) - UNMINABLE)),
-                   mobs=tuple(sorted((status.get("entities") or {}))),
-                   items=tuple(sorted((k, int(v)) for k, v in (obs.get("inventory") or {}).items() if v)),
-                   chests=tuple(chests),
-                   pos=(int(p["x"] // 1), int(p["y"] // 1), int(p["z"] // 1)))
+        return cls(
+            blocks=tuple(sorted(set(obs.get("voxels") or []) - UNMINABLE)),
+            mobs=tuple(sorted(status.get("entities") or {})),
+            items=tuple(sorted((k, int(v)) for k, v in (obs.get("inventory") or {}).items() if v)),
+            chests=tuple(chests),
+            pos=(int(p["x"] // 1), int(p["y"] // 1), int(p["z"] // 1)),
+        )
 
     def has(self, item: str) -> bool:
         return any(name == item for name, _ in self.items)
@@ -100,6 +153,11 @@ class Seen:
 
 
 Builder = Callable[["RandomActions", Seen], str]
+
+
+def _code(code: str) -> Builder:
+    """A builder of a fixed action."""
+    return lambda g, s: code
 
 
 class RandomActions:
@@ -125,10 +183,12 @@ class RandomActions:
     def at_random_block(self, name: str, body: str) -> str:
         """Code running `body` with `block` = one of the nearby blocks called `name` (index drawn here)."""
         k = self.rng.randrange(1000)
-        return (f"const ids = mcData.blocksByName[{js(name)}]\n"
-                f"const found = ids ? bot.findBlocks({{ matching: ids.id, maxDistance: 32, count: 16 }}) : []\n"
-                f"if (found.length) {{\n  const block = bot.blockAt(found[{k} % found.length])\n"
-                f"  if (block) {{\n    {body}\n  }}\n}}")
+        return (
+            f"const ids = mcData.blocksByName[{js(name)}]\n"
+            f"const found = ids ? bot.findBlocks({{ matching: ids.id, maxDistance: 32, count: 16 }}) : []\n"
+            f"if (found.length) {{\n  const block = bot.blockAt(found[{k} % found.length])\n"
+            f"  if (block) {{\n    {body}\n  }}\n}}"
+        )
 
     # --- the actions: name -> (check, builder) ----------------------------------------------
 
@@ -141,48 +201,105 @@ class RandomActions:
                 out.append((kind, build))
 
         r = self.rng
-        add("mineBlock", bool(s.blocks), lambda g, s: (
-            f"await mineBlock(bot, {js(r.choice(s.blocks))}, {r.randint(1, 5)}, "
-            f"{g.vec(g.offset(s, 8, (-1, 1))) if r.random() < 0.5 else 'null'}, {r.randint(8, 32)})"))
-        add("placeItem", bool(s.items), lambda g, s: (lambda name: (
-            f"if (mcData.blocksByName[{js(name)}]) await placeItem(bot, {js(name)}, {g.vec(g.offset(s, 3, (0, 1)))})"))(
-            g.item(s)[0]))
+        add(
+            "mineBlock",
+            bool(s.blocks),
+            lambda g, s: (
+                f"await mineBlock(bot, {js(r.choice(s.blocks))}, {r.randint(1, 5)}, "
+                f"{g.vec(g.offset(s, 8, (-1, 1))) if r.random() < 0.5 else 'null'}, {r.randint(8, 32)})"
+            ),
+        )
+        add(
+            "placeItem",
+            bool(s.items),
+            lambda g, s: (
+                lambda name: (
+                    f"if (mcData.blocksByName[{js(name)}]) await placeItem(bot, {js(name)}, {g.vec(g.offset(s, 3, (0, 1)))})"
+                )
+            )(g.item(s)[0]),
+        )
         add("killMob", bool(s.mobs), lambda g, s: f"await killMob(bot, {js(r.choice(s.mobs))}, {r.randint(5, 20)})")
-        add("giveToPlayer", bool(s.items and self.players), lambda g, s: (
-            f"await giveToPlayer(bot, {js(g.item(s)[0])}, {js(r.choice(self.players))}, {r.choice([-1, *range(1, 10)])})"))
-        add("goToPlayer", bool(self.players), lambda g, s: f"await goToPlayer(bot, {js(r.choice(self.players))}, {r.randint(1, 4)})")
+        add(
+            "giveToPlayer",
+            bool(s.items and self.players),
+            lambda g, s: (
+                f"await giveToPlayer(bot, {js(g.item(s)[0])}, {js(r.choice(self.players))}, {r.choice([-1, *range(1, 10)])})"
+            ),
+        )
+        add(
+            "goToPlayer",
+            bool(self.players),
+            lambda g, s: f"await goToPlayer(bot, {js(r.choice(self.players))}, {r.randint(1, 4)})",
+        )
         add("sendSignal", bool(self.players), lambda g, s: f"await sendSignal(bot, {js(r.choice(self.players))})")
         add("waitSignal", True, lambda g, s: f"await waitSignal(bot, null, {r.randint(1, 5) * 1000})")
         add("craftItem", True, lambda g, s: f"await craftItem(bot, {js(r.choice(CRAFTABLE))}, {r.randint(1, 3)})")
         smeltable = [name for name, _ in s.items if name in SMELTABLE]
-        add("smeltItem", bool(smeltable), lambda g, s: (
-            f"await smeltItem(bot, {js(r.choice(smeltable))}, {js(FUEL)}, {r.randint(1, 2)})"))
-        add("getItemFromChest", bool(s.chests), lambda g, s: (lambda chest: (
-            f"await getItemFromChest(bot, {g.vec(chest[0])}, {{ {js(r.choice(chest[1])[0])}: {r.randint(1, 9)} }})"
-            if chest[1] else f"await checkItemInsideChest(bot, {g.vec(chest[0])})"))(r.choice(s.chests)))
-        add("depositItemIntoChest", bool(s.chests and s.items), lambda g, s: (
-            f"await depositItemIntoChest(bot, {g.vec(r.choice(s.chests)[0])}, {{ {js(g.item(s)[0])}: {r.randint(1, 9)} }})"))
-        add("tillLand", s.has_like("_hoe"), lambda g, s: "await tillLand(bot, [\"dirt\", \"grass_block\"])")
+        add(
+            "smeltItem",
+            bool(smeltable),
+            lambda g, s: f"await smeltItem(bot, {js(r.choice(smeltable))}, {js(FUEL)}, {r.randint(1, 2)})",
+        )
+        add(
+            "getItemFromChest",
+            bool(s.chests),
+            lambda g, s: (
+                lambda chest: (
+                    f"await getItemFromChest(bot, {g.vec(chest[0])}, {{ {js(r.choice(chest[1])[0])}: {r.randint(1, 9)} }})"
+                    if chest[1]
+                    else f"await checkItemInsideChest(bot, {g.vec(chest[0])})"
+                )
+            )(r.choice(s.chests)),
+        )
+        add(
+            "depositItemIntoChest",
+            bool(s.chests and s.items),
+            lambda g, s: (
+                f"await depositItemIntoChest(bot, {g.vec(r.choice(s.chests)[0])}, {{ {js(g.item(s)[0])}: {r.randint(1, 9)} }})"
+            ),
+        )
+        add("tillLand", s.has_like("_hoe"), lambda g, s: 'await tillLand(bot, ["dirt", "grass_block"])')
         for fn, seed_item in SEEDS.items():
-            add(fn, s.has(seed_item), lambda g, s, fn=fn: f"await {fn}(bot)")
+            add(fn, s.has(seed_item), _code(f"await {fn}(bot)"))
         for fn in HARVESTS:
-            add(fn, True, lambda g, s, fn=fn: f"await {fn}(bot, null)")
+            add(fn, True, _code(f"await {fn}(bot, null)"))
         add("harvestSugarCane", True, lambda g, s: f"await harvestSugarCane(bot, {s.pos[1] - 1})")
         add("milkCow", s.has("bucket") and "cow" in s.mobs, lambda g, s: "await milkCow(bot)")
         add("equipBucket", s.has("bucket"), lambda g, s: "await equipBucket(bot)")
         add("destroyCrop", bool(s.blocks), lambda g, s: f"await destroyCrop(bot, {js(r.choice(s.blocks))})")
         # raw mineflayer actions
-        add("bot.pathfinder.goto", True, lambda g, s: (lambda p: (
-            f"await bot.pathfinder.goto(new GoalNear({p[0]}, {p[1]}, {p[2]}, {r.randint(1, 3)}))"))(g.offset(s, 12)))
+        add(
+            "bot.pathfinder.goto",
+            True,
+            lambda g, s: (
+                lambda p: f"await bot.pathfinder.goto(new GoalNear({p[0]}, {p[1]}, {p[2]}, {r.randint(1, 3)}))"
+            )(g.offset(s, 12)),
+        )
         add("bot.lookAt", True, lambda g, s: f"await bot.lookAt({g.vec(g.offset(s, 5, (-1, 2)))})")
-        add("bot.equip", bool(s.items), lambda g, s: (
-            f"{{ const it = bot.inventory.items().find(i => i.name === {js(g.item(s)[0])}); "
-            f"if (it) await bot.equip(it, \"hand\") }}"))
-        add("bot.activateBlock", bool(s.blocks), lambda g, s: g.at_random_block(
-            r.choice(s.blocks), "await bot.lookAt(block.position.offset(0.5, 0.5, 0.5)); await bot.activateBlock(block)"))
+        add(
+            "bot.equip",
+            bool(s.items),
+            lambda g, s: (
+                f"{{ const it = bot.inventory.items().find(i => i.name === {js(g.item(s)[0])}); "
+                f'if (it) await bot.equip(it, "hand") }}'
+            ),
+        )
+        add(
+            "bot.activateBlock",
+            bool(s.blocks),
+            lambda g, s: g.at_random_block(
+                r.choice(s.blocks),
+                "await bot.lookAt(block.position.offset(0.5, 0.5, 0.5)); await bot.activateBlock(block)",
+            ),
+        )
         add("bot.activateItem", bool(s.items), lambda g, s: "await bot.activateItem()")
-        add("bot.useOn", bool(s.mobs), lambda g, s: (
-            f"{{ const e = bot.nearestEntity(e => e.name === {js(r.choice(s.mobs))}); if (e) bot.useOn(e) }}"))
+        add(
+            "bot.useOn",
+            bool(s.mobs),
+            lambda g, s: (
+                f"{{ const e = bot.nearestEntity(e => e.name === {js(r.choice(s.mobs))}); if (e) bot.useOn(e) }}"
+            ),
+        )
         return out
 
     def next(self, obs: dict) -> Action:
@@ -191,7 +308,6 @@ class RandomActions:
         return Action(kind, build(self, seen))
 
 
-@register
 class RandomTeam(Team):
     name = "random"
     uses_llm = False
@@ -240,7 +356,7 @@ class RandomTeam(Team):
             self.actions[name].append(entry)
             try:
                 events = await player.run(action.code, timeout=min(self.action_timeout_s, max(0.1, ctx.time_left())))
-            except Exception as exc:  # a bot that cannot run code now: note it, wait a little, go on
+            except Exception as exc:  # noqa: BLE001 - a bot that cannot run code now: note it, wait a little, go on
                 entry["error"] = f"{type(exc).__name__}: {exc}"
                 await asyncio.sleep(min(1.0, ctx.time_left()))
                 continue
@@ -252,7 +368,14 @@ class RandomTeam(Team):
     async def post_game(self, ctx: TeamContext) -> None:
         ctx.out_dir.mkdir(parents=True, exist_ok=True)
         names = ctx.side.player_names
-        (ctx.out_dir / "random.json").write_text(json.dumps({
-            "seeds": {n: self.seed_of(ctx, k) for k, n in enumerate(names)},
-            "recipients": {n: self.recipients(ctx, k) for k, n in enumerate(names)},
-            "primitives": list(ctx.scenario.primitives), "actions": self.actions}, indent=1))
+        (ctx.out_dir / "random.json").write_text(
+            json.dumps(
+                {
+                    "seeds": {n: self.seed_of(ctx, k) for k, n in enumerate(names)},
+                    "recipients": {n: self.recipients(ctx, k) for k, n in enumerate(names)},
+                    "primitives": list(ctx.scenario.primitives),
+                    "actions": self.actions,
+                },
+                indent=1,
+            )
+        )

@@ -1,6 +1,7 @@
 """The team registry: every way a team name can be written resolves here.
 
-- a registered name: the built-in opponents, do_nothing and the LLM teams (`register`);
+- a registered name: the built-in teams (registered by the package, `pillagerbench.teams`; team
+  modules never import the package or each other), or a class registered with `register(cls)`;
 - an entry point of the group `pillagerbench.teams`: installed packages register teams by name;
 - an import path `package.module:Class` to a `Team` subclass, from anywhere on the Python path.
 """
@@ -15,7 +16,7 @@ from typing import Any
 
 from omegaconf import OmegaConf
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.teams.base import Team
 
 ENTRY_POINT_GROUP = "pillagerbench.teams"
@@ -32,7 +33,7 @@ def register(cls: type[Team]) -> type[Team]:
 class TeamEntry:
     name: str
     cls: type[Team]
-    source: str                      # built-in | entry point <distribution> | import path
+    source: str  # built-in | entry point <distribution> | import path
     options: dict[str, Any] = field(default_factory=dict)
 
 
@@ -42,7 +43,7 @@ def declared_options(name: str, cls: type[Team] | None = None) -> dict[str, Any]
     path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
     if not path.is_file():
         return dict(cls.options_declared) if cls is not None else {}
-    data = OmegaConf.to_container(OmegaConf.create(path.read_text()), resolve=False) or {}
+    data = to_dict(OmegaConf.create(path.read_text()))
     return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
 
 
@@ -55,22 +56,27 @@ def _entry_points() -> dict[str, list]:
 
 def _checked(cls: Any, where: str) -> type[Team]:
     if not (isinstance(cls, type) and issubclass(cls, Team)):
-        raise ConfigError(f"{where} is {cls!r}, not a team: it must be a subclass of pillagerbench.teams.Team "
-                          "(docs/your-team.md)")
+        raise ConfigError(
+            f"{where} is {cls!r}, not a team: it must be a subclass of pillagerbench.teams.Team (docs/your-team.md)"
+        )
     return cls
 
 
 def _from_entry_point(name: str, eps: list) -> type[Team]:
     if len(eps) > 1 or name in TEAMS:
         owners = [f"entry point {ep.value}" for ep in eps] + (["the built-in team"] if name in TEAMS else [])
-        raise ConfigError(f"two teams are registered under the name {name!r} ({'; '.join(owners)}): "
-                          f"uninstall one, or name the class by import path (module:Class)")
+        raise ConfigError(
+            f"two teams are registered under the name {name!r} ({'; '.join(owners)}): "
+            f"uninstall one, or name the class by import path (module:Class)"
+        )
     ep = eps[0]
     try:
         cls = ep.load()
-    except Exception as exc:
-        raise ConfigError(f"team {name!r}: its entry point {ep.value} failed to import: "
-                          f"{type(exc).__name__}: {exc} (fix or reinstall that package)") from None
+    except Exception as exc:  # noqa: BLE001 - whatever an outside package raises on import
+        raise ConfigError(
+            f"team {name!r}: its entry point {ep.value} failed to import: "
+            f"{type(exc).__name__}: {exc} (fix or reinstall that package)"
+        ) from None
     return _checked(cls, f"team {name!r} (entry point {ep.value})")
 
 
@@ -80,9 +86,11 @@ def _from_import_path(path: str) -> type[Team]:
         raise ConfigError(f"team {path!r}: an import path is package.module:Class")
     try:
         module = importlib.import_module(module_name)
-    except Exception as exc:
-        raise ConfigError(f"team {path!r}: cannot import {module_name}: {type(exc).__name__}: {exc} "
-                          "(is it installed, or on PYTHONPATH?)") from None
+    except Exception as exc:  # noqa: BLE001 - whatever an outside module raises on import
+        raise ConfigError(
+            f"team {path!r}: cannot import {module_name}: {type(exc).__name__}: {exc} "
+            "(is it installed, or on PYTHONPATH?)"
+        ) from None
     try:
         cls = getattr(module, attr)
     except AttributeError:
@@ -99,8 +107,10 @@ def find_team(name: str) -> type[Team]:
         return TEAMS[name]
     if ":" in name:
         return _from_import_path(name)
-    raise ConfigError(f"unknown team {name!r}; valid teams: {', '.join(sorted({*TEAMS, *eps}))}, or an import "
-                      "path package.module:Class")
+    raise ConfigError(
+        f"unknown team {name!r}; valid teams: {', '.join(sorted({*TEAMS, *eps}))}, or an import "
+        "path package.module:Class"
+    )
 
 
 def available() -> list[TeamEntry]:
@@ -119,6 +129,22 @@ def make_team(name: str, scenario_key: str, **options: Any) -> Team:
     cls = find_team(name)
     if cls.scenarios is not None and scenario_key not in cls.scenarios:
         valid = [n for n, c in TEAMS.items() if c.scenarios is None or scenario_key in c.scenarios]
-        raise ConfigError(f"team {name!r} plays only {', '.join(cls.scenarios)}, not {scenario_key}; "
-                          f"teams for {scenario_key}: {', '.join(valid)}")
+        raise ConfigError(
+            f"team {name!r} plays only {', '.join(cls.scenarios)}, not {scenario_key}; "
+            f"teams for {scenario_key}: {', '.join(valid)}"
+        )
     return cls(**options)
+
+
+def team_options(team_cfg: Any) -> dict[str, Any]:
+    """The team's constructor options: its config node without `name` and `llm`."""
+    opts = OmegaConf.to_container(team_cfg, resolve=True)
+    assert isinstance(opts, dict)
+    opts.pop("name", None)
+    opts.pop("llm", None)
+    return {str(k): v for k, v in opts.items()}
+
+
+def team_from_config(team_cfg: Any, scenario_key: str) -> Team:
+    """The team a side's config node (`cfg.red`, `cfg.blue`) names, with its options."""
+    return make_team(team_cfg.name, scenario_key, **team_options(team_cfg))

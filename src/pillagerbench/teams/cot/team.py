@@ -22,7 +22,6 @@ from pillagerbench.agents.code import ProgramsResult, programs_from_answer
 from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
-from pillagerbench.teams.registry import register
 from pillagerbench.teams.base import Team, TeamContext
 
 PROMPTS = load_prompts(Path(__file__).parent)
@@ -30,25 +29,33 @@ ROLE = "cot"
 
 
 def task_text(ctx: TeamContext) -> str:
-    return (f"Win the game for {ctx.side.team_name}: end with more points than {ctx.opponent.team_name}, "
-            "starting now and for as long as the game lasts.")
+    return (
+        f"Win the game for {ctx.side.team_name}: end with more points than {ctx.opponent.team_name}, "
+        "starting now and for as long as the game lasts."
+    )
 
 
-@register
 class ChainOfThought(Team):
     name = "cot"
     uses_llm = True
 
-    def __init__(self, attempts: int = 3, temperature: float | None = None, max_tokens: int | None = 4096,
-                 restart_pause_s: float = 1.0, max_chat_lines: int = 80, **options: Any):
+    def __init__(
+        self,
+        attempts: int = 3,
+        temperature: float | None = None,
+        max_tokens: int | None = 4096,
+        restart_pause_s: float = 1.0,
+        max_chat_lines: int = 80,
+        **options: Any,
+    ):
         super().__init__(**options)
         self.attempts = max(1, int(attempts))
         self.temperature, self.max_tokens = temperature, max_tokens
         self.restart_pause_s = float(restart_pause_s)
         self.max_chat_lines = int(max_chat_lines)
         self.programs: list = []
-        self.last_code: dict[str, str | None] = {}     # the block each player got last episode
-        self.last_problems: list[str] = []            # why last episode's code was not (all) used
+        self.last_code: dict[str, str | None] = {}  # the block each player got last episode
+        self.last_problems: list[str] = []  # why last episode's code was not (all) used
         self.record: dict[str, Any] = {}
 
     # --- prompt -----------------------------------------------------------------------------
@@ -67,13 +74,16 @@ class ChainOfThought(Team):
             team_name=ctx.side.team_name,
             team_players=", ".join(players),
             scenario=ctx.scenario.description(),
-            task=task_text(ctx))
+            task=task_text(ctx),
+        )
         return [{"role": "system", "content": system}, {"role": "user", "content": user}]
 
     def _per_player(self, ctx: TeamContext, fn) -> str:
-        return "\n".join(f"{name} (at {C.position_text(obs)}): {fn(obs)}"
-                         for name in ctx.side.player_names
-                         for obs in [C.last_observation(ctx.observations.get(name) or [])])
+        return "\n".join(
+            f"{name} (at {C.position_text(obs)}): {fn(obs)}"
+            for name in ctx.side.player_names
+            for obs in [C.last_observation(ctx.observations.get(name) or [])]
+        )
 
     def _last_code_text(self, players: list[str]) -> str:
         if not self.last_code:
@@ -106,8 +116,16 @@ class ChainOfThought(Team):
         self.programs = [None] * len(players)
         self.iterations = [0] * len(players)
         messages = self.messages(ctx)
-        rec: dict[str, Any] = {"episode": ctx.episode, "team": ctx.side.team_name, "players": players,
-                               "messages": messages, "attempts": [], "programs": {}, "failures": {}, "status": "ok"}
+        rec: dict[str, Any] = {
+            "episode": ctx.episode,
+            "team": ctx.side.team_name,
+            "players": players,
+            "messages": messages,
+            "attempts": [],
+            "programs": {},
+            "failures": {},
+            "status": "ok",
+        }
         self.record = rec
         best: ProgramsResult | None = None
         if ctx.llm is None:
@@ -123,17 +141,24 @@ class ChainOfThought(Team):
                 try:
                     answer = await ctx.llm.complete(messages, role=ROLE, **kw)
                 except LLMError as exc:
-                    rec["attempts"].append({"error": f"{type(exc).__name__}: {exc}",
-                                            "latency_s": round(time.monotonic() - t0, 3)})
+                    rec["attempts"].append(
+                        {"error": f"{type(exc).__name__}: {exc}", "latency_s": round(time.monotonic() - t0, 3)}
+                    )
                     rec["error"] = f"{type(exc).__name__}: {exc}"
                     break
                 result = programs_from_answer(answer.text, players, ctx.scenario.primitives)
                 problems = list(result.problems)
                 if answer.truncated:
                     problems.insert(0, "the answer was cut off (too long): be shorter")
-                rec["attempts"].append({"answer": answer.text, "finish_reason": answer.finish_reason,
-                                        "latency_s": answer.latency_s, "output_tokens": answer.output_tokens,
-                                        "problems": problems})
+                rec["attempts"].append(
+                    {
+                        "answer": answer.text,
+                        "finish_reason": answer.finish_reason,
+                        "latency_s": answer.latency_s,
+                        "output_tokens": answer.output_tokens,
+                        "problems": problems,
+                    }
+                )
                 if best is None or result.usable >= best.usable:
                     best = result
                 if result.complete:
@@ -141,8 +166,13 @@ class ChainOfThought(Team):
                 if attempt + 1 < self.attempts:
                     messages = messages + [
                         {"role": "assistant", "content": answer.text},
-                        {"role": "user", "content": PROMPTS["retry"].render(
-                            problems="\n".join(f"- {p}" for p in problems), players=", ".join(players))}]
+                        {
+                            "role": "user",
+                            "content": PROMPTS["retry"].render(
+                                problems="\n".join(f"- {p}" for p in problems), players=", ".join(players)
+                            ),
+                        },
+                    ]
                     rec["messages"] = messages
         for k, name in enumerate(players):
             program = best.programs[k] if best else None
@@ -150,15 +180,18 @@ class ChainOfThought(Team):
             if program is not None:
                 rec["programs"][name] = program.to_dict()
             else:
-                reasons = [p for p in (best.problems if best else []) if p.startswith(f"{name}:")] or \
-                    (best.problems if best and best.problems else [rec.get("error") or "no usable answer"])
+                reasons = [p for p in (best.problems if best else []) if p.startswith(f"{name}:")] or (
+                    best.problems if best and best.problems else [rec.get("error") or "no usable answer"]
+                )
                 rec["failures"][name] = "; ".join(reasons)
         if rec["failures"] and rec["status"] == "ok":
             rec["status"] = "failed" if len(rec["failures"]) == len(players) else "partial"
-        self.last_code = {name: (best.blocks[k] if best and k < len(best.blocks) else None)
-                          for k, name in enumerate(players)}
-        self.last_problems = [f"{name}: {why}" if not why.startswith(f"{name}:") else why
-                              for name, why in rec["failures"].items()]
+        self.last_code = {
+            name: (best.blocks[k] if best and k < len(best.blocks) else None) for k, name in enumerate(players)
+        }
+        self.last_problems = [
+            f"{name}: {why}" if not why.startswith(f"{name}:") else why for name, why in rec["failures"].items()
+        ]
         self._write(ctx)
 
     async def play(self, ctx: TeamContext) -> None:
@@ -176,8 +209,10 @@ class ChainOfThought(Team):
             started = time.monotonic()
             try:
                 await player.run(program.exec_code)  # the match stops it at the whistle
-            except Exception as exc:  # the bot cannot run code right now: note it and try again
-                self.record.setdefault("run_errors", []).append(f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}")
+            except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and try again
+                self.record.setdefault("run_errors", []).append(
+                    f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}"
+                )
             quick = time.monotonic() - started
             if ctx.time_left() > 0 and quick < self.restart_pause_s:
                 await asyncio.sleep(min(self.restart_pause_s - quick, ctx.time_left()))

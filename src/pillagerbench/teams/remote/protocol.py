@@ -57,7 +57,8 @@ class PregameRequest(BaseModel):
     primitives_docs: str = Field(description="their documentation (markdown), as the LLM teams read it")
     observations: dict[str, Any] = Field(description="player name -> its observation after the reset")
     last_episode: dict[str, Any] | None = Field(
-        description="the last episode's record, score timeline and chat log (null in episode 0)")
+        description="the last episode's record, score timeline and chat log (null in episode 0)"
+    )
 
 
 class Programs(_Message):
@@ -71,8 +72,10 @@ class EventsRequest(BaseModel):
     episode: int
     t: float = Field(description="seconds since the game started")
     time_left_s: float
-    events: dict[str, list[Any]] = Field(description="player name -> its events since the last message "
-                                                     "(the same events LLM teams read: chat, errors, observe ...)")
+    events: dict[str, list[Any]] = Field(
+        description="player name -> its events since the last message "
+        "(the same events LLM teams read: chat, errors, observe ...)"
+    )
 
 
 class PostgameRequest(BaseModel):
@@ -87,8 +90,12 @@ class Ack(_Message):
 
 
 MESSAGES: dict[str, type[BaseModel]] = {
-    "hello": Hello, "pregame_request": PregameRequest, "programs": Programs, "events_request": EventsRequest,
-    "postgame_request": PostgameRequest, "ack": Ack,
+    "hello": Hello,
+    "pregame_request": PregameRequest,
+    "programs": Programs,
+    "events_request": EventsRequest,
+    "postgame_request": PostgameRequest,
+    "ack": Ack,
 }
 
 

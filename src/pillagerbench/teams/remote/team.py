@@ -19,24 +19,26 @@ import json
 import time
 import urllib.error
 import urllib.request
-from typing import Any
+from typing import Any, TypeVar
 from urllib.parse import urlparse
 
 from pydantic import BaseModel, ValidationError
 
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import Team, TeamContext
-from pillagerbench.teams.registry import register
 from pillagerbench.teams.remote import protocol as P
 
 DEFAULTS: dict[str, Any] = {
-    "url": None,                # http(s)://HOST:PORT of the team server
+    "url": None,  # http(s)://HOST:PORT of the team server
     "pregame_timeout_s": 60.0,  # the pre-game answer (like an LLM's planning call)
-    "call_timeout_s": 5.0,      # each in-game and post-game call
-    "events_every_s": 1.0,      # how often the players' events are sent
+    "call_timeout_s": 5.0,  # each in-game and post-game call
+    "events_every_s": 1.0,  # how often the players' events are sent
     "max_answer_bytes": 1_000_000,
-    "restart_pause_s": 1.0,     # wait before starting again a program that ended within this time
+    "restart_pause_s": 1.0,  # wait before starting again a program that ended within this time
 }
+
+
+Reply = TypeVar("Reply", bound=BaseModel)
 
 
 class RemoteError(Exception):
@@ -44,8 +46,9 @@ class RemoteError(Exception):
 
 
 def _http(method: str, url: str, body: bytes | None, timeout: float, limit: int) -> bytes:
-    request = urllib.request.Request(url, data=body, method=method,
-                                     headers={"Content-Type": "application/json"} if body else {})
+    request = urllib.request.Request(
+        url, data=body, method=method, headers={"Content-Type": "application/json"} if body else {}
+    )
     try:
         with urllib.request.urlopen(request, timeout=timeout) as response:
             data = response.read(limit + 1)
@@ -61,14 +64,22 @@ def _http(method: str, url: str, body: bytes | None, timeout: float, limit: int)
     return data
 
 
-async def call(url: str, path: str, message: BaseModel | None, reply: type[BaseModel], *, timeout: float,
-               limit: int = DEFAULTS["max_answer_bytes"]) -> BaseModel:
+async def call(
+    url: str,
+    path: str,
+    message: BaseModel | None,
+    reply: type[Reply],
+    *,
+    timeout: float,
+    limit: int = DEFAULTS["max_answer_bytes"],
+) -> Reply:
     """One protocol call; raises RemoteError naming what went wrong."""
     target = url.rstrip("/") + path
     body = message.model_dump_json().encode() if message is not None else None
     try:
-        raw = await asyncio.wait_for(asyncio.to_thread(_http, "POST" if body else "GET", target, body, timeout, limit),
-                                     timeout + 1.0)
+        raw = await asyncio.wait_for(
+            asyncio.to_thread(_http, "POST" if body else "GET", target, body, timeout, limit), timeout + 1.0
+        )
     except asyncio.TimeoutError:
         raise RemoteError(f"no answer from {target} within {timeout:g} s") from None
     try:
@@ -79,7 +90,6 @@ async def call(url: str, path: str, message: BaseModel | None, reply: type[BaseM
         raise RemoteError(f"malformed answer from {target}: {where}: {first['msg']}") from None
 
 
-@register
 class RemoteTeam(Team):
     name = "remote"
     options_declared = DEFAULTS
@@ -117,8 +127,10 @@ class RemoteTeam(Team):
         except RemoteError as exc:
             return f"remote team at {url} does not answer: {exc} (start the team server first, or fix url=)"
         if getattr(hello, "protocol", None) != P.PROTOCOL:
-            return (f"remote team at {url} speaks protocol {hello.protocol}, the benchmark speaks {P.PROTOCOL} "
-                    "(docs/remote-teams.md)")
+            return (
+                f"remote team at {url} speaks protocol {hello.protocol}, the benchmark speaks {P.PROTOCOL} "
+                "(docs/remote-teams.md)"
+            )
         return None
 
     # --- calls ---------------------------------------------------------------------------------
@@ -143,8 +155,10 @@ class RemoteTeam(Team):
         changed = []
         for name, code in answer.programs.items():
             if name not in ctx.side.player_names:
-                self.problems.append(f"remote answer names {name!r}, not a player of this team "
-                                     f"({', '.join(ctx.side.player_names)}); ignored")
+                self.problems.append(
+                    f"remote answer names {name!r}, not a player of this team "
+                    f"({', '.join(ctx.side.player_names)}); ignored"
+                )
                 continue
             self.programs[name] = code
             self.versions[name] = self.versions.get(name, 0) + 1
@@ -159,16 +173,23 @@ class RemoteTeam(Team):
         sc, side = ctx.scenario, ctx.side
         modules = list(sc.primitives)
         message = P.PregameRequest(
-            episode=ctx.episode, episode_length_s=ctx.episode_length,
+            episode=ctx.episode,
+            episode_length_s=ctx.episode_length,
             scenario=P.ScenarioInfo(key=sc.key, title=sc.title, description=sc.description()),
-            side=P.SideInfo(key=side.key, team_name=side.team_name,
-                            players=[P.PlayerInfo(name=p.name, spawn=list(p.spawn)) for p in side.players],
-                            opponent_team_name=ctx.opponent.team_name, opponent_players=ctx.opponent.player_names),
+            side=P.SideInfo(
+                key=side.key,
+                team_name=side.team_name,
+                players=[P.PlayerInfo(name=p.name, spawn=list(p.spawn)) for p in side.players],
+                opponent_team_name=ctx.opponent.team_name,
+                opponent_players=ctx.opponent.player_names,
+            ),
             primitives=prim.functions(modules),
             primitives_docs=prim.docs([*modules, "mineflayer"]),
-            observations={n: (obs[-1][1] if obs and obs[-1][0] == "observe" else {})
-                          for n, obs in ctx.observations.items()},
-            last_episode=_jsonable(ctx.last_episode) if ctx.last_episode else None)
+            observations={
+                n: (obs[-1][1] if obs and obs[-1][0] == "observe" else {}) for n, obs in ctx.observations.items()
+            },
+            last_episode=_jsonable(ctx.last_episode) if ctx.last_episode else None,
+        )
         self._take(ctx, await self._call("/pregame", message, P.Programs, self.pregame_timeout_s))
 
     async def play(self, ctx: TeamContext) -> None:
@@ -185,8 +206,12 @@ class RemoteTeam(Team):
                     continue
                 for n in batch:
                     outbox[n] = []
-                message = P.EventsRequest(episode=ctx.episode, t=round(time.monotonic() - start, 3),
-                                          time_left_s=round(ctx.time_left(), 3), events=_jsonable(batch))
+                message = P.EventsRequest(
+                    episode=ctx.episode,
+                    t=round(time.monotonic() - start, 3),
+                    time_left_s=round(ctx.time_left(), 3),
+                    events=_jsonable(batch),
+                )
                 for name in self._take(ctx, await self._call("/events", message, P.Programs, self.call_timeout_s)):
                     await ctx.players[name].stop()  # its runner starts the new program
         finally:
@@ -206,7 +231,7 @@ class RemoteTeam(Team):
             started = time.monotonic()
             try:
                 await player.run(code, on_event=lambda event: outbox[name].append(event))
-            except Exception as exc:  # the bot cannot run code right now: note it and go on
+            except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and go on
                 self.problems.append(f"{name}: {type(exc).__name__}: {exc}")
             quick = time.monotonic() - started
             if self.versions.get(name) == version and ctx.time_left() > 0 and quick < self.restart_pause_s:
@@ -214,8 +239,9 @@ class RemoteTeam(Team):
 
     async def post_game(self, ctx: TeamContext) -> None:
         last = ctx.last_episode or {}
-        message = P.PostgameRequest(episode=ctx.episode, record=_jsonable(last.get("record") or {}),
-                                    chat=list(last.get("chat") or []))
+        message = P.PostgameRequest(
+            episode=ctx.episode, record=_jsonable(last.get("record") or {}), chat=list(last.get("chat") or [])
+        )
         await self._call("/postgame", message, P.Ack, self.call_timeout_s)
         self.record["programs"] = dict(self.programs)
         self.record["problems"] = list(self.problems)

@@ -21,22 +21,48 @@ from __future__ import annotations
 
 import asyncio
 import time
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from pillagerbench.agents import context as C
-from pillagerbench.agents.asking import Asked, ask
+from pillagerbench.agents.asking import Asked, RoleLLM, ask
 from pillagerbench.agents.code import CodeError, Program, check_program, extract_code_blocks, parse_js
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
+from pillagerbench.teams.base import TeamContext
 
 from .events import DedupStats, dedupe, last_observation, tail
+from .memory import Memory
 from .templates import PROMPTS
 
-if TYPE_CHECKING:
-    from .team import TactiCrafter
-
 ACTION, CRITIC = "action", "critic"
+
+
+class AgentsTeam(Protocol):
+    """What a base agent reads from its team (TactiCrafter, team.py, is the one implementation)."""
+
+    agents: list[BaseAgent]
+    agent_names: list[str]
+    iterations: list[int]
+    memory: Memory
+    llm: RoleLLM | None
+    llm_off: str | None
+    attempts: int
+    keep_messages: bool
+    max_chat_lines: int
+    max_iterations: int
+    max_llm_failures: int
+    min_llm_time_s: float
+    quick_fail_s: float
+    restart_pause_s: float
+
+    def objective(self, ctx: TeamContext) -> str: ...
+
+    def tactics_text(self) -> str: ...
+
+    def expected_latency(self, role: str) -> float: ...
+
+    def note_call(self, role: str, asked: Asked) -> None: ...
 
 
 def parse_code(text: str, allowed) -> Program:
@@ -73,17 +99,17 @@ def parse_critique(text: str) -> dict:
 
 
 class BaseAgent:
-    def __init__(self, team: "TactiCrafter", name: str, index: int):
+    def __init__(self, team: AgentsTeam, name: str, index: int):
         self.team, self.name, self.k = team, name, index
-        self.program: Program | None = None     # what runs next
-        self.good: Program | None = None        # last code whose run did not fail at once
-        self.last_source: str | None = None     # the code of the last iteration, as written
+        self.program: Program | None = None  # what runs next
+        self.good: Program | None = None  # last code whose run did not fail at once
+        self.last_source: str | None = None  # the code of the last iteration, as written
         self.last_error: str = C.NONE
         self.critique: str | None = None
         self.success: bool | None = None
-        self.events: list[list] = []            # the last run's events, deduplicated
+        self.events: list[list] = []  # the last run's events, deduplicated
         self.observation: dict = {}
-        self.chat_before: str = C.NONE          # chat shown before the first run (last episode's)
+        self.chat_before: str = C.NONE  # chat shown before the first run (last episode's)
         self.stats = DedupStats()
         self.reruns = 0
         self.record: dict[str, Any] = {}
@@ -109,8 +135,11 @@ class BaseAgent:
     # --- prompts ---------------------------------------------------------------------------------
 
     def _teammates_text(self) -> str:
-        out = [f"{a.name}: {C.inventory_text(a.observation)} (at {C.position_text(a.observation)})"
-               for a in self.team.agents if a is not self]
+        out = [
+            f"{a.name}: {C.inventory_text(a.observation)} (at {C.position_text(a.observation)})"
+            for a in self.team.agents
+            if a is not self
+        ]
         return "\n".join(out) or C.NONE
 
     def _inventory_text(self) -> str:
@@ -127,24 +156,39 @@ class BaseAgent:
         # the system prompt is the same for every player (a shared prefix: provider prompt caches)
         system = PROMPTS["action_system"].render(primitives=prim.docs([*ctx.scenario.primitives, "mineflayer"]))
         user = PROMPTS["action_user"].render(
-            tactics=t.tactics_text(), previous_tactics=t.memory.previous_tactics or C.NONE,
+            tactics=t.tactics_text(),
+            previous_tactics=t.memory.previous_tactics or C.NONE,
             last_code=f"```javascript\n{self.last_source}\n```" if self.last_source else "No code yet.",
-            execution_error=self.last_error or C.NONE, critique=self.critique or C.NONE,
-            chat_log=self._chat_text(), status=C.status_text(self.observation), inventory=self._inventory_text(),
-            teammates=self._teammates_text(), nearby_blocks=C.nearby_blocks(self.observation),
-            nearby_entities=C.nearby_entities(self.observation), chests=C.chests_text(self.observation),
-            username=self.name, team=f"{ctx.side.team_name} ({', '.join(ctx.side.player_names)})",
-            scenario=ctx.scenario.description(), task=t.objective(ctx))
+            execution_error=self.last_error or C.NONE,
+            critique=self.critique or C.NONE,
+            chat_log=self._chat_text(),
+            status=C.status_text(self.observation),
+            inventory=self._inventory_text(),
+            teammates=self._teammates_text(),
+            nearby_blocks=C.nearby_blocks(self.observation),
+            nearby_entities=C.nearby_entities(self.observation),
+            chests=C.chests_text(self.observation),
+            username=self.name,
+            team=f"{ctx.side.team_name} ({', '.join(ctx.side.player_names)})",
+            scenario=ctx.scenario.description(),
+            task=t.objective(ctx),
+        )
         return [{"role": "system", "content": system}, {"role": "user", "content": user}]
 
     def critic_messages(self, ctx) -> list[dict]:
         t = self.team
         user = PROMPTS["critic_user"].render(
-            execution_error=self.last_error or C.NONE, chat_log=self._chat_text(),
-            status=C.status_text(self.observation), inventory=self._inventory_text(),
-            teammates=self._teammates_text(), chests=C.chests_text(self.observation),
-            username=self.name, task=t.objective(ctx), scenario=ctx.scenario.description(),
-            tactics=t.tactics_text())
+            execution_error=self.last_error or C.NONE,
+            chat_log=self._chat_text(),
+            status=C.status_text(self.observation),
+            inventory=self._inventory_text(),
+            teammates=self._teammates_text(),
+            chests=C.chests_text(self.observation),
+            username=self.name,
+            task=t.objective(ctx),
+            scenario=ctx.scenario.description(),
+            tactics=t.tactics_text(),
+        )
         return [{"role": "system", "content": PROMPTS["critic_system"].render()}, {"role": "user", "content": user}]
 
     # --- LLM calls ---------------------------------------------------------------------------------
@@ -159,27 +203,43 @@ class BaseAgent:
     def _note(self, role: str, asked: Asked, started: float, ctx) -> None:
         t = self.team
         t.note_call(role, asked)
-        rec = {"role": role, "ok": asked.ok, "error": asked.error, "attempts": asked.attempts,
-               "game_time_s": None if ctx.deadline is None else round(ctx.episode_length - ctx.time_left(), 2),
-               "wall_s": round(time.monotonic() - started, 3)}
+        rec = {
+            "role": role,
+            "ok": asked.ok,
+            "error": asked.error,
+            "attempts": asked.attempts,
+            "game_time_s": None if ctx.deadline is None else round(ctx.episode_length - ctx.time_left(), 2),
+            "wall_s": round(time.monotonic() - started, 3),
+        }
         if t.keep_messages:
             rec["messages"] = asked.messages
         self.record["calls"].append(rec)
 
     async def write_code(self, ctx) -> Program | None:
         started = time.monotonic()
-        asked = await ask(self.team.llm, self.action_messages(ctx), role=ACTION,
-                          parse=lambda a: parse_code(a.text, ctx.scenario.primitives),
-                          attempts=self.team.attempts, deadline=ctx.deadline,
-                          retry=lambda p: PROMPTS["code_retry"].render(problem=p))
+        asked = await ask(
+            self.team.llm,
+            self.action_messages(ctx),
+            role=ACTION,
+            parse=lambda a: parse_code(a.text, ctx.scenario.primitives),
+            attempts=self.team.attempts,
+            deadline=ctx.deadline,
+            retry=lambda p: PROMPTS["code_retry"].render(problem=p),
+        )
         self._note(ACTION, asked, started, ctx)
         return asked.value
 
     async def criticize(self, ctx) -> None:
         started = time.monotonic()
-        asked = await ask(self.team.llm, self.critic_messages(ctx), role=CRITIC,
-                          parse=lambda a: parse_critique(a.text), attempts=self.team.attempts,
-                          deadline=ctx.deadline, retry=lambda p: PROMPTS["json_retry"].render(problem=p))
+        asked = await ask(
+            self.team.llm,
+            self.critic_messages(ctx),
+            role=CRITIC,
+            parse=lambda a: parse_critique(a.text),
+            attempts=self.team.attempts,
+            deadline=ctx.deadline,
+            retry=lambda p: PROMPTS["json_retry"].render(problem=p),
+        )
         self._note(CRITIC, asked, started, ctx)
         if asked.value is not None:
             self.success, self.critique = asked.value["success"], asked.value["critique"]
@@ -232,16 +292,28 @@ class BaseAgent:
             self.last_error = "\n".join(errors[:5]) or C.NONE
             if not failed_at_once:
                 self.good = program
-            it = {"n": t.iterations[self.k], "counted": counted, "new_code": new_code, "entry": program.entry,
-                  "duration_s": round(duration, 2), "errors": errors[:3], "failed_at_once": failed_at_once,
-                  "events": stats.before, "events_deduped": stats.after}
+            it = {
+                "n": t.iterations[self.k],
+                "counted": counted,
+                "new_code": new_code,
+                "entry": program.entry,
+                "duration_s": round(duration, 2),
+                "errors": errors[:3],
+                "failed_at_once": failed_at_once,
+                "events": stats.before,
+                "events_deduped": stats.after,
+            }
             self.record["iterations"].append(it)
             if ctx.time_left() <= 0:
                 it["ended_by_whistle"] = True
                 break
             fallback = self.good or (None if failed_at_once else program)
-            if (not counted or t.iterations[self.k] >= t.max_iterations or failures >= t.max_llm_failures
-                    or not self.can_call(ctx, CRITIC)):
+            if (
+                not counted
+                or t.iterations[self.k] >= t.max_iterations
+                or failures >= t.max_llm_failures
+                or not self.can_call(ctx, CRITIC)
+            ):
                 program = fallback
                 if duration < t.restart_pause_s:
                     await asyncio.sleep(min(t.restart_pause_s - duration, ctx.time_left()))
@@ -260,5 +332,9 @@ class BaseAgent:
     def summary(self) -> dict[str, Any]:
         """What the team keeps of this agent (memory's code.json entry)."""
         good = self.good
-        return {"code": good.source if good else self.last_source, "critique": self.critique,
-                "success": self.success, "error": self.last_error if self.last_error != C.NONE else None}
+        return {
+            "code": good.source if good else self.last_source,
+            "critique": self.critique,
+            "success": self.success,
+            "error": self.last_error if self.last_error != C.NONE else None,
+        }

@@ -19,8 +19,9 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Sequence
+from typing import Any
 
 from pillagerbench.agents.asking import Asked, ask
 from pillagerbench.llm.parsing import parse_json
@@ -70,7 +71,7 @@ def parse_relations(value: Any) -> list[Relation]:
                 action = rel.get("action")
                 items.append((action, rel.get("causes", rel.get("cause")), rel.get("effects", rel.get("effect"))))
             elif isinstance(rel, (list, tuple)) and len(rel) == 3:
-                items.append(tuple(rel))  # type: ignore[arg-type]
+                items.append(tuple(rel))
             else:
                 raise ValueError(f"relation {n + 1} is neither [action, [causes], [effects]] nor an object")
     else:
@@ -124,11 +125,11 @@ class CausalGraph:
         return [r.to_list() for r in self.relations]
 
     @classmethod
-    def from_json(cls, value: Any) -> "CausalGraph":
+    def from_json(cls, value: Any) -> CausalGraph:
         return cls(parse_relations(value or []))
 
     @classmethod
-    def parse_text(cls, text: str) -> "CausalGraph":
+    def parse_text(cls, text: str) -> CausalGraph:
         """Back from the rendered lines (lines that do not match are skipped)."""
         rels = []
         for line in text.splitlines():
@@ -149,7 +150,8 @@ def complete_items(text: str) -> list:
     start = text.find("[")
     if start < 0:
         return []
-    decoder, items, i = json.JSONDecoder(), [], start + 1
+    decoder, i = json.JSONDecoder(), start + 1
+    items: list[Any] = []
     while True:
         while i < len(text) and text[i] in " \t\r\n,":
             i += 1
@@ -181,40 +183,63 @@ def _retry(problem: str) -> str:
     return PROMPTS["causal_retry"].render(problem=problem)
 
 
-async def initial(llm: Any, scenario: Any, *, attempts: int = 3, deadline: float | None = None) -> tuple[CausalGraph | None, Asked]:
+async def initial(
+    llm: Any, scenario: Any, *, attempts: int = 3, deadline: float | None = None
+) -> tuple[CausalGraph | None, Asked]:
     """The first graph, from the primitives' documentation and the scenario (one-shot)."""
     modules = list(scenario.primitives)
-    prompt = PROMPTS["causal_initial"].render(primitives=prim.docs(modules), scenario=scenario.description(),
-                                              modules=", ".join(modules))
+    prompt = PROMPTS["causal_initial"].render(
+        primitives=prim.docs(modules), scenario=scenario.description(), modules=", ".join(modules)
+    )
 
     def parse(answer: Any) -> CausalGraph:
         graph = CausalGraph(_parse_answer(answer))
         missing = graph.missing_modules(modules)
         if missing:
-            raise ValueError(f"no relation uses the functions of: {', '.join(missing)} "
-                             "(give at least one relation per control function group)")
+            raise ValueError(
+                f"no relation uses the functions of: {', '.join(missing)} "
+                "(give at least one relation per control function group)"
+            )
         return graph
 
-    asked = await ask(llm, [{"role": "user", "content": prompt}], role=ROLE, parse=parse, attempts=attempts,
-                      retry=_retry, deadline=deadline)
+    asked = await ask(
+        llm,
+        [{"role": "user", "content": prompt}],
+        role=ROLE,
+        parse=parse,
+        attempts=attempts,
+        retry=_retry,
+        deadline=deadline,
+    )
     if asked.value is None:  # keep the best partial graph if one parsed at all
         for entry in reversed(asked.attempts):
             if "answer" in entry:
                 try:
-                    return CausalGraph(_parse_answer(_Text(entry["answer"], entry.get("finish_reason") == "length"))), asked
+                    return CausalGraph(
+                        _parse_answer(_Text(entry["answer"], entry.get("finish_reason") == "length"))
+                    ), asked
                 except ValueError:
                     continue
     return asked.value, asked
 
 
-async def update(llm: Any, scenario: Any, graph: CausalGraph, evidence: str, *, attempts: int = 3,
-                 deadline: float | None = None) -> tuple[list[Relation] | None, Asked]:
+async def update(
+    llm: Any, scenario: Any, graph: CausalGraph, evidence: str, *, attempts: int = 3, deadline: float | None = None
+) -> tuple[list[Relation] | None, Asked]:
     """New relations from last episode's evidence (few-shot); the caller merges them."""
     modules = list(scenario.primitives)
-    prompt = PROMPTS["causal_update"].render(primitives=prim.docs(modules), scenario=scenario.description(),
-                                             graph=graph.text(), evidence=evidence)
-    asked = await ask(llm, [{"role": "user", "content": prompt}], role=ROLE,
-                      parse=lambda a: _parse_answer(a, allow_empty=True), attempts=attempts, retry=_retry, deadline=deadline)
+    prompt = PROMPTS["causal_update"].render(
+        primitives=prim.docs(modules), scenario=scenario.description(), graph=graph.text(), evidence=evidence
+    )
+    asked = await ask(
+        llm,
+        [{"role": "user", "content": prompt}],
+        role=ROLE,
+        parse=lambda a: _parse_answer(a, allow_empty=True),
+        attempts=attempts,
+        retry=_retry,
+        deadline=deadline,
+    )
     return asked.value, asked
 
 

@@ -12,8 +12,9 @@ keep everything, but only the last few are kept whole (the others keep their inv
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from pillagerbench.agents import context as C
 from pillagerbench.scenarios import Scenario, Side
@@ -26,9 +27,13 @@ class DedupStats:
     chat_before: int = 0
     chat_after: int = 0
 
-    def add(self, other: "DedupStats") -> "DedupStats":
-        return DedupStats(self.before + other.before, self.after + other.after,
-                          self.chat_before + other.chat_before, self.chat_after + other.chat_after)
+    def add(self, other: DedupStats) -> DedupStats:
+        return DedupStats(
+            self.before + other.before,
+            self.after + other.after,
+            self.chat_before + other.chat_before,
+            self.chat_after + other.chat_after,
+        )
 
     @property
     def reduction(self) -> float:
@@ -36,8 +41,13 @@ class DedupStats:
         return 0.0 if not self.before else round(1 - self.after / self.before, 4)
 
     def to_dict(self) -> dict:
-        return {"events_before": self.before, "events_after": self.after, "chat_before": self.chat_before,
-                "chat_after": self.chat_after, "reduction": self.reduction}
+        return {
+            "events_before": self.before,
+            "events_after": self.after,
+            "chat_before": self.chat_before,
+            "chat_after": self.chat_after,
+            "reduction": self.reduction,
+        }
 
 
 def agent_names(scenario: Scenario) -> list[str]:
@@ -99,7 +109,7 @@ def tail(lines: list[str], max_lines: int) -> str:
 
 def _speaker(line: str) -> str | None:
     if line.startswith("<") and ">" in line:
-        return line[1:line.index(">")]
+        return line[1 : line.index(">")]
     return None
 
 
@@ -114,7 +124,7 @@ def own_chat_with_inventory(digests: Mapping[str, Sequence[list]], *, max_lines:
                 line = str(e[1].get("onChat"))
                 if _speaker(line) == name:
                     inv = e[1].get("inventory") or {}
-                    lines.append(f"Chat: {line[len(name) + 3:]}; Inventory: {dict(sorted(inv.items()))}")
+                    lines.append(f"Chat: {line[len(name) + 3 :]}; Inventory: {dict(sorted(inv.items()))}")
         if len(lines) > max_lines:
             lines = lines[-max_lines:]
         parts.append(f"{name}:\n" + ("\n".join(lines) if lines else "(said nothing)"))
@@ -130,8 +140,14 @@ def opponent_speakers(scenario: Scenario, opponent: Side) -> set[str]:
     return names
 
 
-def opponent_chat(digests: Mapping[str, Sequence[list]], scenario: Scenario, opponent: Side,
-                  *, max_lines: int = 60, world_chat: Sequence[str] | None = None) -> str:
+def opponent_chat(
+    digests: Mapping[str, Sequence[list]],
+    scenario: Scenario,
+    opponent: Side,
+    *,
+    max_lines: int = 60,
+    world_chat: Sequence[str] | None = None,
+) -> str:
     """What the opponent team said (and the game said about it), as heard by our players, or as the
     server logged it (`world_chat`, the match's chat log) when our players heard less (their bots
     only hear chat while they run code)."""

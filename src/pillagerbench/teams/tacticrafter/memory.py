@@ -30,47 +30,78 @@ FILES = ("tactics.json", "opponent_tactics.json", "causal_graph.json", "code.jso
 class Memory:
     tactics: str | None = None
     previous_tactics: str | None = None
-    tactics_source: str | None = None          # generated | updated | preset | kept | none
+    tactics_source: str | None = None  # generated | updated | preset | kept | none
     opponent_tactics: str = UNKNOWN
     opponent_source: str | None = None
     graph: CausalGraph = field(default_factory=CausalGraph)
-    code: dict[str, dict[str, Any]] = field(default_factory=dict)   # player -> code/critique/success/...
-    events: dict[str, list] = field(default_factory=dict)           # player -> last episode's digest
-    episodes: int = 0                           # episodes played with this memory
+    code: dict[str, dict[str, Any]] = field(default_factory=dict)  # player -> code/critique/success/...
+    events: dict[str, list] = field(default_factory=dict)  # player -> last episode's digest
+    episodes: int = 0  # episodes played with this memory
 
     # --- as one dict (team.json) -------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
-        return {"tactics": self.tactics, "previous_tactics": self.previous_tactics,
-                "tactics_source": self.tactics_source, "opponent_tactics": self.opponent_tactics,
-                "opponent_source": self.opponent_source, "causal_graph": self.graph.to_json(),
-                "code": self.code, "events": self.events, "episodes": self.episodes}
+        return {
+            "tactics": self.tactics,
+            "previous_tactics": self.previous_tactics,
+            "tactics_source": self.tactics_source,
+            "opponent_tactics": self.opponent_tactics,
+            "opponent_source": self.opponent_source,
+            "causal_graph": self.graph.to_json(),
+            "code": self.code,
+            "events": self.events,
+            "episodes": self.episodes,
+        }
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Memory":
-        return cls(tactics=d.get("tactics"), previous_tactics=d.get("previous_tactics"),
-                   tactics_source=d.get("tactics_source"), opponent_tactics=d.get("opponent_tactics") or UNKNOWN,
-                   opponent_source=d.get("opponent_source"), graph=CausalGraph.from_json(d.get("causal_graph")),
-                   code={k: dict(v) for k, v in (d.get("code") or {}).items()},
-                   events={k: list(v) for k, v in (d.get("events") or {}).items()},
-                   episodes=int(d.get("episodes") or 0))
+    def from_dict(cls, d: dict[str, Any]) -> Memory:
+        return cls(
+            tactics=d.get("tactics"),
+            previous_tactics=d.get("previous_tactics"),
+            tactics_source=d.get("tactics_source"),
+            opponent_tactics=d.get("opponent_tactics") or UNKNOWN,
+            opponent_source=d.get("opponent_source"),
+            graph=CausalGraph.from_json(d.get("causal_graph")),
+            code={k: dict(v) for k, v in (d.get("code") or {}).items()},
+            events={k: list(v) for k, v in (d.get("events") or {}).items()},
+            episodes=int(d.get("episodes") or 0),
+        )
 
     # --- as files -----------------------------------------------------------------------------
     def write(self, directory: Path, episode: int | None = None, iterations: dict[str, int] | None = None) -> None:
         directory = Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
-        _dump(directory / "tactics.json", {"tactics": self.tactics, "previous_tactics": self.previous_tactics,
-                                           "source": self.tactics_source, "episode": episode})
-        _dump(directory / "opponent_tactics.json", {"opponent_tactics": self.opponent_tactics,
-                                                    "source": self.opponent_source, "episode": episode})
-        _dump(directory / "causal_graph.json", {"relations": self.graph.to_json(), "text": self.graph.render(),
-                                                "episode": episode})
+        _dump(
+            directory / "tactics.json",
+            {
+                "tactics": self.tactics,
+                "previous_tactics": self.previous_tactics,
+                "source": self.tactics_source,
+                "episode": episode,
+            },
+        )
+        _dump(
+            directory / "opponent_tactics.json",
+            {"opponent_tactics": self.opponent_tactics, "source": self.opponent_source, "episode": episode},
+        )
+        _dump(
+            directory / "causal_graph.json",
+            {"relations": self.graph.to_json(), "text": self.graph.render(), "episode": episode},
+        )
         players = sorted(set(self.code) | set(self.events))
-        _dump(directory / "code.json", {name: {**self.code.get(name, {}),
-                                               **({"iterations": iterations[name]} if iterations and name in iterations else {}),
-                                               "events": self.events.get(name, [])} for name in players})
+        _dump(
+            directory / "code.json",
+            {
+                name: {
+                    **self.code.get(name, {}),
+                    **({"iterations": iterations[name]} if iterations and name in iterations else {}),
+                    "events": self.events.get(name, []),
+                }
+                for name in players
+            },
+        )
 
     @classmethod
-    def read(cls, directory: Path) -> "Memory":
+    def read(cls, directory: Path) -> Memory:
         directory = Path(directory)
         team = directory / "team.json"
         if team.exists():

@@ -9,21 +9,50 @@ from typing import Any
 
 from pillagerbench.agents.asking import Asked, ask
 
-from .templates import PROMPTS
 from .tactics import extract_tactics
+from .templates import PROMPTS
 
 ROLE = "opponent"
 UNKNOWN = "unknown"
 
 
-async def update(llm: Any, *, opponent_team: str, opponent_players: list[str], objective: str, scenario: str,
-                 graph: str, chat_log: str, previous: str, attempts: int = 3, max_items: int = 3,
-                 deadline: float | None = None) -> Asked:
-    messages = [{"role": "system", "content": PROMPTS["opponent_system"].render(
-                    opponent_team=opponent_team, objective=objective, scenario=scenario, causal_graph=graph)},
-                {"role": "user", "content": PROMPTS["opponent_user"].render(
-                    opponent_team=opponent_team, opponent_players=", ".join(opponent_players),
-                    chat_log=chat_log, previous=previous)}]
-    return await ask(llm, messages, role=ROLE, parse=lambda a: extract_tactics(a.text, max_items=max_items),
-                     attempts=attempts, retry=lambda p: PROMPTS["tactics_retry"].render(problem=p),
-                     deadline=deadline)
+async def update(
+    llm: Any,
+    *,
+    opponent_team: str,
+    opponent_players: list[str],
+    objective: str,
+    scenario: str,
+    graph: str,
+    chat_log: str,
+    previous: str,
+    attempts: int = 3,
+    max_items: int = 3,
+    deadline: float | None = None,
+) -> Asked:
+    messages = [
+        {
+            "role": "system",
+            "content": PROMPTS["opponent_system"].render(
+                opponent_team=opponent_team, objective=objective, scenario=scenario, causal_graph=graph
+            ),
+        },
+        {
+            "role": "user",
+            "content": PROMPTS["opponent_user"].render(
+                opponent_team=opponent_team,
+                opponent_players=", ".join(opponent_players),
+                chat_log=chat_log,
+                previous=previous,
+            ),
+        },
+    ]
+    return await ask(
+        llm,
+        messages,
+        role=ROLE,
+        parse=lambda a: extract_tactics(a.text, max_items=max_items),
+        attempts=attempts,
+        retry=lambda p: PROMPTS["tactics_retry"].render(problem=p),
+        deadline=deadline,
+    )

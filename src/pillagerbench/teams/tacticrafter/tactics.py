@@ -35,7 +35,7 @@ def extract_tactics(text: str, *, max_items: int = 6) -> str:
     if start < 0:
         raise ValueError(f"the answer has no {OPEN} ... {CLOSE} part")
     end = low.find(CLOSE, start)
-    body = text[start + len(OPEN):end if end >= 0 else len(text)]
+    body = text[start + len(OPEN) : end if end >= 0 else len(text)]
     lines = [ln.rstrip() for ln in body.strip().splitlines() if ln.strip()]
     if not lines:
         raise ValueError(f"the part between {OPEN} and {CLOSE} is empty")
@@ -58,24 +58,78 @@ def _retry(problem: str) -> str:
 
 def system_prompt(team_name: str, objective: str, scenario: str, graph: str, *, update: bool) -> str:
     return PROMPTS["tactics_system"].render(
-        team_name=team_name, objective=objective, scenario=scenario, causal_graph=graph,
-        examples=PROMPTS["tactics_examples"].render() if update else "")
+        team_name=team_name,
+        objective=objective,
+        scenario=scenario,
+        causal_graph=graph,
+        examples=PROMPTS["tactics_examples"].render() if update else "",
+    )
 
 
-async def initial(llm: Any, *, team_name: str, players: list[str], objective: str, scenario: str, graph: str,
-                  attempts: int = 3, max_items: int = 6, deadline: float | None = None) -> Asked:
-    messages = [{"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=False)},
-                {"role": "user", "content": PROMPTS["tactics_initial"].render(players=", ".join(players))}]
-    return await ask(llm, messages, role=ROLE, parse=lambda a: extract_tactics(a.text, max_items=max_items),
-                     attempts=attempts, retry=_retry, deadline=deadline)
+async def initial(
+    llm: Any,
+    *,
+    team_name: str,
+    players: list[str],
+    objective: str,
+    scenario: str,
+    graph: str,
+    attempts: int = 3,
+    max_items: int = 6,
+    deadline: float | None = None,
+) -> Asked:
+    messages = [
+        {"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=False)},
+        {"role": "user", "content": PROMPTS["tactics_initial"].render(players=", ".join(players))},
+    ]
+    return await ask(
+        llm,
+        messages,
+        role=ROLE,
+        parse=lambda a: extract_tactics(a.text, max_items=max_items),
+        attempts=attempts,
+        retry=_retry,
+        deadline=deadline,
+    )
 
 
-async def update(llm: Any, *, team_name: str, players: list[str], objective: str, scenario: str, graph: str,
-                 chat_log: str, nearby_blocks: str, inventories: str, previous: str, opponent: str,
-                 attempts: int = 3, max_items: int = 6, deadline: float | None = None) -> Asked:
-    messages = [{"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=True)},
-                {"role": "user", "content": PROMPTS["tactics_update"].render(
-                    players=", ".join(players), chat_log=chat_log, nearby_blocks=nearby_blocks,
-                    inventories=inventories, opponent_tactics=opponent, previous_tactics=previous)}]
-    return await ask(llm, messages, role=ROLE, parse=lambda a: extract_tactics(a.text, max_items=max_items),
-                     attempts=attempts, retry=_retry, deadline=deadline)
+async def update(
+    llm: Any,
+    *,
+    team_name: str,
+    players: list[str],
+    objective: str,
+    scenario: str,
+    graph: str,
+    chat_log: str,
+    nearby_blocks: str,
+    inventories: str,
+    previous: str,
+    opponent: str,
+    attempts: int = 3,
+    max_items: int = 6,
+    deadline: float | None = None,
+) -> Asked:
+    messages = [
+        {"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=True)},
+        {
+            "role": "user",
+            "content": PROMPTS["tactics_update"].render(
+                players=", ".join(players),
+                chat_log=chat_log,
+                nearby_blocks=nearby_blocks,
+                inventories=inventories,
+                opponent_tactics=opponent,
+                previous_tactics=previous,
+            ),
+        },
+    ]
+    return await ask(
+        llm,
+        messages,
+        role=ROLE,
+        parse=lambda a: extract_tactics(a.text, max_items=max_items),
+        attempts=attempts,
+        retry=_retry,
+        deadline=deadline,
+    )

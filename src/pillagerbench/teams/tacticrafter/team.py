@@ -25,35 +25,60 @@ from typing import Any
 
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, RoleLLM
-from pillagerbench.teams.registry import register
 from pillagerbench.teams.base import Team, TeamContext
 
 from . import causal, opponent, tactics
 from .base_agent import BaseAgent
-from .events import (DedupStats, agent_names, dedupe, digest, inventories_text, longest_chat, nearby_blocks_text,
-                     opponent_chat, own_chat_with_inventory, tail)
+from .events import (
+    DedupStats,
+    agent_names,
+    dedupe,
+    digest,
+    inventories_text,
+    longest_chat,
+    nearby_blocks_text,
+    opponent_chat,
+    own_chat_with_inventory,
+    tail,
+)
 from .memory import Memory
 from .opponent import UNKNOWN
 
 ROLES = ("tactics", "causal", "opponent", "action", "critic")
 
 
-@register
 class TactiCrafter(Team):
     name = "tacticrafter"
     uses_llm = True
 
-    def __init__(self, iterations: int = 10, causal: bool = True, opponent: bool = True,
-                 preset_tactics: str | None = None, update_tactics: bool = True, checkpoint: str | None = None,
-                 roles: dict | None = None, attempts: int = 3, min_llm_time_s: float = 5.0,
-                 quick_fail_s: float = 3.0, restart_pause_s: float = 1.0, max_llm_failures: int = 3,
-                 max_chat_lines: int = 60, max_tactics: int = 6, keep_messages: bool = True,
-                 enable_causal: bool | None = None, enable_opponent: bool | None = None, **options: Any):
+    def __init__(
+        self,
+        iterations: int = 10,
+        causal: bool = True,
+        opponent: bool = True,
+        preset_tactics: str | None = None,
+        update_tactics: bool = True,
+        checkpoint: str | None = None,
+        roles: dict | None = None,
+        attempts: int = 3,
+        min_llm_time_s: float = 5.0,
+        quick_fail_s: float = 3.0,
+        restart_pause_s: float = 1.0,
+        max_llm_failures: int = 3,
+        max_chat_lines: int = 60,
+        max_tactics: int = 6,
+        keep_messages: bool = True,
+        enable_causal: bool | None = None,
+        enable_opponent: bool | None = None,
+        **options: Any,
+    ):
         super().__init__(**options)
         self.max_iterations = max(1, int(iterations))
         self.causal_enabled = bool(causal if enable_causal is None else enable_causal)
         self.opponent_enabled = bool(opponent if enable_opponent is None else enable_opponent)
-        self.preset_tactics = preset_tactics.strip() if isinstance(preset_tactics, str) and preset_tactics.strip() else None
+        self.preset_tactics = (
+            preset_tactics.strip() if isinstance(preset_tactics, str) and preset_tactics.strip() else None
+        )
         self.update_tactics = bool(update_tactics)
         self.roles = {k: dict(v or {}) for k, v in (roles or {}).items()}
         unknown = sorted(set(self.roles) - set(ROLES))
@@ -69,7 +94,7 @@ class TactiCrafter(Team):
         self.agents: list[BaseAgent] = []
         self.agent_names: list[str] = []
         self.llm: RoleLLM | None = None
-        self.llm_off: str | None = None       # why LLM calls stopped for this episode
+        self.llm_off: str | None = None  # why LLM calls stopped for this episode
         self.latency: dict[str, list[float]] = {}
         self.record: dict[str, Any] = {}
         if checkpoint:
@@ -78,8 +103,10 @@ class TactiCrafter(Team):
     # --- helpers ---------------------------------------------------------------------------------
 
     def objective(self, ctx: TeamContext) -> str:
-        return (f"You play for {ctx.side.team_name} with {', '.join(ctx.side.player_names)}. Win the game: when it "
-                f"ends, {ctx.side.team_name} must have more points than {ctx.opponent.team_name}.")
+        return (
+            f"You play for {ctx.side.team_name} with {', '.join(ctx.side.player_names)}. Win the game: when it "
+            f"ends, {ctx.side.team_name} must have more points than {ctx.opponent.team_name}."
+        )
 
     def tactics_text(self) -> str:
         return self.memory.tactics or "No team tactics: play the scenario as well as you can."
@@ -92,9 +119,10 @@ class TactiCrafter(Team):
         for a in asked.attempts:
             if "answer" in a and a.get("latency_s") is not None:
                 self.latency.setdefault(role, []).append(float(a["latency_s"]))
-        stats = self.record.setdefault("llm", {}).setdefault(role, {"calls": 0, "failed_calls": 0, "unusable": 0,
-                                                                   "input_tokens": 0, "output_tokens": 0,
-                                                                   "latency_s": 0.0})
+        stats = self.record.setdefault("llm", {}).setdefault(
+            role,
+            {"calls": 0, "failed_calls": 0, "unusable": 0, "input_tokens": 0, "output_tokens": 0, "latency_s": 0.0},
+        )
         for a in asked.attempts:
             stats["calls"] += 1
             if "error" in a:
@@ -129,12 +157,22 @@ class TactiCrafter(Team):
         mem = self.memory
         digests = {name: mem.events.get(name, []) for name in players}
         has_events = any(digests.values())
-        self.record = {"episode": ctx.episode, "team": ctx.side.team_name, "players": players,
-                       "options": {"iterations": self.max_iterations, "causal": self.causal_enabled,
-                                   "opponent": self.opponent_enabled, "preset_tactics": self.preset_tactics is not None,
-                                   "update_tactics": self.update_tactics},
-                       "roles": {r: self.llm.settings_for(r) for r in ROLES} if self.llm else {},
-                       "memory_from_episodes": mem.episodes, "modules": {}, "llm": {}}
+        self.record = {
+            "episode": ctx.episode,
+            "team": ctx.side.team_name,
+            "players": players,
+            "options": {
+                "iterations": self.max_iterations,
+                "causal": self.causal_enabled,
+                "opponent": self.opponent_enabled,
+                "preset_tactics": self.preset_tactics is not None,
+                "update_tactics": self.update_tactics,
+            },
+            "roles": {r: self.llm.settings_for(r) for r in ROLES} if self.llm else {},
+            "memory_from_episodes": mem.episodes,
+            "modules": {},
+            "llm": {},
+        }
         if self.llm_off:
             self.record["llm_off"] = self.llm_off
         graph_text = mem.graph.text() if self.causal_enabled else "(causal model disabled)"
@@ -155,8 +193,9 @@ class TactiCrafter(Team):
             elif has_events:
                 if self._llm_ok():
                     evidence = own_chat_with_inventory(digests, max_lines=self.max_chat_lines)
-                    new, asked = await causal.update(self.llm, ctx.scenario, mem.graph, evidence,
-                                                     attempts=self.attempts)
+                    new, asked = await causal.update(
+                        self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts
+                    )
                     rec = self._module_record("causal", asked, step="update")
                     if new is not None:
                         rec["merge"] = mem.graph.merge(new)
@@ -169,13 +208,24 @@ class TactiCrafter(Team):
         if self.opponent_enabled and has_events:
             if self._llm_ok():
                 asked = await opponent.update(
-                    self.llm, opponent_team=opp.team_name, opponent_players=opp.player_names,
+                    self.llm,
+                    opponent_team=opp.team_name,
+                    opponent_players=opp.player_names,
                     objective=f"{opp.team_name} ({', '.join(opp.player_names)}) wants to end the game with more "
-                              f"points than {ctx.side.team_name}.",
-                    scenario=ctx.scenario.description(), graph=graph_text,
-                    chat_log=opponent_chat(digests, ctx.scenario, opp, max_lines=self.max_chat_lines,
-                                           world_chat=ctx.last_episode.get("chat")),
-                    previous=mem.opponent_tactics or UNKNOWN, attempts=self.attempts, max_items=3)
+                    f"points than {ctx.side.team_name}.",
+                    scenario=ctx.scenario.description(),
+                    graph=graph_text,
+                    chat_log=opponent_chat(
+                        digests,
+                        ctx.scenario,
+                        opp,
+                        max_lines=self.max_chat_lines,
+                        world_chat=ctx.last_episode.get("chat"),
+                    ),
+                    previous=mem.opponent_tactics or UNKNOWN,
+                    attempts=self.attempts,
+                    max_items=3,
+                )
                 self._module_record("opponent", asked, step="update")
                 if asked.ok:
                     mem.opponent_tactics, mem.opponent_source = asked.value, "inferred"
@@ -190,9 +240,16 @@ class TactiCrafter(Team):
             self._module_record("tactics", None, step="preset")
         elif mem.tactics is None:
             if self._llm_ok():
-                asked = await tactics.initial(self.llm, team_name=ctx.side.team_name, players=players,
-                                              objective=self.objective(ctx), scenario=ctx.scenario.description(),
-                                              graph=graph_text, attempts=self.attempts, max_items=self.max_tactics)
+                asked = await tactics.initial(
+                    self.llm,
+                    team_name=ctx.side.team_name,
+                    players=players,
+                    objective=self.objective(ctx),
+                    scenario=ctx.scenario.description(),
+                    graph=graph_text,
+                    attempts=self.attempts,
+                    max_items=self.max_tactics,
+                )
                 self._module_record("tactics", asked, step="initial")
                 if asked.ok:
                     mem.tactics, mem.tactics_source = asked.value, "generated"
@@ -203,12 +260,20 @@ class TactiCrafter(Team):
         elif has_events and self.update_tactics:
             if self._llm_ok():
                 asked = await tactics.update(
-                    self.llm, team_name=ctx.side.team_name, players=players, objective=self.objective(ctx),
-                    scenario=ctx.scenario.description(), graph=graph_text,
+                    self.llm,
+                    team_name=ctx.side.team_name,
+                    players=players,
+                    objective=self.objective(ctx),
+                    scenario=ctx.scenario.description(),
+                    graph=graph_text,
                     chat_log=tail(longest_chat(digests), self.max_chat_lines),
-                    nearby_blocks=nearby_blocks_text(digests), inventories=inventories_text(digests),
-                    previous=mem.tactics, opponent=mem.opponent_tactics if self.opponent_enabled else
-                    "(opponent model disabled)", attempts=self.attempts, max_items=self.max_tactics)
+                    nearby_blocks=nearby_blocks_text(digests),
+                    inventories=inventories_text(digests),
+                    previous=mem.tactics,
+                    opponent=mem.opponent_tactics if self.opponent_enabled else "(opponent model disabled)",
+                    attempts=self.attempts,
+                    max_items=self.max_tactics,
+                )
                 self._module_record("tactics", asked, step="update")
                 if asked.ok:
                     mem.previous_tactics, mem.tactics, mem.tactics_source = mem.tactics, asked.value, "updated"
@@ -225,8 +290,14 @@ class TactiCrafter(Team):
         # 4. base agents: first code of the episode, in parallel
         self.agents = [BaseAgent(self, name, k) for k, name in enumerate(players)]
         for agent in self.agents:
-            chat = tail([str(e[1].get("onChat")) for e in digests.get(agent.name, []) if e and e[0] == "onChat"],
-                        self.max_chat_lines) if digests.get(agent.name) else "No chat yet: the game has not started."
+            chat = (
+                tail(
+                    [str(e[1].get("onChat")) for e in digests.get(agent.name, []) if e and e[0] == "onChat"],
+                    self.max_chat_lines,
+                )
+                if digests.get(agent.name)
+                else "No chat yet: the game has not started."
+            )
             agent.start_episode(ctx, mem.code.get(agent.name, {}), chat)
         await asyncio.gather(*(a.pre_game(ctx) for a in self.agents))
         self._write(ctx)
@@ -257,8 +328,9 @@ class TactiCrafter(Team):
             self.memory.events[name] = digest(deduped)
         dedup["total"] = total.to_dict()
         self.record["dedup"] = dedup
-        self.record["iterations"] = {a.name: self.iterations[a.k] if a.k < len(self.iterations) else 0
-                                     for a in self.agents}
+        self.record["iterations"] = {
+            a.name: self.iterations[a.k] if a.k < len(self.iterations) else 0 for a in self.agents
+        }
         for agent in self.agents:
             self.memory.code[agent.name] = agent.summary()
             self.record.setdefault("agents", {})[agent.name] = {**agent.record, "dedup_in_game": agent.stats.to_dict()}

@@ -6,6 +6,7 @@ const { helpers } = require('./util')
 module.exports = {
   name: 'exploreUntil',
   make (ctx) {
+    // eslint-disable-next-line no-unused-vars -- kept as written (primitives change only with their fidelity tests)
     const { bot, run, goals } = ctx
     const h = helpers(ctx)
 

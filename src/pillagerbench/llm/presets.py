@@ -1,0 +1,42 @@
+"""LLM presets and the clients of a match.
+
+The presets are the `llm` config group: one file per provider set-up in `pillagerbench/conf/llm/`
+(`llm=openai`, `llm=ollama`, ...), looked up by Hydra when the config is composed; that group is
+their one registry. A side's team may override keys of the chosen preset (`red.llm.model=...`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any, Protocol
+
+from omegaconf import OmegaConf
+
+from .client import LLMClient
+
+PRESET_DIR = Path(__file__).resolve().parent.parent / "conf" / "llm"
+
+
+def preset_names() -> list[str]:
+    """The names `llm=NAME` accepts (`base` holds the shared defaults and is not one)."""
+    return sorted(p.stem for p in PRESET_DIR.glob("*.yaml") if p.stem != "base")
+
+
+def side_llm_config(cfg: Any, side: str) -> Any:
+    """The top-level `llm` settings with the side's own `llm` overrides (e.g. `red.llm.model=...`)."""
+    return OmegaConf.merge(cfg, {"llm": cfg[side].get("llm") or {}})
+
+
+class MaybeLLMTeam(Protocol):
+    @property
+    def uses_llm(self) -> bool: ...  # a Team's class attribute (teams/base.py)
+
+
+def make_llms(cfg: Any, teams: Mapping[str, MaybeLLMTeam], run_dir: Path) -> dict[str, LLMClient]:
+    """A client for each side whose team uses an LLM; they share the run directory's ledger and cache."""
+    return {
+        side: LLMClient.from_config(side_llm_config(cfg, side), team=side, run_dir=run_dir)
+        for side, team in teams.items()
+        if team.uses_llm
+    }

@@ -1,0 +1,51 @@
+"""The manifest of a run directory (`manifest.json`): config, versions, seed and git revision.
+
+Written by a plain `pillagerbench run` (run.py) and by every series of an experiment
+(experiments/series.py); the experiment's own top-level manifest uses `git_revision` too.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import subprocess
+import time
+from pathlib import Path
+from typing import Any
+
+from omegaconf import OmegaConf
+
+from pillagerbench import __version__
+
+
+def git_revision() -> str | None:
+    try:
+        return (
+            subprocess.run(
+                ["git", "rev-parse", "HEAD"], capture_output=True, text=True, timeout=5, cwd=Path(__file__).parent
+            ).stdout.strip()
+            or None
+        )
+    except (OSError, subprocess.SubprocessError):
+        return None
+
+
+def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
+    """`run_dir/manifest.json` for one match; `scenario` is the Scenario played (key, title, version)."""
+    from pillagerbench.node import node_binary
+
+    node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
+    manifest = {
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "config": OmegaConf.to_container(cfg, resolve=True),
+        "scenario": {"key": scenario.key, "title": scenario.title, "version": scenario.version},
+        "versions": {
+            "pillagerbench": __version__,
+            "python": platform.python_version(),
+            "node": node,
+            "minecraft": "1.16.5",
+        },
+        "seed": cfg.seed,
+        "git_revision": git_revision(),
+    }
+    (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
