@@ -1,6 +1,7 @@
 """The code keeps its shape: lint, format, types, the import contracts and the JavaScript style.
 
-Each test runs one tool as a developer would (CONTRIBUTING.md) and shows its findings when it fails.
+Each check runs one tool with the command CONTRIBUTING.md gives (every command there is run here) and
+shows the tool's findings when it fails.
 The tools and their settings: pyproject.toml ([tool.ruff], [tool.mypy], [tool.importlinter]) and
 src/pillagerbench/js/eslint.config.js; all pinned (the `test` extra, package.json's devDependencies).
 """
@@ -8,6 +9,8 @@ src/pillagerbench/js/eslint.config.js; all pinned (the `test` extra, package.jso
 from __future__ import annotations
 
 import os
+import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -15,12 +18,12 @@ import sysconfig
 import textwrap
 from pathlib import Path
 
-from pillagerbench.node import ensure_node_modules, modules_dir, node_binary
+import pytest
+
+from pillagerbench.node import ensure_node_modules, modules_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
-JS = SRC / "pillagerbench" / "js"
-PY_PATHS = ["src", "tests", "benchmarks", "scripts"]
 SCRIPTS = Path(sysconfig.get_path("scripts"))
 
 
@@ -39,22 +42,63 @@ def shown(proc: subprocess.CompletedProcess) -> str:
     return f"$ {' '.join(proc.args)}\n{proc.stdout}\n{proc.stderr}"
 
 
-# --- Python: ruff and mypy ------------------------------------------------------------------------
+# --- The checks, as CONTRIBUTING.md gives them: ruff, ruff format, import-linter, mypy, eslint -----------
+
+CONTRIBUTING = ROOT / "CONTRIBUTING.md"
 
 
-def test_ruff_lint():
-    proc = run([tool("ruff"), "check", "--no-cache", *PY_PATHS])
+def commands(tag: str) -> list[str]:
+    """The command lines of the ```sh block after `<!-- tag -->` in CONTRIBUTING.md."""
+    text = CONTRIBUTING.read_text(encoding="utf-8")
+    block = re.search(rf"<!-- {re.escape(tag)} -->\n```sh\n(.*?)\n```", text, re.S)
+    assert block, f"CONTRIBUTING.md has no ```sh block after <!-- {tag} -->"
+    return [line for line in block.group(1).splitlines() if line.strip()]
+
+
+def as_run(command: str) -> list[str]:
+    """A command line with `.venv/bin/` meaning the environment running the tests (CI's is .venv)."""
+    words = shlex.split(command)
+    if words[0] == ".venv/bin/python":
+        return [sys.executable, *words[1:]]
+    if words[0].startswith(".venv/bin/"):
+        return [tool(words[0].removeprefix(".venv/bin/")), *words[1:]]
+    return words
+
+
+def test_contributing_has_only_commands_that_run():
+    text = CONTRIBUTING.read_text(encoding="utf-8")
+    assert len(re.findall(r"^```sh$", text, re.M)) == 4  # setup, checks, fixes, one-test: all run below
+    checks = " | ".join(commands("checks"))
+    for needed in ("ruff check", "ruff format --check", "lint-imports", "mypy", "scripts/eslint.py"):
+        assert needed in checks, f"CONTRIBUTING.md's checks lost `{needed}`"
+
+
+def test_setup_is_the_readme_test_command():
+    (setup,) = commands("setup")
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert re.search(rf"<!-- test-command -->\n```\n{re.escape(setup)} && ", readme), (setup, readme)
+
+
+@pytest.mark.parametrize("command", commands("checks"))
+def test_check(command):
+    proc = run(as_run(command))
     assert proc.returncode == 0, shown(proc)
 
 
-def test_ruff_format():
-    proc = run([tool("ruff"), "format", "--no-cache", "--check", "--diff", *PY_PATHS])
-    assert proc.returncode == 0, "not formatted; run `ruff format` (CONTRIBUTING.md)\n" + shown(proc)
+@pytest.mark.parametrize("command", commands("one-test"))
+def test_one_test_command(command):
+    proc = run(as_run(command))
+    assert proc.returncode == 0 and " passed" in proc.stdout, shown(proc)
 
 
-def test_mypy():
-    proc = run([tool("mypy")])  # files and flags: [tool.mypy] in pyproject.toml
-    assert proc.returncode == 0, shown(proc)
+def test_fix_commands(tmp_path):
+    """They rewrite files, so they run on a copy of the tree."""
+    for name in ("src", "tests", "benchmarks", "scripts"):
+        shutil.copytree(ROOT / name, tmp_path / name, ignore=shutil.ignore_patterns("__pycache__", "node_modules"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path)
+    for command in commands("fixes"):
+        proc = run(as_run(command), cwd=tmp_path)
+        assert proc.returncode == 0, shown(proc)
 
 
 def test_bad_format_and_type_errors_are_caught(tmp_path):
@@ -123,12 +167,6 @@ def lint_imports(src: Path) -> subprocess.CompletedProcess:
     )
 
 
-def test_import_contracts_are_kept():
-    proc = lint_imports(SRC)
-    assert proc.returncode == 0, shown(proc)
-    assert "0 broken" in proc.stdout
-
-
 def test_no_import_cycles():
     assert import_cycles(SRC) == []
 
@@ -183,25 +221,7 @@ def test_forbidden_imports_are_caught(tmp_path):
     assert any({"pillagerbench.scenarios.mushroom_war", "pillagerbench.teams"} <= set(c) for c in cycles)
 
 
-# --- JavaScript: eslint (neostandard) ----------------------------------------------------------------
-
-
-def test_eslint():
-    dev = ensure_node_modules(quiet=True, dev=True)  # eslint and neostandard, pinned by package-lock.json
-    proc = run(
-        [
-            str(node_binary()),
-            str(dev / "eslint" / "bin" / "eslint.js"),
-            "--config",
-            "eslint.config.js",
-            "--max-warnings",
-            "0",
-            ".",
-        ],
-        cwd=JS,
-        env={"NODE_PATH": str(dev)},
-    )
-    assert proc.returncode == 0, "run eslint --fix (CONTRIBUTING.md)\n" + shown(proc)
+# --- JavaScript: what users install ------------------------------------------------------------------
 
 
 def test_users_first_install_leaves_out_development_packages():
