@@ -93,7 +93,7 @@ def test_one_test_command(command):
 
 def test_fix_commands(tmp_path):
     """They rewrite files, so they run on a copy of the tree."""
-    for name in ("src", "tests", "benchmarks", "scripts"):
+    for name in ("src", "tests", "benchmarks", "scripts", "examples"):
         shutil.copytree(ROOT / name, tmp_path / name, ignore=shutil.ignore_patterns("__pycache__", "node_modules"))
     shutil.copy(ROOT / "pyproject.toml", tmp_path)
     for command in commands("fixes"):
