@@ -173,3 +173,22 @@ def test_a_port_in_use_is_one_line(tmp_path):
         f"pillagerbench server: arena server failed to start: port 127.0.0.1:{port} is already in use "
         "(choose another with server.port=..., or 0 for a free port)"
     )
+
+
+@pytest.mark.parametrize(
+    "args, expected",
+    [
+        (["experiment=main_benchmark", "experiment.team=remote"], "red.url: the remote team needs the address"),
+        (
+            ["experiment=main_benchmark", "experiment.team=cot", "experiment.team_options.atempts=2"],
+            "red.atempts: unknown key (options of cot: attempts",
+        ),
+        (
+            ["experiment=main_benchmark", "experiment.team=cot", "llm=fake", "llm.base_url=http://127.0.0.1:9/v1"],
+            "LLM preflight failed for fake model fake-model at http://127.0.0.1:9/v1",
+        ),
+    ],
+)
+def test_an_experiment_checks_its_teams_and_providers_before_anything_starts(tmp_path, args, expected):
+    (line,) = one_line_refusal(tmp_path, "run", *args)
+    assert expected in line, line

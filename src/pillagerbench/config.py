@@ -24,6 +24,7 @@ class ConfigError(ValueError):
 GROUP_ALIASES = {"red": "team@red", "blue": "team@blue"}
 
 
+OPEN_KEYS = ("experiment.team_options.", "experiment.llm_options.")
 EXTERNAL = "_external"  # conf/team/_external.yaml: teams without a YAML file of their own
 
 
@@ -54,6 +55,9 @@ def _aliases(overrides: list[str]) -> list[str]:
                 if group not in external or value != chosen[group] or _has_yaml(value)
                 else [f"{GROUP_ALIASES[group]}={EXTERNAL}", f"++{group}.name={value}"]
             )
+            continue
+        if sep and key.startswith(OPEN_KEYS):  # maps whose keys the user chooses
+            out.append(f"++{override}")
             continue
         side, _, rest = key.partition(".")
         if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or side in external):

@@ -68,19 +68,21 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
     return out
 
 
+def team_problems(cfg: Any) -> list[str]:
+    """Problems of a match config's scenario and both sides (teams, options, LLM settings)."""
+    found = []
+    scenario = str(cfg.scenario.name)
+    if scenario not in SCENARIOS:
+        found.append(f"scenario={scenario}: unknown scenario; valid: {', '.join(SCENARIOS)}")
+    for side in SIDES:
+        for p in _team_problems(cfg, side, scenario):
+            if p not in found:  # the shared llm settings are reported once
+                found.append(p)
+    return found
+
+
 def check_run_config(cfg: Any, *, teams: bool = True) -> None:
     """Raise one ConfigError listing every problem of the config (one line each). With
-    teams=False (experiments choose teams themselves) only the top-level keys are checked."""
-    found = top_level_problems(cfg)
-    if teams:
-        scenario = str(cfg.scenario.name)
-        if scenario not in SCENARIOS:
-            found.append(f"scenario={scenario}: unknown scenario; valid: {', '.join(SCENARIOS)}")
-        seen_llm: set[str] = set()
-        for side in SIDES:
-            for p in _team_problems(cfg, side, scenario):
-                if p.startswith("llm.") and p in seen_llm:
-                    continue  # the shared llm settings are reported once
-                seen_llm.add(p)
-                found.append(p)
-    check(found)
+    teams=False (experiments choose teams themselves, see experiments/runner.check_series) only
+    the top-level keys are checked."""
+    check(top_level_problems(cfg) + (team_problems(cfg) if teams else []))

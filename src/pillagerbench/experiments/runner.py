@@ -222,10 +222,20 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
             closer()
 
 
-def check_providers(specs: list[SeriesSpec]) -> None:
-    """Preflight (preflight.py): stop before anything starts when an LLM or a team server does not answer."""
-    from pillagerbench import preflight
+def check_series(specs: list[SeriesSpec]) -> None:
+    """Before anything starts: each distinct series config checked whole (validate.py: teams, their
+    options, LLM settings), then the preflight (preflight.py: every LLM and team server answers)."""
+    from omegaconf import OmegaConf
 
+    from pillagerbench import preflight
+    from pillagerbench.config_schema import check
+    from pillagerbench.validate import team_problems
+
+    seen: dict[str, None] = {}
+    for s in specs:
+        for line in team_problems(OmegaConf.create(s.config)):
+            seen.setdefault(line, None)
+    check(list(seen))
     preflight.check([side for s in specs for side in preflight.sides_of(s.config)])
 
 
@@ -236,11 +246,11 @@ def main_experiment(cfg, argv: list[str]) -> int:
         title, specs, dirs = load_experiment(run_dir)
         if cfg.get("experiment") is not None and title != "run":
             check_same(specs, build_series(cfg, argv), run_dir)
-        check_providers(specs)
+        check_series(specs)
         print(f"resuming {run_dir}", flush=True)
     else:
         specs = build_series(cfg, argv)
-        check_providers(specs)
+        check_series(specs)
         run_dir = make_experiment_dir(cfg)
         if (run_dir / "experiment.json").exists():
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
