@@ -60,8 +60,13 @@ async def _settle_until(predicate, timeout=8.0):
     return False
 
 
-async def _on_ground(arena, item):
-    return sum(i["count"] for i in await arena.request("items") if i["item"] == item)
+async def _on_ground(arena, item, near):
+    """`item`s lying within 4 blocks of `near` (other tests may leave the same item elsewhere)."""
+    return sum(
+        i["count"]
+        for i in await arena.request("items")
+        if i["item"] == item and sum((a - b) ** 2 for a, b in zip(i["pos"], near)) < 16
+    )
 
 
 @pytest.mark.parametrize("first", ["alice", "bob"])
@@ -75,15 +80,15 @@ async def test_two_players_equally_near_share_contested_items_whatever_the_join_
     # one drop between them every 2 ticks, so every drop is decided in a tick of its own
     for i in range(drops):
         await arena.request("spawn_item", item="stick", pos=area.at(2.5, 4, 4.5), delay_ticks=10 + 2 * i)
-    assert await _settle_until(lambda: _gone(arena, "stick"), timeout=20)
+    assert await _settle_until(lambda: _gone(arena, "stick", area.at(2.5, 4, 4.5)), timeout=20)
     got = {n: await count(arena, n, "stick") for n in ("alice", "bob")}
     assert sum(got.values()) == drops
     # with a fair coin, P(one side gets <= 8 of 40) < 1e-4; the old pickup gave all 40 to `first`
     assert 8 < got["alice"] < 32, got
 
 
-async def _gone(arena, item):
-    return await _on_ground(arena, item) == 0
+async def _gone(arena, item, near):
+    return await _on_ground(arena, item, near) == 0
 
 
 async def test_an_item_outside_the_vanilla_box_stays_on_the_ground(arena, bots, area):
@@ -93,7 +98,7 @@ async def test_an_item_outside_the_vanilla_box_stays_on_the_ground(arena, bots, 
     await arena.request("spawn_item", item="feather", pos=area.at(4.0, 4, 8.5), delay_ticks=0)
     await asyncio.sleep(1.5)
     assert await count(arena, "alice", "feather") == 0
-    assert await _on_ground(arena, "feather") == 1
+    assert await _on_ground(arena, "feather", area.at(4.0, 4, 8.5)) == 1
     # 1.3 blocks away: inside the box
     await arena.request("spawn_item", item="bone", pos=area.at(3.8, 4, 8.5), delay_ticks=0)
     assert await _settle_until(lambda: _eq(count(arena, "alice", "bone"), 1))
