@@ -1,0 +1,54 @@
+'use strict'
+// Placing, as vanilla 1.16.5 allows it (reach is in reach.js): a block goes only into a space that
+// is empty or replaceable (tables.REPLACEABLE: air, water, grass …), against a block that is there
+// (a click on air has nothing to place against), and not into a player's or mob's box.
+// flying-squid placed blocks anywhere but into the placing player's own feet block.
+const { REPLACEABLE, PLANTING } = require('../tables')
+
+module.exports.server = function (serv) {
+  const reg = serv.registry
+  const replaceable = new Set(REPLACEABLE)
+  const air = new Set(['air', 'cave_air', 'void_air'])
+  const none = { id: -1, data: 0 }
+  const where = (p) => `(${p.x}, ${p.y}, ${p.z})`
+
+  // Does an entity's box (width w, height h, feet at its position) overlap the block cell at `pos`?
+  const overlaps = (e, pos, w, h) => e.position.x + w / 2 > pos.x && e.position.x - w / 2 < pos.x + 1 &&
+    e.position.z + w / 2 > pos.z && e.position.z - w / 2 < pos.z + 1 && e.position.y + h > pos.y && e.position.y < pos.y + 1
+
+  function inTheWay (world, pos) {
+    for (const e of Object.values(serv.entities)) {
+      if (e.world !== world || (e.type !== 'player' && e.type !== 'mob') || e.dead) continue
+      if (e.type === 'player' && e.gameMode === 3) continue
+      const w = e.type === 'player' ? 0.6 : (e.width || 0.9)
+      const h = e.type === 'player' ? 1.8 : (e.height || 1.4)
+      if (overlaps(e, pos, w, h)) return e.type === 'player' ? e.username : e.name
+    }
+    return null
+  }
+
+  serv.once('asap', () => {
+    const placeItem = serv.placeItem
+    serv.placeItem = async (data) => {
+      const { player, placedPosition, referencePosition, item } = data
+      const places = item && (reg.blocksByName[item.name] || PLANTING[item.name])
+      if (places && player && (player.gameMode === 0 || player.gameMode === 2)) {
+        const ref = await player.world.getBlock(referencePosition)
+        const at = await player.world.getBlock(placedPosition)
+        let reason = null
+        if (air.has(ref.name)) reason = `nothing to place ${item.name} against at ${where(referencePosition)} (air)`
+        else if (!replaceable.has(at.name)) reason = `cannot place ${item.name} at ${where(placedPosition)}: ${at.name} is there`
+        else if (reg.blocksByName[item.name]?.boundingBox === 'block') {
+          const who = inTheWay(player.world, placedPosition)
+          if (who) reason = `cannot place ${item.name} at ${where(placedPosition)}: ${who} is in the way`
+        }
+        if (reason) {
+          serv.pb.refuse(player, 'place', reason)
+          serv.pb.resendBlock(player, placedPosition)
+          return none
+        }
+      }
+      return placeItem(data)
+    }
+  })
+}
