@@ -39,16 +39,20 @@ function attackStrength (ticks, heldName, t = ATTACK_SPEED) {
 }
 const damageScale = (strength) => 0.2 + 0.8 * strength * strength
 
-// Movement. `state` is the player's: {last: {x,y,z}, groundY, air, stall, budget, at} (see
-// newMoveState); `supported` says whether the server sees a block under the new position.
-// Returns null (the move is accepted and `state` advanced) or {reason, to: 'back' | 'down'}:
+// Movement. `state` is the player's (see newMoveState): the last accepted position, the height it
+// last stood on, since when it has been in the air and since when it has not been falling (ms), and
+// its speed bucket. `ground` is the height of what the server sees the new position stand on (the
+// top of a block's collision box within MOVEMENT.supportDepth below the feet, or the feet
+// themselves in water or on a ladder), null when nothing.
+// judgeMove returns null (the move is accepted and `state` advanced) or {reason, to: 'back' | 'down'}:
 // put back to state.last, or brought down to the ground below.
 function newMoveState (pos, now, t = MOVEMENT) {
-  return { last: { x: pos.x, y: pos.y, z: pos.z }, groundY: pos.y, air: 0, stall: 0, budget: t.burst, at: now }
+  return { last: { x: pos.x, y: pos.y, z: pos.z }, groundY: pos.y, airSince: null, stallSince: null, budget: t.burst, at: now }
 }
 
-function judgeMove (state, pos, supported, now, t = MOVEMENT) {
+function judgeMove (state, pos, ground, now, t = MOVEMENT) {
   if (![pos.x, pos.y, pos.z].every(Number.isFinite)) return { reason: 'moved to an invalid position', to: 'back' }
+  const supported = ground !== null && ground !== undefined
   const last = state.last
   const step = Math.hypot(pos.x - last.x, pos.z - last.z)
   const dy = pos.y - last.y
@@ -60,17 +64,25 @@ function judgeMove (state, pos, supported, now, t = MOVEMENT) {
   if (!supported && pos.y > state.groundY + t.jumpHeight) {
     return { reason: `rose ${(pos.y - state.groundY).toFixed(1)} blocks with nothing to stand on (a jump reaches 1.25)`, to: 'back' }
   }
-  const air = supported ? 0 : state.air + 1
-  const stall = supported ? 0 : state.stall + (dy > -0.01 ? 1 : 0)
-  if (stall > t.hoverPackets) return { reason: `hovered in the air for ${stall} moves without falling`, to: 'down' }
-  if (air > t.flyPackets) return { reason: `flew: ${air} moves in the air`, to: 'down' }
-  state.budget = budget - step
-  state.at = now
-  state.last = { x: pos.x, y: pos.y, z: pos.z }
-  state.air = air
-  state.stall = stall
-  if (supported) state.groundY = pos.y
+  const next = supported
+    ? { airSince: null, stallSince: null, groundY: ground }
+    : { airSince: state.airSince ?? now, stallSince: dy < -0.01 ? now : (state.stallSince ?? now), groundY: state.groundY }
+  const stuck = airborneTooLong(next, now, t)
+  if (stuck) return stuck
+  Object.assign(state, next, { budget: budget - step, at: now, last: { x: pos.x, y: pos.y, z: pos.z } })
   return null
 }
 
-module.exports = { digTooFar, useTooFar, containerTooFar, entityTooFar, digTooFast, attackStrength, damageScale, newMoveState, judgeMove }
+// A player in the air that has not fallen for MOVEMENT.hoverMs, or has been in the air for
+// MOVEMENT.flyMs, is brought down (also checked every tick: a hovering client sends few packets).
+function airborneTooLong (state, now, t = MOVEMENT) {
+  if (state.stallSince !== null && now - state.stallSince > t.hoverMs) {
+    return { reason: `hovered in the air for ${((now - state.stallSince) / 1000).toFixed(1)} s without falling`, to: 'down' }
+  }
+  if (state.airSince !== null && now - state.airSince > t.flyMs) {
+    return { reason: `flew: ${((now - state.airSince) / 1000).toFixed(1)} s in the air`, to: 'down' }
+  }
+  return null
+}
+
+module.exports = { digTooFar, useTooFar, containerTooFar, entityTooFar, digTooFast, attackStrength, damageScale, newMoveState, judgeMove, airborneTooLong }

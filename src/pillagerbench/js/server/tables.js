@@ -158,8 +158,8 @@ const MOVEMENT = {
   burst: 10, // (a client catching up after a lag sends several ticks' moves at once)
   jumpHeight: 1.35, // highest rise above the last place it stood (a jump reaches 1.25)
   supportDepth: 0.6, // a player stands when a block with a collision box (or water, a ladder …) is within this below its feet
-  hoverPackets: 20, // airborne packets without falling before it is brought down (an honest jump has ~8)
-  flyPackets: 80 // airborne packets in all before it is brought down (vanilla kicks for flying after 80 ticks)
+  hoverMs: 2000, // in the air without falling for longer: brought down (an honest jump rises for ~0.35 s)
+  flyMs: 4000 // in the air for longer: brought down (vanilla kicks for flying after 80 ticks, 4 s)
 }
 // Blocks a player stands in or climbs without a collision box.
 const SUPPORTING = ['water', 'lava', 'ladder', 'vine', 'scaffolding', 'cobweb', 'bubble_column', 'twisting_vines', 'weeping_vines', 'twisting_vines_plant', 'weeping_vines_plant']

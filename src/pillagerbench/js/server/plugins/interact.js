@@ -8,7 +8,6 @@ module.exports.server = function (serv) {
     if (!serv.registry.blocksByName[name]) throw new Error(`onBlockInteraction: unknown block ${name}`)
     handlers.set(name, serv.guarded(`interact ${name}`, fn))
   }
-  serv.pb.hasBlockInteraction = (name) => handlers.has(name)
   serv.once('asap', () => {
     const builtin = serv.interactWithBlock
     serv.interactWithBlock = async (data) => {

@@ -9,34 +9,48 @@
 // Only survival and adventure players are checked; a teleport by the server starts afresh.
 const { Vec3 } = require('vec3')
 const { MOVEMENT, SUPPORTING } = require('../tables')
-const { judgeMove, newMoveState } = require('../limits')
+const { judgeMove, newMoveState, airborneTooLong } = require('../limits')
 
 module.exports.server = function (serv) {
   const reg = serv.registry
-  const supportIds = new Set()
-  for (const b of reg.blocksArray) {
-    if (b.boundingBox === 'block' || SUPPORTING.includes(b.name)) supportIds.add(b.id)
+  // Height of the top of each block state's collision box (0: none; 1 for water, ladders … a player stands in).
+  const tops = new Map()
+  const shapes = reg.blockCollisionShapes
+  const topOf = (stateId) => {
+    let top = tops.get(stateId)
+    if (top !== undefined) return top
+    const b = reg.blocksByStateId[stateId]
+    top = 0
+    if (b && SUPPORTING.includes(b.name)) top = 1
+    else if (b && shapes) {
+      const ref = shapes.blocks[b.name]
+      const list = Array.isArray(ref) ? shapes.shapes[ref[stateId - b.minStateId]] : shapes.shapes[ref]
+      for (const box of list || []) top = Math.max(top, box[4])
+    }
+    tops.set(stateId, top)
+    return top
   }
   const probe = new Vec3(0, 0, 0)
-  const solidAt = (world, x, y, z) => {
-    probe.set(Math.floor(x), Math.floor(y), Math.floor(z))
-    if (!world.sync.getColumnAt(probe)) return true // an unloaded column is given the benefit of the doubt
-    return supportIds.has(world.sync.getBlockType(probe))
-  }
-  // A block under (or at) the feet of a player box at `pos`, within MOVEMENT.supportDepth below them.
+  // Height of what a player box with its feet at `pos` stands on (see limits.judgeMove), or null.
   serv.pb.standing = (world, pos) => {
     const half = 0.3
+    let ground = null
     for (const dy of [0, -MOVEMENT.supportDepth]) {
       for (const [dx, dz] of [[-half, -half], [-half, half], [half, -half], [half, half]]) {
-        if (solidAt(world, pos.x + dx, pos.y + dy - 1e-3, pos.z + dz)) return true
+        probe.set(Math.floor(pos.x + dx), Math.floor(pos.y + dy - 1e-3), Math.floor(pos.z + dz))
+        if (!world.sync.getColumnAt(probe)) return pos.y // an unloaded column is given the benefit of the doubt
+        const top = topOf(world.sync.getBlockStateId(probe))
+        if (top > 0 && pos.y - (probe.y + top) <= MOVEMENT.supportDepth) ground = Math.max(ground ?? -Infinity, Math.min(pos.y, probe.y + top))
       }
     }
-    return false
+    return ground
   }
+  serv.on('tick', serv.guarded('airborne', () => { for (const p of serv.players) p.pbCheckAirborne?.() }))
   // The top of the ground below `pos` (the first block with a collision box), or pos itself.
   serv.pb.groundBelow = (world, pos) => {
     for (let y = Math.floor(pos.y); y >= 0; y--) {
-      if (solidAt(world, pos.x, y, pos.z)) return new Vec3(pos.x, y + 1, pos.z)
+      const top = topOf(world.sync.getBlockStateId(probe.set(Math.floor(pos.x), y, Math.floor(pos.z))))
+      if (top > 0 && y + top <= pos.y + 1e-6) return new Vec3(pos.x, y + top, pos.z)
     }
     return pos
   }
@@ -47,15 +61,25 @@ module.exports.player = function (player, serv) {
   let state = null
   const reset = (pos) => { state = newMoveState(pos, Date.now()) }
   player.on('spawned', () => reset(player.position))
+  const teleporting = () => player.pbTeleporting && Date.now() - player.pbTeleporting < 3000 // teleport.js ignores stale moves
   player.on('move_cancel', serv.guarded('movement', (data, cancel) => {
     if (data.teleport || !state || !checked()) return reset(data.position)
-    if (player.pbTeleporting && Date.now() - player.pbTeleporting < 3000) return // stale: teleport.js ignores it
+    if (teleporting()) return
     const verdict = judgeMove(state, data.position, serv.pb.standing(player.world, data.position), Date.now())
     if (!verdict) return
     cancel(false)
+    correct(verdict)
+  }))
+  // A hovering client sends the same position, which flying-squid drops before any check: look every tick.
+  player.pbCheckAirborne = () => {
+    if (!state || !checked() || teleporting()) return
+    const verdict = airborneTooLong(state, Date.now())
+    if (verdict) correct(verdict)
+  }
+  function correct (verdict) {
     const to = verdict.to === 'down' ? serv.pb.groundBelow(player.world, new Vec3(state.last.x, state.last.y, state.last.z)) : new Vec3(state.last.x, state.last.y, state.last.z)
     serv.pb.refuse(player, 'move', `${verdict.reason}: ${verdict.to === 'down' ? 'brought down' : 'put back'} to (${to.x.toFixed(1)}, ${to.y.toFixed(1)}, ${to.z.toFixed(1)})`)
     reset(to)
     serv.pb.teleport(player, to).catch(err => serv.emit('pluginError', err, 'movement correction'))
-  }))
+  }
 }

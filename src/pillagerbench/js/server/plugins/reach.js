@@ -9,6 +9,9 @@
 // Only survival and adventure players are checked (creative and spectator watchers are not).
 const { Vec3 } = require('vec3')
 const { digTooFar, useTooFar, containerTooFar, entityTooFar } = require('../limits')
+const { PLANTING } = require('../tables')
+
+const CONTAINERS = ['chest', 'furnace', 'crafting_table'] // a right-click on them opens them, whatever is held
 
 const checked = (player) => player.gameMode === 0 || player.gameMode === 2
 const where = (p) => `(${p.x}, ${p.y}, ${p.z})`
@@ -44,8 +47,11 @@ module.exports.server = function (serv) {
     const d = useTooFar(player.position, pos)
     if (d === null) return null
     const name = nameAt(player.world, pos)
-    const verb = serv.pb.hasBlockInteraction?.(name) ? 'use' : 'place'
-    return { action: verb === 'use' ? 'use_block' : 'place', reason: `too far to ${verb === 'use' ? 'use' : 'place against'} ${name} at ${where(pos)} (${blocks(d)}; less than 8)` }
+    const held = player.inventory.slots[36 + player.heldItemSlot]
+    const placing = !CONTAINERS.includes(name) && held && (serv.registry.blocksByName[held.name] || PLANTING[held.name])
+    return placing
+      ? { action: 'place', reason: `too far to place against ${name} at ${where(pos)} (${blocks(d)}; less than 8)` }
+      : { action: 'use_block', reason: `too far to use ${name} at ${where(pos)} (${blocks(d)}; less than 8)` }
   })
 
   serv.pb.gate('use_entity', (player, packet) => {
