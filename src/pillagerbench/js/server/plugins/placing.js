@@ -3,7 +3,7 @@
 // is empty or replaceable (tables.REPLACEABLE: air, water, grass …), against a block that is there
 // (a click on air has nothing to place against), and not into a player's or mob's box.
 // flying-squid placed blocks anywhere but into the placing player's own feet block.
-const { REPLACEABLE, PLANTING } = require('../tables')
+const { REPLACEABLE } = require('../tables')
 
 module.exports.server = function (serv) {
   const reg = serv.registry
@@ -31,14 +31,16 @@ module.exports.server = function (serv) {
     const placeItem = serv.placeItem
     serv.placeItem = async (data) => {
       const { player, placedPosition, referencePosition, item } = data
-      const places = item && (reg.blocksByName[item.name] || PLANTING[item.name])
+      // (seeds and other crops: farming.js plants them only onto free soil, silently as vanilla — two
+      // players planting the same farmland at once is a race, not a cheat)
+      const places = item && reg.blocksByName[item.name]
       if (places && player && (player.gameMode === 0 || player.gameMode === 2)) {
         const ref = await player.world.getBlock(referencePosition)
         const at = await player.world.getBlock(placedPosition)
         let reason = null
         if (air.has(ref.name)) reason = `nothing to place ${item.name} against at ${where(referencePosition)} (air)`
         else if (!replaceable.has(at.name)) reason = `cannot place ${item.name} at ${where(placedPosition)}: ${at.name} is there`
-        else if (reg.blocksByName[item.name]?.boundingBox === 'block') {
+        else if (places.boundingBox === 'block') {
           const who = inTheWay(player.world, placedPosition)
           if (who) reason = `cannot place ${item.name} at ${where(placedPosition)}: ${who} is in the way`
         }
