@@ -5,9 +5,10 @@ const { helpers, checkString } = require('./util')
 const FACES = [[0, 1, 0], [0, -1, 0], [1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1]]
 const EMPTY = new Set(['air', 'cave_air', 'void_air', 'water', 'lava', 'grass', 'tall_grass'])
 
-// Does an entity's box overlap the block cell at `pos`?
+// Does an entity's box overlap the block cell at `pos`? A player's box is grown by 0.3 on each
+// side: it may be walking into the cell while the block is on its way.
 function overlaps (e, pos) {
-  const w = (e.width || 0.6) / 2
+  const w = (e.width || 0.6) / 2 + (e.type === 'player' ? 0.3 : 0)
   const h = e.height || 1.8
   return e.position.x + w > pos.x && e.position.x - w < pos.x + 1 && e.position.z + w > pos.z && e.position.z - w < pos.z + 1 &&
     e.position.y + h > pos.y && e.position.y < pos.y + 1
