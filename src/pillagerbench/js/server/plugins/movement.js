@@ -62,8 +62,13 @@ module.exports.player = function (player, serv) {
   const reset = (pos) => { state = newMoveState(pos, Date.now()) }
   player.on('spawned', () => reset(player.position))
   const teleporting = () => player.pbTeleporting && Date.now() - player.pbTeleporting < 3000 // teleport.js ignores stale moves
+  let keep = null // what a "put back" keeps from before: it does not make the air under the player ground
   player.on('move_cancel', serv.guarded('movement', (data, cancel) => {
-    if (data.teleport || !state || !checked()) return reset(data.position)
+    if (data.teleport || !state || !checked()) {
+      reset(data.position)
+      if (data.teleport && keep) { Object.assign(state, keep); keep = null }
+      return
+    }
     if (teleporting()) return
     const verdict = judgeMove(state, data.position, serv.pb.standing(player.world, data.position), Date.now())
     if (!verdict) return
@@ -79,7 +84,9 @@ module.exports.player = function (player, serv) {
   function correct (verdict) {
     const to = verdict.to === 'down' ? serv.pb.groundBelow(player.world, new Vec3(state.last.x, state.last.y, state.last.z)) : new Vec3(state.last.x, state.last.y, state.last.z)
     serv.pb.refuse(player, 'move', `${verdict.reason}: ${verdict.to === 'down' ? 'brought down' : 'put back'} to (${to.x.toFixed(1)}, ${to.y.toFixed(1)}, ${to.z.toFixed(1)})`)
+    keep = verdict.to === 'back' ? { groundY: state.groundY, airSince: state.airSince, stallSince: state.stallSince } : null
     reset(to)
+    if (keep) Object.assign(state, keep)
     serv.pb.teleport(player, to).catch(err => serv.emit('pluginError', err, 'movement correction'))
   }
 }
