@@ -200,3 +200,16 @@ async def test_refusals_reach_the_player_as_chat(arena, bots, area):
                             + raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % far[0]
                             + "\nawait sleep(400)\nbot.removeListener('messagestr', on)\nreturn lines")
     assert any(line.startswith("[refused] dig: too far to dig dirt") for line in said), said
+
+
+async def test_placing_against_a_block_dug_a_moment_ago_is_a_silent_race(arena, bots, area):
+    alice, _ = bots
+    await area.put(alice, 0, 0, {"dirt": 2})
+    x = area.x0
+    await arena.request("set_block", pos=[x + 2, 4, 0], block="oak_leaves")  # breaks in 0.3 s by hand
+    async with refusals(arena) as got:
+        await alice.eval("await bot.equip(mcData.itemsByName.dirt.id, 'hand')\nawait bot.dig(bot.blockAt(new Vec3(%d, 4, 0)), true)\n"
+                         "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, 4, 0), direction: 1, cursorX: 0.5,"
+                         " cursorY: 0.5, cursorZ: 0.5, insideBlock: false})\nawait sleep(300)" % (x + 2, x + 2))
+    assert await block(arena, [x + 2, 5, 0]) == "air" and await block(arena, [x + 2, 4, 0]) == "air"
+    assert got == []

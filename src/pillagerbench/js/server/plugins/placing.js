@@ -2,8 +2,11 @@
 // Placing, as vanilla 1.16.5 allows it (reach is in reach.js): a block goes only into a space that
 // is empty or replaceable (tables.REPLACEABLE: air, water, grass …), against a block that is there
 // (a click on air has nothing to place against), and not into a player's or mob's box.
-// flying-squid placed blocks anywhere but into the placing player's own feet block.
+// flying-squid placed blocks anywhere but into the placing player's own feet block. (Vanilla itself
+// does not check the clicked block is there, which "air place" cheats use; we do.)
 const { REPLACEABLE } = require('../tables')
+
+const RACE_MS = 1000
 
 module.exports.server = function (serv) {
   const reg = serv.registry
@@ -27,6 +30,18 @@ module.exports.server = function (serv) {
     return null
   }
 
+  // Cells whose block someone dug or placed in the last RACE_MS: a click there acted on a view that
+  // was stale by a moment (two players at the same block), a race between honest players rather
+  // than a cheat, so it is refused without a report.
+  const changed = new Map() // "x,y,z" -> ms
+  const key = (p) => `${p.x},${p.y},${p.z}`
+  const racing = (p) => Date.now() - (changed.get(key(p)) ?? -Infinity) < RACE_MS
+  serv.on('control_event', (e) => {
+    if (e.event !== 'block_dug') return
+    changed.set(e.pos.join(','), Date.now())
+    if (changed.size > 1000) for (const [k, t] of changed) if (Date.now() - t > RACE_MS) changed.delete(k)
+  })
+
   serv.once('asap', () => {
     const placeItem = serv.placeItem
     serv.placeItem = async (data) => {
@@ -45,12 +60,14 @@ module.exports.server = function (serv) {
           if (who) reason = `cannot place ${item.name} at ${where(placedPosition)}: ${who} is in the way`
         }
         if (reason) {
-          serv.pb.refuse(player, 'place', reason)
+          if (!racing(referencePosition) && !racing(placedPosition)) serv.pb.refuse(player, 'place', reason)
           serv.pb.resendBlock(player, placedPosition)
           return none
         }
       }
-      return placeItem(data)
+      const placed = await placeItem(data)
+      if (places && placed && reg.blocks[placed.id]) changed.set(key(placedPosition), Date.now())
+      return placed
     }
   })
 }
