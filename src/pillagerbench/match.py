@@ -44,6 +44,16 @@ class EpisodeRecord:
     player_order: list[str] = field(default_factory=list)  # the server's player order this episode
     server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
     problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
+    refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
+
+
+def count_refusals(events: list[dict]) -> dict[str, int]:
+    """Refused actions per player (the server's `refused` events; see docs/fair-play.md)."""
+    counts: dict[str, int] = {}
+    for e in events:
+        if e.get("event") == "refused":
+            counts[e["player"]] = counts.get(e["player"], 0) + 1
+    return counts
 
 
 class RecordedPlayer:
@@ -225,9 +235,9 @@ class Match:
                 rec.problems.setdefault(key, []).extend(team.problems)
 
     @staticmethod
-    def _write_world_events(queue: asyncio.Queue, out: Path) -> None:
+    def _write_world_events(queue: asyncio.Queue, out: Path) -> list[dict]:
         """world_events.jsonl: every event the server pushed during the game; chat.txt: the chat log
-        everyone could read ("<player> message", game-master lines plain)."""
+        everyone could read ("<player> message", game-master lines plain). Returns the events."""
         events = [queue.get_nowait() for _ in range(queue.qsize())]
         with open(out / "world_events.jsonl", "w") as f:
             for e in events:
@@ -238,6 +248,7 @@ class Match:
             if e.get("event") == "chat"
         ]
         (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
+        return events
 
     async def _game(self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path) -> list[dict]:
         gm = self.scenario.game_master(self.server, rng)
@@ -284,7 +295,7 @@ class Match:
         await gm.step()
         final = await gm.scores()
         self.server.control.unsubscribe(world)
-        self._write_world_events(world, out)
+        rec.refusals = count_refusals(self._write_world_events(world, out))
         timeline.append({"t": length, **final})
         self.on_tick({"episode": rec.episode, "t": length, "length": length, **final})
         for task in plays:

@@ -4,6 +4,7 @@ the benchmark, a lost event, or an effect on another player."""
 from __future__ import annotations
 
 import asyncio
+import json
 import time
 
 import pytest
@@ -174,11 +175,124 @@ async def test_timers_and_listeners_end_with_the_run(pair):
 async def test_bot_process_runs_under_the_permission_model(pair):
     bad, _ = pair
     perms = await bad._request("permissions")
-    assert perms == {
-        "enabled": True,
-        "fsWrite": False,
-        "fsReadRoot": False,
-        "childProcess": False,
-        "worker": False,
-        "addons": False,
-    }
+    assert perms == {"enabled": True, "fsWrite": False, "fsReadRoot": False, "childProcess": False,
+                     "worker": False, "addons": False}
+
+
+# Routes to the host realm through the real host objects the facade hands out (issue 12). Each
+# snippet returns what it reached; none may reach the bot (which holds `_client`, the raw protocol
+# client and through its socket the network), `process` or `require`.
+STACK_FRAMES = """
+const reached = []
+const E = Error, R = RangeError
+const grab = (e, frames) => { for (const f of frames) { try { const t = f.getThis(); if (t && t._client) reached.push('bot via ' + f.getFunctionName()) } catch (_) {} } return '' }
+const probe = async (make) => {
+  const point = { minus () { make().stack; return new Vec3(1, 0, 0) } }
+  try { await bot.lookAt(point) } catch (_) {}
+  try { bot.blockAt({ floored () { make().stack; return new Vec3(0, 3, 0) } }) } catch (_) {}
+}
+try { E.prepareStackTrace = grab } catch (_) {}
+await probe(() => new E('probe'))
+try { Object.defineProperty(E, 'prepareStackTrace', { value: grab }) } catch (_) {}
+await probe(() => new R('probe'))
+try { globalThis.Error = { prepareStackTrace: grab } } catch (_) {}
+await probe(() => new R('probe'))
+return reached
+"""
+
+PROTOTYPES = """
+const refused = [], replaced = []
+const protos = {
+  EventEmitter: Object.getPrototypeOf(Object.getPrototypeOf(bot.inventory)),
+  Entity: Object.getPrototypeOf(bot.entity),
+  Vec3: Object.getPrototypeOf(bot.entity.position),
+  Block: Object.getPrototypeOf(bot.blockAt(bot.entity.position.offset(0, -1, 0))),
+  Object: Object.getPrototypeOf(Object.getPrototypeOf(Object.getPrototypeOf(bot.inventory))),
+  Function: Object.getPrototypeOf(bot.chat),
+  Array: Object.getPrototypeOf(bot.inventory.slots),
+  Promise: Object.getPrototypeOf(bot.waitForTicks(1))
+}
+const spy = function () { if (this && this._client) replaced.push('bot'); return undefined }
+for (const [name, proto] of Object.entries(protos)) {
+  for (const key of ['emit', 'toString', 'apply', 'then', 'minus', 'push', 'newKey']) {
+    try { proto[key] = spy; if (proto[key] === spy) replaced.push(name + '.' + key) } catch (_) { refused.push(name + '.' + key) }
+    try { Object.defineProperty(proto, key, { value: spy }); replaced.push('define ' + name + '.' + key) } catch (_) {}
+  }
+}
+bot.entity.position.minus = spy  // an instance's own property stays allowed (and harmless)
+await bot.waitForTicks(5)
+return { replaced, refused: refused.length }
+"""
+
+CALLER_CHAINS = """
+const found = []
+const climb = (fn) => { let f = fn; for (let i = 0; i < 12 && f; i++) { try { f = f.caller } catch (_) { return } if (f) { let args = []; try { args = Array.from(f.arguments || []) } catch (_) {} for (const a of args) if (a && (a._client || a.pid)) found.push(f.name) } } }
+const point = { minus: function () { climb(point.minus); return new Vec3(1, 0, 0) } }
+try { await bot.lookAt(point) } catch (_) {}
+const goal = { isEnd: function () { climb(goal.isEnd); return true }, heuristic: function () { return 0 }, hasChanged: () => false, isValid: () => true }
+try { await bot.pathfinder.goto(goal) } catch (_) {}
+const listener = function () { climb(listener) }
+bot.inventory.on('updateSlot', listener); bot.world.on('blockUpdate', listener)
+await bot.waitForTicks(5)
+bot.inventory.removeListener('updateSlot', listener); bot.world.removeListener('blockUpdate', listener)
+return found
+"""
+
+GRAPH_WALK = """
+const seen = new Set(), found = []
+const queue = [[globalThis, 'globalThis']]
+const bad = (v) => v._client || (v.pid && typeof v.exit === 'function') || (typeof v === 'function' && /^(require|dlopen|binding)$/.test(v.name)) || v.constructor?.name === 'Socket'
+let t0 = Date.now()
+for (let i = 0; i < queue.length && seen.size < 400000; i++) {
+  if (Date.now() - t0 > 100) { await bot.waitForTicks(1); t0 = Date.now() }
+  const [v, path] = queue[i]
+  if (v === null || (typeof v !== 'object' && typeof v !== 'function') || seen.has(v)) continue
+  seen.add(v)
+  try { if (bad(v)) { found.push(path); continue } } catch (_) {}
+  if (ArrayBuffer.isView(v) || (Array.isArray(v) && v.length > 500)) continue
+  let keys = []
+  try { keys = Reflect.ownKeys(v) } catch (_) { continue }
+  for (const k of keys) {
+    let d; try { d = Object.getOwnPropertyDescriptor(v, k) } catch (_) { continue }
+    if (!d) continue
+    let val = d.value
+    if (d.get) { try { val = d.get.call(v) } catch (_) { continue } queue.push([d.get, path + '.get ' + String(k)]) }
+    queue.push([val, path + '.' + String(k)])
+  }
+  try { queue.push([Object.getPrototypeOf(v), path + '.__proto__']) } catch (_) {}
+}
+return { walked: seen.size, found: found.slice(0, 5) }
+"""
+
+
+async def _returned(player, code):
+    """What the code returns (saved through bot.save as JSON, the only way out of a run)."""
+    events = await player.run("const __r = await (async () => {\n%s\n})()\nbot.save(JSON.stringify(__r))" % code, timeout=120)
+    assert errors(events) == [], errors(events)
+    return json.loads(next(e[1]["onSave"] for e in events if e[0] == "onSave"))
+
+
+async def test_stack_frames_do_not_hand_out_the_bot(pair):
+    bad, other = pair
+    assert await _returned(bad, STACK_FRAMES) == []
+    await _bystander_ok(other)
+
+
+async def test_host_prototypes_cannot_be_replaced(pair):
+    bad, other = pair
+    out = await _returned(bad, PROTOTYPES)
+    assert out["replaced"] == []
+    events = await bad.run("await bot.waitForTicks(2)\nreturn bot.entity.position.offset(0, 1, 0).y")  # the bot still works
+    assert errors(events) == []
+    await _bystander_ok(other)
+
+
+async def test_caller_chains_do_not_reach_the_bot(pair):
+    bad, _ = pair
+    assert await _returned(bad, CALLER_CHAINS) == []
+
+
+async def test_no_property_path_reaches_the_bot_process_or_require(pair):
+    bad, _ = pair
+    out = await _returned(bad, GRAPH_WALK)
+    assert out["found"] == [] and out["walked"] > 10000, out

@@ -249,7 +249,7 @@ bot.once('spawn', async () => {
   })
   bot.on('mount', () => { try { bot.dismount() } catch (_) {} })
   try { await bot.waitForChunksToLoad() } catch (_) {}
-  sandbox.harden()
+  sandbox.harden(bot)
   const p = bot.entity.position
   out({ spawned: { username: bot.username, position: { x: p.x, y: p.y, z: p.z } } })
   startProtocol()

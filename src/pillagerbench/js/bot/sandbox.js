@@ -8,12 +8,22 @@ const vm = require('vm')
 const { goals, Movements } = require('mineflayer-pathfinder')
 const { isStop } = require('./run')
 const { waitTicks } = require('./ticks')
+const { lockPrototypes } = require('./lockdown')
 
 const FILENAME = 'agent.js'
 const SYNC_TIMEOUT_MS = 1000
 
-// Block the host realm's Function constructors (reached as someHostFunction.constructor).
-function harden () {
+// The engine's constructors whose prototypes host objects inherit from (locked by harden).
+const INTRINSICS = [Object, Function, Array, Promise, Error, EvalError, RangeError, ReferenceError, SyntaxError,
+  TypeError, URIError, Map, Set, WeakMap, WeakSet, Date, RegExp, String, Number, Boolean, Symbol, BigInt,
+  ArrayBuffer, DataView, Uint8Array, Int8Array, Uint16Array, Int16Array, Uint32Array, Int32Array, Float32Array,
+  Float64Array, BigInt64Array, BigUint64Array, [][Symbol.iterator](), new Map().entries(), new Set().values(),
+  ''[Symbol.iterator](), function * () {}, async function () {}, async function * () {}]
+
+// Block the host realm's Function constructors (reached as someHostFunction.constructor), then
+// lock the prototypes of the host objects agent code can reach (lockdown.js). `bot` is the logged-in
+// bot (its world, entity, inventory, blocks and items are the roots).
+function harden (bot) {
   const protos = [Function.prototype, Object.getPrototypeOf(async function () {}),
     Object.getPrototypeOf(function * () {}), Object.getPrototypeOf(async function * () {})]
   for (const proto of protos) {
@@ -25,6 +35,13 @@ function harden () {
   try {
     Object.defineProperty(Error, 'prepareStackTrace', { value: undefined, writable: false, configurable: false })
   } catch (_) {}
+  if (!bot) return
+  const Item = require('prismarine-item')(bot.registry)
+  const Block = require('prismarine-block')(bot.registry)
+  const roots = [...INTRINSICS, bot.entity, bot.world, bot.inventory, bot.players, bot.entities, bot.game,
+    bot.blockAt(bot.entity.position), new Item(1, 1), Block.fromStateId(1, 0), require('vec3').Vec3, goals, Movements,
+    new Movements(bot), bot.registry]
+  lockPrototypes(roots)
 }
 
 const MOVEMENT_OPTIONS = ['canDig', 'digCost', 'placeCost', 'allow1by1towers', 'allowFreeMotion', 'allowParkour',
@@ -183,8 +200,19 @@ function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report
     ...Object.fromEntries(goalNames.map(n => [n, goals[n]])),
     ...primitives
   }
-  return vm.createContext(sandbox, { name: 'agent', codeGeneration: { strings: false, wasm: false } })
+  const context = vm.createContext(sandbox, { name: 'agent', codeGeneration: { strings: false, wasm: false } })
+  LOCK_STACK_TRACES.runInContext(context)
+  return context
 }
+
+// Node formats a stack trace with the `Error.prepareStackTrace` of the realm that made the error.
+// Set in the agent's realm, it would receive V8's call sites, and `callSite.getThis()` on a frame
+// of mineflayer's (sloppy-mode) code returns its receiver: the bot itself, with its `_client`.
+// So the context's `Error` binding and its `prepareStackTrace` are made read-only.
+const LOCK_STACK_TRACES = new vm.Script(`
+Object.defineProperty(Error, 'prepareStackTrace', { value: undefined, writable: false, configurable: false })
+Object.defineProperty(globalThis, 'Error', { value: Error, writable: false, configurable: false, enumerable: false })
+`)
 
 function safeString (v) {
   try { return JSON.stringify(v) ?? String(v) } catch (_) { return String(v) }

@@ -125,7 +125,64 @@ const PICKUP = {
   delayTicks: { block: 10, mob: 10, toss: 40 }
 }
 
+// Fair play: vanilla 1.16.5's limits on what a survival player can do (docs/fair-play.md gives the
+// source of each number). Distances are squared, as vanilla compares them.
+const REACH = {
+  // ServerPlayerGameMode.handleBlockBreakAction: from (feet + 1.5) to the block's centre, "too far" when > 36
+  digEyeHeight: 1.5,
+  digSq: 36,
+  // ServerGamePacketListenerImpl.handleUseItemOn: from the feet to the clicked block's centre, only when < 64
+  // (placing a block and using one: chests, furnaces, crafting tables, farmland with a hoe …)
+  useBlockSq: 64,
+  // ChestContainer / AbstractFurnaceContainer / WorkbenchContainer.stillValid, checked every tick: an open
+  // window closes when the feet are farther than this from the container block's centre
+  containerSq: 64,
+  // ServerGamePacketListenerImpl.handleInteract: feet to the entity's position, only when < 36 (attack and use)
+  entitySq: 36
+}
+
+// Digging: a block is broken only if the time since the player started digging it is at least this
+// share of its dig time with the held tool (vanilla: destroy progress >= 0.7 at STOP_DESTROY_BLOCK).
+const DIG = { minProgress: 0.7 }
+
+// Movement, checked on every position packet (plugins/movement.js). Vanilla's own check
+// ("moved too quickly": squared distance of one packet, less the squared expected velocity, > 100)
+// lets a client move up to 10 blocks a packet; ours is the tighter bound an honest client keeps.
+// Honest figures (per 50 ms tick): sprint-jumping peaks near 0.6 blocks horizontally, a jump rises
+// 0.42, a step up is 0.6, terminal falling speed is 3.92.
+const MOVEMENT = {
+  maxStep: 1.0, // blocks horizontally in one packet
+  maxRise: 1.0, // blocks up in one packet
+  maxFall: 4.0, // blocks down in one packet
+  speed: 10, // blocks per second horizontally, averaged by a bucket that holds `burst` blocks
+  burst: 10, // (a client catching up after a lag sends several ticks' moves at once)
+  jumpHeight: 1.35, // highest rise above the last place it stood (a jump reaches 1.25)
+  supportDepth: 0.6, // a player stands when a block with a collision box (or water, a ladder …) is within this below its feet
+  hoverMs: 2000, // in the air without falling for longer: brought down (an honest jump rises for ~0.35 s)
+  flyMs: 4000 // in the air for longer: brought down (vanilla kicks for flying after 80 ticks, 4 s)
+}
+// Blocks a player stands in or climbs without a collision box.
+const SUPPORTING = ['water', 'lava', 'ladder', 'vine', 'scaffolding', 'cobweb', 'bubble_column', 'twisting_vines', 'weeping_vines', 'twisting_vines_plant', 'weeping_vines_plant']
+
+// Placing: blocks a placed block may replace (vanilla's Material.isReplaceable()).
+const REPLACEABLE = ['air', 'cave_air', 'void_air', 'water', 'lava', 'grass', 'fern', 'dead_bush', 'tall_grass', 'large_fern',
+  'vine', 'snow', 'seagrass', 'tall_seagrass', 'fire', 'soul_fire', 'nether_sprouts', 'crimson_roots', 'warped_roots', 'structure_void']
+
+// Attack speed (attacks per second at full strength) by held item, vanilla 1.16 (attribute
+// generic.attack_speed: 4.0 base plus the item's modifier). The attack strength after t ticks since the
+// last attack or item change is clamp((t + 0.5) / (20 / speed), 0, 1) and a hit does
+// damage × (0.2 + 0.8 × strength²) (Player.getAttackStrengthScale, Player.attack).
+const ATTACK_SPEED = {
+  hand: 4.0,
+  wooden_sword: 1.6, stone_sword: 1.6, iron_sword: 1.6, golden_sword: 1.6, diamond_sword: 1.6, netherite_sword: 1.6,
+  wooden_axe: 0.8, stone_axe: 0.8, iron_axe: 0.9, golden_axe: 1.0, diamond_axe: 1.0, netherite_axe: 1.0,
+  wooden_pickaxe: 1.2, stone_pickaxe: 1.2, iron_pickaxe: 1.2, golden_pickaxe: 1.2, diamond_pickaxe: 1.2, netherite_pickaxe: 1.2,
+  wooden_shovel: 1.0, stone_shovel: 1.0, iron_shovel: 1.0, golden_shovel: 1.0, diamond_shovel: 1.0, netherite_shovel: 1.0,
+  wooden_hoe: 1.0, stone_hoe: 2.0, iron_hoe: 3.0, golden_hoe: 1.0, diamond_hoe: 4.0, netherite_hoe: 4.0,
+  trident: 1.1
+}
+
 module.exports = {
   PICKUP, BLOCK_DROPS, GROWTH, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
-  FUEL_LEFTOVER, CRAFT_LEFTOVER, MOBS, ATTACK_DAMAGE
+  FUEL_LEFTOVER, CRAFT_LEFTOVER, MOBS, ATTACK_DAMAGE, REACH, DIG, MOVEMENT, SUPPORTING, REPLACEABLE, ATTACK_SPEED
 }

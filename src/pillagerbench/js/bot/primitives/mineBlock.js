@@ -34,7 +34,8 @@ module.exports = {
         }
         const now = bot.blockAt(pos)
         if (!now || now.type !== block.id) continue
-        if (bot.entity.position.distanceTo(pos.offset(0.5, 0.5, 0.5)) > 5.5) continue // unreachable: skip it
+        // unreachable (the server refuses digs more than 6 blocks from the eyes, vanilla's reach): skip it
+        if (bot.entity.position.offset(0, 1.5, 0).distanceTo(pos.offset(0.5, 0.5, 0.5)) > 5.9) continue
         const tool = bot.pathfinder.bestHarvestTool(now)
         if (tool) await run.race(bot.equip(tool, 'hand'))
         if (!now.canHarvest?.(bot.heldItem ? bot.heldItem.type : null) && now.harvestTools) {

@@ -5,6 +5,15 @@ const { helpers, checkString } = require('./util')
 const FACES = [[0, 1, 0], [0, -1, 0], [1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1]]
 const EMPTY = new Set(['air', 'cave_air', 'void_air', 'water', 'lava', 'grass', 'tall_grass'])
 
+// Does an entity's box overlap the block cell at `pos`? A player's box is grown by 0.3 on each
+// side: it may be walking into the cell while the block is on its way.
+function overlaps (e, pos) {
+  const w = (e.width || 0.6) / 2 + (e.type === 'player' ? 0.3 : 0)
+  const h = e.height || 1.8
+  return e.position.x + w > pos.x && e.position.x - w < pos.x + 1 && e.position.z + w > pos.z && e.position.z - w < pos.z + 1 &&
+    e.position.y + h > pos.y && e.position.y < pos.y + 1
+}
+
 module.exports = {
   name: 'placeItem',
   make (ctx) {
@@ -39,6 +48,11 @@ module.exports = {
             bot.entity.position.floored().equals(pos) || bot.entity.position.floored().offset(0, 1, 0).equals(pos)) {
           await h.goto(new goals.GoalPlaceBlock(pos, bot.world, { range: 4 }), { quiet: false })
         }
+        // The server refuses (as vanilla does) a block into a taken space or into someone's box: ask first.
+        const there = bot.blockAt(pos)
+        if (there && !EMPTY.has(there.name)) throw new Error(`${there.name} is already at ${pos}`)
+        const inTheWay = Object.values(bot.entities).find(e => (e.type === 'player' || e.type === 'mob') && overlaps(e, pos))
+        if (inTheWay) throw new Error(`${inTheWay.username || inTheWay.name} is in the way at ${pos}`)
         await run.race(bot.equip(h.findItem(name), 'hand'))
         await run.race(bot.placeBlock(reference, face))
         ctx.chat(`Placed ${name}`)
