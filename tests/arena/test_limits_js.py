@@ -24,8 +24,8 @@ out.container_8_1 = L.containerTooFar(P(0.4, 3.5, 0.5), P(8, 3, 0))
 out.entity_5_9 = L.entityTooFar(P(0, 4, 0), P(5.9, 4, 0))
 out.entity_6 = L.entityTooFar(P(0, 4, 0), P(6, 4, 0))
 // dig time: at least 70 %
-out.dig_time_70 = L.digTooFast(700, 1000)
-out.dig_time_69 = L.digTooFast(690, 1000)
+out.dig_time_70 = L.digTooFast(550, 1000)
+out.dig_time_69 = L.digTooFast(549, 1000)
 out.dig_time_instant = L.digTooFast(0, 0)
 // attack strength: swords 1.6/s -> 12.5 ticks; hand 4/s -> 5 ticks
 out.sword_0 = L.attackStrength(0, 'iron_sword')
@@ -94,7 +94,7 @@ def out():
 
 
 def test_reach_uses_vanillas_distances(out):
-    assert out["dig_6_level"] is None and out["dig_just_over"] == pytest.approx(37 ** 0.5)
+    assert out["dig_6_level"] is None and out["dig_just_over"] == pytest.approx(37**0.5)
     assert out["dig_far_row"] > 16
     assert out["use_7_9"] is None and out["use_8"] == pytest.approx(8)
     assert out["container_8"] is None and out["container_8_1"] > 8
@@ -103,7 +103,7 @@ def test_reach_uses_vanillas_distances(out):
 
 def test_dig_time_tolerance_is_70_percent(out):
     assert out["dig_time_70"] is None and out["dig_time_instant"] is None
-    assert "690 ms of the 1000 ms" in out["dig_time_69"]
+    assert "549 ms of the 1000 ms" in out["dig_time_69"]
 
 
 def test_attack_strength_and_damage_scale(out):

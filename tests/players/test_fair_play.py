@@ -25,9 +25,11 @@ async def test_teleporting_by_setting_the_position_is_put_back_and_cannot_dig_th
     start = await _pos(server, p.name)
     q = server.control.subscribe()
     try:
-        events = await p.run(f"bot.entity.position.set({area.x0 - 9.5}, 4, 6.5)\nawait bot.waitForTicks(20)\n"
-                             f"await bot.dig(bot.blockAt(new Vec3({area.x0 - 9}, 4, 6)), true).catch(() => {{}})\n"
-                             "await bot.waitForTicks(5)")
+        events = await p.run(
+            f"bot.entity.position.set({area.x0 - 9.5}, 4, 6.5)\nawait bot.waitForTicks(20)\n"
+            f"await bot.dig(bot.blockAt(new Vec3({area.x0 - 9}, 4, 6)), true).catch(() => {{}})\n"
+            "await bot.waitForTicks(5)"
+        )
         got = await _refused(server, q)
     finally:
         server.control.unsubscribe(q)
@@ -41,7 +43,9 @@ async def test_rising_into_the_air_is_put_back(server, area, make_player):
     p = await make_player(area, 0, 0)
     q = server.control.subscribe()
     try:
-        events = await p.run("bot.entity.position.set(bot.entity.position.x, 20, bot.entity.position.z)\nawait bot.waitForTicks(40)")
+        events = await p.run(
+            "bot.entity.position.set(bot.entity.position.x, 20, bot.entity.position.z)\nawait bot.waitForTicks(40)"
+        )
         got = await _refused(server, q)
     finally:
         server.control.unsubscribe(q)
@@ -55,7 +59,9 @@ async def test_digging_a_block_out_of_reach_is_refused(server, area, make_player
     await area.blocks((15, 4, 6, "red_mushroom_block"))  # 16.7 blocks away
     q = server.control.subscribe()
     try:
-        events = await p.run(f"await bot.dig(bot.blockAt(new Vec3({area.x0 + 15}, 4, 6)), true)\nawait bot.waitForTicks(5)")
+        events = await p.run(
+            f"await bot.dig(bot.blockAt(new Vec3({area.x0 + 15}, 4, 6)), true)\nawait bot.waitForTicks(5)"
+        )
         got = await _refused(server, q)
     finally:
         server.control.unsubscribe(q)
@@ -71,16 +77,22 @@ async def test_a_chest_out_of_reach_cannot_be_opened(server, area, make_player):
     await server.request("set_chest", pos=chest, items={"gold_nugget": 64})
     q = server.control.subscribe()
     try:
-        events = await p.run(f"const v = new Vec3({chest[0]}, 4, 3)\n"
-                             "for (let i = 0; i < 40 && bot.blockAt(v).name !== 'chest'; i++) await bot.waitForTicks(1)\n"
-                             "const c = await bot.openContainer(bot.blockAt(v))\n"
-                             "await c.withdraw(mcData.itemsByName.gold_nugget.id, null, 64)", timeout=30)
+        events = await p.run(
+            f"const v = new Vec3({chest[0]}, 4, 3)\n"
+            "for (let i = 0; i < 40 && bot.blockAt(v).name !== 'chest'; i++) await bot.waitForTicks(1)\n"
+            "const c = await bot.openContainer(bot.blockAt(v))\n"
+            "await c.withdraw(mcData.itemsByName.gold_nugget.id, null, 64)",
+            timeout=30,
+        )
         got = await _refused(server, q)
     finally:
         server.control.unsubscribe(q)
     assert await server.request("get_chest", pos=chest) == {"gold_nugget": 64}
     assert await count(server, p.name, "gold_nugget") == 0
-    assert [g["action"] for g in got] == ["use_block"] and "too far to use chest" in got[0]["reason"], (got, errors(events))
+    assert [g["action"] for g in got] == ["use_block"] and "too far to use chest" in got[0]["reason"], (
+        got,
+        errors(events),
+    )
     assert any(line.startswith("[refused] use_block") for line in chat_log(events))
 
 
@@ -90,8 +102,11 @@ async def test_honest_primitives_trip_nothing(server, area, make_player):
     await server.request("set_chest", pos=area.at(9, 4, -4), items={"gold_nugget": 5})
     q = server.control.subscribe()
     try:
-        await p.run(f"await mineBlock(bot, 'red_mushroom_block', 1)\nawait placeItem(bot, 'dirt', new Vec3({area.x0 + 3}, 4, 0))\n"
-                    f"await getItemFromChest(bot, new Vec3({area.x0 + 9}, 4, -4), {{gold_nugget: 5}})", timeout=60)
+        await p.run(
+            f"await mineBlock(bot, 'red_mushroom_block', 1)\nawait placeItem(bot, 'dirt', new Vec3({area.x0 + 3}, 4, 0))\n"
+            f"await getItemFromChest(bot, new Vec3({area.x0 + 9}, 4, -4), {{gold_nugget: 5}})",
+            timeout=60,
+        )
         got = await _refused(server, q)
     finally:
         server.control.unsubscribe(q)

@@ -175,8 +175,14 @@ async def test_timers_and_listeners_end_with_the_run(pair):
 async def test_bot_process_runs_under_the_permission_model(pair):
     bad, _ = pair
     perms = await bad._request("permissions")
-    assert perms == {"enabled": True, "fsWrite": False, "fsReadRoot": False, "childProcess": False,
-                     "worker": False, "addons": False}
+    assert perms == {
+        "enabled": True,
+        "fsWrite": False,
+        "fsReadRoot": False,
+        "childProcess": False,
+        "worker": False,
+        "addons": False,
+    }
 
 
 # Routes to the host realm through the real host objects the facade hands out (issue 12). Each
@@ -267,7 +273,9 @@ return { walked: seen.size, found: found.slice(0, 5) }
 
 async def _returned(player, code):
     """What the code returns (saved through bot.save as JSON, the only way out of a run)."""
-    events = await player.run("const __r = await (async () => {\n%s\n})()\nbot.save(JSON.stringify(__r))" % code, timeout=120)
+    events = await player.run(
+        "const __r = await (async () => {\n%s\n})()\nbot.save(JSON.stringify(__r))" % code, timeout=120
+    )
     assert errors(events) == [], errors(events)
     return json.loads(next(e[1]["onSave"] for e in events if e[0] == "onSave"))
 
@@ -282,7 +290,9 @@ async def test_host_prototypes_cannot_be_replaced(pair):
     bad, other = pair
     out = await _returned(bad, PROTOTYPES)
     assert out["replaced"] == []
-    events = await bad.run("await bot.waitForTicks(2)\nreturn bot.entity.position.offset(0, 1, 0).y")  # the bot still works
+    events = await bad.run(
+        "await bot.waitForTicks(2)\nreturn bot.entity.position.offset(0, 1, 0).y"
+    )  # the bot still works
     assert errors(events) == []
     await _bystander_ok(other)
 

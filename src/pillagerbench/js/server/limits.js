@@ -27,7 +27,7 @@ function entityTooFar (feet, entity, t = REACH) {
 
 // Dig time: null when the block may break after `elapsedMs` of digging it, else the reason.
 function digTooFast (elapsedMs, expectedMs, t = DIG) {
-  if (elapsedMs >= t.minProgress * expectedMs) return null
+  if (elapsedMs >= t.minProgress * expectedMs - t.slackMs) return null
   return `broken too fast (${Math.round(elapsedMs)} ms of the ${Math.round(expectedMs)} ms it takes)`
 }
 

@@ -143,7 +143,9 @@ const REACH = {
 
 // Digging: a block is broken only if the time since the player started digging it is at least this
 // share of its dig time with the held tool (vanilla: destroy progress >= 0.7 at STOP_DESTROY_BLOCK).
-const DIG = { minProgress: 0.7 }
+// slackMs: a start and a finish packet handled in one turn of a busy server's event loop (bots in
+// real time on a loaded machine) must not make an honest dig "too fast"; 3 ticks.
+const DIG = { minProgress: 0.7, slackMs: 150 }
 
 // Movement, checked on every position packet (plugins/movement.js). Vanilla's own check
 // ("moved too quickly": squared distance of one packet, less the squared expected velocity, > 100)
