@@ -57,7 +57,7 @@ def test_an_entrant_added_later_plays_only_its_own_matches():
     # an established pair reopens only when the newcomer's results moved one of its entrants
     assert len(own) >= 0.9 * len(added), [(o.red, o.blue) for o in added if o not in own]
     assert len(added) < len(outs)  # placing one entrant costs less than the league did
-    assert done and order(more, late).index("newcomer") == 1
+    assert done and order(more, late).index("newcomer") == 2  # between aggressive (16) and balanced (4)
 
 
 def test_sides_alternate_within_a_pairing():
