@@ -53,7 +53,9 @@ def played(tmp_path_factory):
     deadline = time.monotonic() + 150
     try:
         while time.monotonic() < deadline:  # kill while a series plays its second episode
-            live = [s for s in all_series(root) if len(lines(s / "episodes.jsonl")) == 1 and (s / "episode_001").exists()]
+            live = [
+                s for s in all_series(root) if len(lines(s / "episodes.jsonl")) == 1 and (s / "episode_001").exists()
+            ]
             if live:
                 break
             assert proc.poll() is None, proc.stdout.read()
@@ -89,7 +91,7 @@ def test_the_board_matches_the_episodes_and_is_reproducible(played):
     episodes = {}
     for s in all_series(root):
         spec = json.loads((s / "series.json").read_text())
-        for r in lines(s / "episodes.jsonl"):
+        for _ in lines(s / "episodes.jsonl"):
             for side in ("red", "blue"):
                 episodes[spec[side]] = episodes.get(spec[side], 0) + 1
     assert dict(zip(board["entrant"], board["episodes"])) == {n: episodes.get(n, 0) for n in board["entrant"]}

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from pillagerbench.league.ratings import Outcome, Rating, rate, ranked
+from pillagerbench.league.ratings import Outcome, Rating, ranked, rate
 from pillagerbench.league.schedule import next_round, open_pairs, settled
 from pillagerbench.league.simulate import SCENARIO, order, scheduled
 

@@ -1,9 +1,9 @@
 """`pillagerbench league LEAGUE_DIR COMMAND ...` (docs/league.md):
 
-    init  [scenarios=[a,b]] [episodes_per_match=N] [KEY=VALUE]   a new league with the built-in opponents
-    add   NAME team=TEAM [llm=PRESET] [OPTION=VALUE] [llm.KEY=VALUE]   a new entrant (creates the league if needed)
-    play  [league keys, e.g. budget.episodes=4] [run overrides, e.g. episode_length=20] [parallel=N]
-    board                                                       leaderboard.md, .csv, .html
+init  [scenarios=[a,b]] [episodes_per_match=N] [KEY=VALUE]   a new league with the built-in opponents
+add   NAME team=TEAM [llm=PRESET] [OPTION=VALUE] [llm.KEY=VALUE]   a new entrant (creates the league if needed)
+play  [league keys, e.g. budget.episodes=4] [run overrides, e.g. episode_length=20] [parallel=N]
+board                                                       leaderboard.md, .csv, .html
 """
 
 from __future__ import annotations
@@ -16,7 +16,15 @@ from pillagerbench.league.board import write_board
 from pillagerbench.league.compose import check_entrant
 from pillagerbench.league.play import RUNNER, play
 from pillagerbench.league.rounds import check_stamps
-from pillagerbench.league.spec import Entrant, League, league_path, load_league, parse_value, save_league, with_overrides
+from pillagerbench.league.spec import (
+    Entrant,
+    League,
+    league_path,
+    load_league,
+    parse_value,
+    save_league,
+    with_overrides,
+)
 
 COMMANDS = ("init", "add", "play", "board")
 
@@ -43,7 +51,9 @@ def init(league_dir: Path, args: list[str]) -> League:
         raise ConfigError(f"{league_path(league_dir)} exists already; this directory holds a league")
     ours, other = _league_keys(_pairs(args))
     if other:
-        raise ConfigError(f"init: {next(iter(other))!r} is not a league key; valid: {', '.join(League.__dataclass_fields__)}")
+        raise ConfigError(
+            f"init: {next(iter(other))!r} is not a league key; valid: {', '.join(League.__dataclass_fields__)}"
+        )
     league = with_overrides(League(), ours)
     names = dict.fromkeys(n for sc in league.scenarios for n in builtin_teams(sc))
     league.entrants = [Entrant(name=n, team=n) for n in names]
@@ -101,7 +111,9 @@ def main(argv: list[str]) -> int:
     game = tuple(a for a in rest if a.partition("=")[0] in other and a.partition("=")[0] not in RUNNER)
     for a in game:
         if a.partition("=")[0].split(".")[0].lstrip("+~") in ("red", "blue", "scenario", "experiment", "resume"):
-            raise ConfigError(f"{a!r}: a league chooses scenarios and teams itself (scenarios=[...], entrants in league.yaml)")
+            raise ConfigError(
+                f"{a!r}: a league chooses scenarios and teams itself (scenarios=[...], entrants in league.yaml)"
+            )
     league = with_overrides(league, ours)
     code = play(league_dir, league, game, runner)
     write_board(league_dir, league)

@@ -33,7 +33,7 @@ class Spent:
 
 
 def load(league_dir: Path) -> Runs:
-    return load_runs(round_dirs(league_dir))
+    return load_runs(list[str | Path](round_dirs(league_dir)))
 
 
 def outcomes(runs: Runs) -> list[Outcome]:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import random
 from itertools import permutations
 
-from pillagerbench.league.ratings import Outcome, Rating, rate, ranked
+from pillagerbench.league.ratings import Outcome, Rating, ranked, rate
 from pillagerbench.league.schedule import Pairing, next_round, settled
 
 SCENARIO = "sim"

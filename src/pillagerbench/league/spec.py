@@ -20,7 +20,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
+import yaml  # type: ignore[import-untyped]  # pyyaml ships no stubs
 
 from pillagerbench.config import ConfigError
 
@@ -51,7 +51,9 @@ class League:
     matches_per_round: int = 2
     confidence: float = 0.95
     margin: float = 0.0
-    budget: dict[str, float | None] = field(default_factory=lambda: {"episodes": 400.0} | dict.fromkeys(BUDGET_KEYS[1:]))
+    budget: dict[str, float | None] = field(
+        default_factory=lambda: {"episodes": 400.0} | dict.fromkeys(BUDGET_KEYS[1:])
+    )
     entrants: list[Entrant] = field(default_factory=list)
 
     def entrant(self, name: str) -> Entrant | None:
@@ -75,7 +77,10 @@ def _checked(raw: dict, where: str) -> League:
         if bad:
             raise ConfigError(f"{where}: unknown budget key {bad[0]!r}; valid: {', '.join(BUDGET_KEYS)}")
         league.budget = {k: (None if v is None else float(v)) for k, v in budget.items()}
-        league.episodes_per_match, league.matches_per_round = int(league.episodes_per_match), int(league.matches_per_round)
+        league.episodes_per_match, league.matches_per_round = (
+            int(league.episodes_per_match),
+            int(league.matches_per_round),
+        )
         league.confidence, league.margin = float(league.confidence), float(league.margin)
         league.scenarios = [str(s) for s in league.scenarios]
     except (TypeError, ValueError) as exc:
