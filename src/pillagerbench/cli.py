@@ -16,6 +16,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
     "llm-ping": ("pillagerbench.llm.ping:main", "send one short request to an LLM provider"),
     "teams": ("pillagerbench.teams.catalog:main", "list every team: where it comes from, scenarios, LLM, options"),
+    "league": (
+        "pillagerbench.league.cli:main",
+        "a league: add entrants, play scheduled matches, write the leaderboard",
+    ),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": (
         "pillagerbench.report.symmetry:main",

@@ -1,0 +1,140 @@
+"""`pillagerbench league LEAGUE_DIR board`: leaderboard.md, .csv and .html in the league directory,
+rebuilt only from the rounds' episodes.jsonl (and their ledgers), so the same files give the same board.
+
+The main table (also the CSV): rank by overall rating, entrant, team, rating ± interval (at the
+league's confidence), conservative rating (mu − 3σ), episodes; per scenario its rating and the
+entrant's P, S, W over all its episodes on either side (S against each opponent with that
+opponent's mean score against do_nothing in the league as σ, where it has played do_nothing);
+LLM tokens and cost per episode when the ledgers have any. Then a head-to-head matrix per scenario.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pillagerbench.league import results
+from pillagerbench.league.ratings import ANCHOR, Rating, ranked
+from pillagerbench.league.spec import League
+from pillagerbench.league.standings import boards, overall
+from pillagerbench.metrics.formulas import Estimate, mean_ci, mean_of_estimates, sabotage, win_rate
+from pillagerbench.report.html import page
+from pillagerbench.report.tables import to_markdown
+
+FILES = ("leaderboard.md", "leaderboard.csv", "leaderboard.html")
+
+
+def _episodes(runs: results.Runs) -> pd.DataFrame:
+    return runs.episodes if len(runs.episodes) else pd.DataFrame(columns=["scenario", "red", "blue", *SCORES])
+
+
+SCORES = ("red_score", "blue_score")
+
+
+def _sides(df: pd.DataFrame, name: str) -> pd.DataFrame:
+    """The entrant's episodes as (opponent, own, opp) rows, whichever side it played."""
+    red, blue = df[df["red"] == name], df[df["blue"] == name]
+    return pd.DataFrame(
+        {
+            "opponent": list(red["blue"]) + list(blue["red"]),
+            "own": list(red["red_score"]) + list(blue["blue_score"]),
+            "opp": list(red["blue_score"]) + list(blue["red_score"]),
+        }
+    )
+
+
+def _sabotage(df: pd.DataFrame, mine: pd.DataFrame) -> Estimate:
+    per = []
+    for opponent, rows in mine.groupby("opponent"):
+        vs_anchor = _sides(df, str(opponent))
+        sigma = vs_anchor[vs_anchor["opponent"] == ANCHOR]["own"]
+        if len(sigma):
+            per.append(sabotage(list(rows["opp"]), float(np.mean(sigma))))
+    return mean_of_estimates(per)
+
+
+def _cells(prefix: str, estimates: dict[str, Estimate]) -> dict:
+    out: dict = {}
+    for key, e in estimates.items():
+        out[f"{prefix}{key}"], out[f"{prefix}{key}_ci"] = e.mean, e.ci
+    return out
+
+
+def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
+    outs = results.outcomes(runs)
+    per, total = boards(league, outs), overall(league, outs)
+    df, spend = _episodes(runs), results.ledger(runs)
+    z_conf = league.confidence
+    rows = []
+    for rank, name in enumerate(ranked(total), 1):
+        entrant = league.entrant(name)
+        r: Rating = total[name]
+        row = {
+            "rank": rank,
+            "entrant": name,
+            "team": entrant.team if entrant else "",
+            "rating": r.mu,
+            "rating_ci": r.interval(z_conf),
+            "conservative": r.conservative,
+            "episodes": r.episodes,
+        }
+        for sc, board in per.items():
+            if name not in board:
+                continue
+            mine = _sides(df[df["scenario"] == sc], name)
+            row |= {f"{sc} rating": board[name].mu, f"{sc} rating_ci": board[name].interval(z_conf)}
+            row |= _cells(
+                f"{sc} ",
+                {
+                    "P": mean_ci(mine["own"]),
+                    "S": _sabotage(df[df["scenario"] == sc], mine) if len(mine) else mean_ci([]),
+                    "W": win_rate(mine["own"], mine["opp"]),
+                },
+            )
+        calls = spend[spend["entrant"] == name]
+        known = r.episodes and len(calls)
+        row["LLM tokens/episode"] = calls["tokens"].sum() / r.episodes if known else math.nan
+        row["LLM cost/episode"] = calls["cost"].astype(float).sum() / r.episodes if known else math.nan
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def head_to_head(league: League, runs: results.Runs, scenario: str) -> pd.DataFrame:
+    """Row entrant's win rate against the column entrant (both sides pooled), with the episodes."""
+    df = _episodes(runs)
+    df = df[df["scenario"] == scenario]
+    names = ranked(boards(league, results.outcomes(runs))[scenario])
+    table = []
+    for a in names:
+        mine = _sides(df, a)
+        row: dict = {"entrant": a}
+        for b in names:
+            games = mine[mine["opponent"] == b]
+            row[b] = f"{win_rate(games['own'], games['opp']).mean:.2f} ({len(games)})" if len(games) else ""
+        table.append(row)
+    return pd.DataFrame(table, columns=["entrant", *names])
+
+
+def write_board(league_dir: Path, league: League) -> list[Path]:
+    runs = results.load(league_dir)
+    main = leaderboard(league, runs)
+    h2h = {sc: head_to_head(league, runs, sc) for sc in league.scenarios}
+    notes = [
+        f"{len(runs.episodes)} episodes in {len(runs.runs)} rounds; rating ± its {league.confidence:.0%} interval "
+        f"(openskill Plackett–Luce, do_nothing = 0); conservative = mu − 3σ",
+        f"{len(runs.skipped)} items skipped (unfinished or failed episodes)",
+    ]
+    out = Path(league_dir)
+    main.to_csv(out / "leaderboard.csv", index=False)
+    md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", "## Leaderboard", "", to_markdown(main)]
+    for sc, t in h2h.items():
+        md += ["", f"## Head to head, {sc} (row's win rate against column, episodes)", "", to_markdown(t)]
+    (out / "leaderboard.md").write_text("\n".join(md) + "\n")
+    sections = [("Leaderboard", "table", main)] + [
+        (f"Head to head, {sc} (row's win rate against column, episodes)", "table", t) for sc, t in h2h.items()
+    ]
+    (out / "leaderboard.html").write_text(page(f"League {out.name}", runs.runs, notes, sections))
+    return [out / f for f in FILES]

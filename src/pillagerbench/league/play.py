@@ -1,0 +1,75 @@
+"""`pillagerbench league LEAGUE_DIR play [overrides]`: rounds of scheduled matches until every
+adjacent pair of every scenario's board is separated or the budget is spent.
+
+Each round: finish an unfinished round first (resume, as `pillagerbench run resume=`), rebuild the
+ratings from the episodes, check the budget, schedule (schedule.py), write the round directory
+and play it through the experiment runner."""
+
+from __future__ import annotations
+
+import asyncio
+from pathlib import Path
+
+from omegaconf import OmegaConf
+
+from pillagerbench.config import ConfigError
+from pillagerbench.experiments.runner import check_series, execute, load_experiment
+from pillagerbench.experiments.series import count_finished
+from pillagerbench.league import results
+from pillagerbench.league.compose import check_entrant
+from pillagerbench.league.rounds import check_stamps, round_dirs, write_round
+from pillagerbench.league.schedule import next_round
+from pillagerbench.league.spec import League
+from pillagerbench.league.standings import boards
+
+RUNNER = ("parallel", "launcher", "ray_address", "display")  # how to play, not what: free to change
+
+
+def _unfinished(run_dir: Path) -> bool:
+    _, specs, dirs = load_experiment(run_dir)
+    return any(count_finished(dirs[s.id]) < s.episodes for s in specs)
+
+
+def _play_round(run_dir: Path, runner: dict) -> bool:
+    """Play (or finish) one round; False when a series failed."""
+    title, specs, dirs = load_experiment(run_dir)
+    check_series(specs)
+    print(f"{run_dir.name}: " + ", ".join(f"{s.red} vs {s.blue} ({s.scenario})" for s in specs), flush=True)
+    cfg = OmegaConf.create(runner)
+    got = asyncio.run(execute(run_dir, title, specs, dirs, cfg))
+    return all(r["status"] == "done" for r in got.values())
+
+
+def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) -> int:
+    for e in league.entrants:
+        check_entrant(e, league.scenarios, game)
+    check_stamps(league_dir, league, game)
+    start = results.spent(league_dir)
+    if (over := start.over(league.budget)) and not (round_dirs(league_dir) and _unfinished(round_dirs(league_dir)[-1])):
+        raise ConfigError(f"budget already spent ({over}); raise it (e.g. budget.episodes=N) to play more")
+    while True:
+        rounds = round_dirs(league_dir)
+        if rounds and _unfinished(rounds[-1]):
+            print(f"finishing {rounds[-1].name}", flush=True)
+            if not _play_round(rounds[-1], runner):
+                print(f"a series of {rounds[-1].name} failed; see its series_error.txt, then play again to finish it")
+                return 1
+            continue
+        spent = results.spent(league_dir)
+        if over := spent.over(league.budget):
+            print(f"league stopped: budget spent ({over})")
+            return 0
+        outs = results.outcomes(results.load(league_dir))
+        pairings = next_round(boards(league, outs), outs, league.confidence, league.matches_per_round)
+        if not pairings:
+            print(f"league settled: every adjacent pair is separated at confidence {league.confidence:g}")
+            return 0
+        episodes = league.episodes_per_match
+        if league.budget.get("episodes") is not None:
+            left = int(league.budget["episodes"] or 0) - spent.episodes
+            pairings = pairings[: max(1, left // episodes)]
+            episodes = min(episodes, left)
+        run_dir, _ = write_round(league_dir, league, pairings, episodes, game, runner)
+        if not _play_round(run_dir, runner):
+            print(f"a series of {run_dir.name} failed; see its series_error.txt, then play again to finish it")
+            return 1

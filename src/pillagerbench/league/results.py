@@ -1,0 +1,73 @@
+"""What a league has played, read only from its round directories: the usable episodes (through
+metrics.load, the report's reader), their outcomes for the ratings, and the budget spent."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from pillagerbench.experiments.layout import LEDGER
+from pillagerbench.experiments.series import read_finished
+from pillagerbench.league.ratings import Outcome
+from pillagerbench.league.rounds import round_dirs
+from pillagerbench.llm.ledger import read_ledger
+from pillagerbench.metrics.load import Runs, load_runs
+
+
+@dataclass
+class Spent:
+    episodes: int = 0  # finished episode lines, failed ones included
+    hours: float = 0.0  # wall time of those episodes
+    llm_tokens: int = 0
+    llm_cost_usd: float = 0.0
+
+    def over(self, budget: dict[str, float | None]) -> str | None:
+        """The first budget item used up ("episodes 4/4"), or None."""
+        for key in ("episodes", "hours", "llm_tokens", "llm_cost_usd"):
+            limit, used = budget.get(key), getattr(self, key)
+            if limit is not None and used >= limit:
+                return f"{key} {used:g}/{limit:g}"
+        return None
+
+
+def load(league_dir: Path) -> Runs:
+    return load_runs(list[str | Path](round_dirs(league_dir)))
+
+
+def outcomes(runs: Runs) -> list[Outcome]:
+    df = runs.episodes
+    if not len(df):
+        return []
+    return [
+        Outcome(r.scenario, r.red, r.blue, float(r.red_score), float(r.blue_score), (r.run, r.series, int(r.episode)))
+        for r in df.itertuples()
+    ]
+
+
+def ledger(runs: Runs) -> pd.DataFrame:
+    """LLM calls of both sides, one row each: entrant, scenario, tokens, cost."""
+    rows = []
+    for s in runs.series:
+        if not (s.dir / LEDGER).exists():
+            continue
+        for r in read_ledger(s.dir / LEDGER):
+            entrant = {"red": s.red, "blue": s.blue}.get(str(r.get("team")))
+            tokens = int(r.get("input_tokens") or 0) + int(r.get("output_tokens") or 0)
+            rows.append({"entrant": entrant, "scenario": s.scenario, "tokens": tokens, "cost": r.get("cost_usd")})
+    return pd.DataFrame(rows, columns=["entrant", "scenario", "tokens", "cost"])
+
+
+def spent(league_dir: Path) -> Spent:
+    out = Spent()
+    for d in round_dirs(league_dir):
+        for series in (d / "series").glob("*"):
+            finished = read_finished(series)[0].values()
+            out.episodes += len(finished)
+            out.hours += sum(float(r.get("duration_s") or 0.0) for r in finished) / 3600
+            if (series / LEDGER).exists():
+                for r in read_ledger(series / LEDGER):
+                    out.llm_tokens += int(r.get("input_tokens") or 0) + int(r.get("output_tokens") or 0)
+                    out.llm_cost_usd += float(r.get("cost_usd") or 0.0)
+    return out

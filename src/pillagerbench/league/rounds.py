@@ -1,0 +1,84 @@
+"""A league's matches: one experiment run directory per round, `LEAGUE_DIR/matches/round_NNN/`
+(experiment.json, series/<id>/ ... as any experiment, so parallel play, Ray and resume work
+unchanged), plus `league.json`: the game overrides the round was played with and a fingerprint of
+each entrant it involved (team, options, model). A round whose stamp disagrees with league.yaml
+belongs to another league and is refused, never overwritten."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from omegaconf import OmegaConf
+
+from pillagerbench.config import ConfigError, to_dict
+from pillagerbench.experiments.runner import write_experiment
+from pillagerbench.experiments.spec import SeriesSpec, slug
+from pillagerbench.league.compose import match_config
+from pillagerbench.league.schedule import Pairing
+from pillagerbench.league.spec import League
+
+MATCHES = "matches"
+STAMP = "league.json"
+
+
+def round_dirs(league_dir: Path) -> list[Path]:
+    """The rounds written so far, in order."""
+    return sorted(d for d in (Path(league_dir) / MATCHES).glob("round_*") if (d / "experiment.json").exists())
+
+
+def check_stamps(league_dir: Path, league: League, game: tuple[str, ...] | None) -> None:
+    """ConfigError when a round was played by another definition of an entrant (or, with `game`,
+    other game overrides) than league.yaml / this command gives."""
+    for d in round_dirs(league_dir):
+        if not (d / STAMP).exists():
+            raise ConfigError(f"{d}: no {STAMP}; not a round of a league (move it out of {MATCHES}/)")
+        stamp = json.loads((d / STAMP).read_text())
+        for name, fingerprint in stamp["entrants"].items():
+            e = league.entrant(name)
+            if e is not None and e.fingerprint() != fingerprint:
+                raise ConfigError(
+                    f"{d.name}: entrant {name!r} was another team, options or model there than in league.yaml; "
+                    "this directory belongs to a different league.yaml (rename the entrant, or use a new league)"
+                )
+        if game is not None and sorted(stamp["game"]) != sorted(game):
+            raise ConfigError(
+                f"{d.name} was played with game overrides [{' '.join(stamp['game'])}], this command gives "
+                f"[{' '.join(game)}]; play with the same ones (their scores would not compare)"
+            )
+
+
+def write_round(
+    league_dir: Path, league: League, pairings: list[Pairing], episodes: int, game: tuple[str, ...], runner: dict
+) -> tuple[Path, list[SeriesSpec]]:
+    """A new round directory for these pairings; returns it and its series."""
+    index = len(round_dirs(league_dir))
+    run_dir = Path(league_dir) / MATCHES / f"round_{index:03d}"
+    specs = []
+    for i, p in enumerate(pairings):
+        red, blue = league.entrant(p.red), league.entrant(p.blue)
+        assert red is not None and blue is not None
+        cfg = match_config(p.scenario, red, blue, game)
+        cfg.episodes, cfg.seed = episodes, index * 1000 + i
+        specs.append(
+            SeriesSpec(
+                id=f"{i:03d}_{p.scenario}_{slug(p.red)}_vs_{slug(p.blue)}",
+                index=i,
+                protocol="league",
+                scenario=p.scenario,
+                red=p.red,
+                blue=p.blue,
+                red_team=red.team,
+                blue_team=blue.team,
+                episodes=episodes,
+                seed=int(cfg.seed),
+                config=to_dict(cfg),
+            )
+        )
+    involved = {n for p in pairings for n in (p.red, p.blue)}
+    stamp = {"game": list(game), "entrants": {n: e.fingerprint() for n in sorted(involved) if (e := league.entrant(n))}}
+    run_dir.mkdir(parents=True, exist_ok=True)
+    (run_dir / STAMP).write_text(json.dumps(stamp, indent=1))  # first: a round counts once experiment.json exists
+    top = OmegaConf.create({**runner, "experiment": {"name": f"league {run_dir.name}", "protocol": "league"}})
+    write_experiment(run_dir, top, list(game), specs)
+    return run_dir, specs
