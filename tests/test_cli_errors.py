@@ -4,26 +4,15 @@ whose model never answered is stopped by the preflight, or recorded when the pre
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 
 import pytest
 
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
+from tests.support.cli import run_cli
 
 
 def pb(tmp_path, *args, env=None, timeout=120):
-    environment = {k: v for k, v in os.environ.items() if k != "OPENAI_API_KEY"}
-    environment.update(env or {})
-    return subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", *args],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=environment,
-    )
+    return run_cli(tmp_path, *args, env=env, timeout=timeout)
 
 
 def one_line_refusal(tmp_path, *args, lines=1):

@@ -28,10 +28,20 @@ OPEN_KEYS = ("experiment.team_options.", "experiment.llm_options.")
 EXTERNAL = "_external"  # conf/team/_external.yaml: teams without a YAML file of their own
 
 
-def _has_yaml(team: str) -> bool:
+def team_yaml_options(name: str) -> dict[str, Any] | None:
+    """The options (with their defaults, without name and llm) of `conf/team/<name>.yaml`, or None
+    for a team without a YAML file of its own."""
     from importlib import resources
 
-    return (resources.files("pillagerbench.conf") / "team" / f"{team}.yaml").is_file()
+    path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
+    if not path.is_file():
+        return None
+    data = to_dict(OmegaConf.create(path.read_text()))
+    return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
+
+
+def _has_yaml(team: str) -> bool:
+    return team_yaml_options(team) is not None
 
 
 def _aliases(overrides: list[str]) -> list[str]:
@@ -50,10 +60,12 @@ def _aliases(overrides: list[str]) -> list[str]:
         key, sep, value = override.partition("=")
         group = side_of.get(key, key)
         if sep and group in GROUP_ALIASES:
+            if value != chosen[group]:
+                continue  # a later choice for this side wins
             out += (
-                [f"{GROUP_ALIASES[group]}={value}"]
-                if group not in external or value != chosen[group] or _has_yaml(value)
-                else [f"{GROUP_ALIASES[group]}={EXTERNAL}", f"++{group}.name={value}"]
+                [f"{GROUP_ALIASES[group]}={EXTERNAL}", f"++{group}.name={value}"]
+                if group in external
+                else [f"{GROUP_ALIASES[group]}={value}"]
             )
             continue
         if sep and key.startswith(OPEN_KEYS):  # maps whose keys the user chooses
@@ -74,8 +86,6 @@ def _team_keys(side: str, overrides: list[str]) -> str:
     """The keys of the team chosen for `side` (from the overrides, else the default), for a message."""
     from importlib import resources
 
-    from omegaconf import OmegaConf
-
     root = resources.files("pillagerbench.conf")
     defaults = OmegaConf.create((root / "config.yaml").read_text()).defaults
     name = next(
@@ -85,8 +95,7 @@ def _team_keys(side: str, overrides: list[str]) -> str:
         key, _, value = o.partition("=")
         if key in (side, f"team@{side}"):
             name = value
-    path = root / "team" / f"{name}.yaml"
-    keys = [str(k) for k in OmegaConf.create(path.read_text()) if k not in ("name", "llm")] if path.is_file() else []
+    keys = list(team_yaml_options(name) or {})
     return f"team {name} has {'options ' + ', '.join(keys) if keys else 'no options'}"
 
 

@@ -67,8 +67,31 @@ async def count(arena: ArenaServer, player: str, item: str) -> int:
     return sum(s["count"] for s in await arena.request("inventory", player=player) if s["name"] == item)
 
 
+async def on_ground(arena: ArenaServer, item: str, near: list[float] | None = None, radius: float = 4.0) -> int:
+    """`item`s lying in the world; with `near`, only those within `radius` blocks of it (other tests
+    leave items elsewhere in the shared world)."""
+    return sum(
+        i["count"]
+        for i in await arena.request("items")
+        if i["item"] == item and (near is None or sum((a - b) ** 2 for a, b in zip(i["pos"], near)) < radius**2)
+    )
+
+
 async def held_or_on_ground(arena: ArenaServer, player: str, item: str) -> int:
     """`item`s the player holds plus those lying in the world: what a drop made, whether or not the
     player has picked it up yet (pickup waits for the item's delay and the server's next pass)."""
-    on_ground = sum(i["count"] for i in await arena.request("items") if i["item"] == item)
-    return await count(arena, player, item) + on_ground
+    return await count(arena, player, item) + await on_ground(arena, item)
+
+
+async def wait_until(predicate, timeout: float = 8.0, step: float = 0.1) -> bool:
+    """Poll an async predicate until it holds (True) or `timeout` seconds pass (False)."""
+    deadline = asyncio.get_running_loop().time() + timeout
+    while asyncio.get_running_loop().time() < deadline:
+        if await predicate():
+            return True
+        await asyncio.sleep(step)
+    return False
+
+
+async def equals(coro, value) -> bool:
+    return (await coro) == value

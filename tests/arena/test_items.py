@@ -4,17 +4,7 @@ from __future__ import annotations
 
 import asyncio
 
-from tests.arena.conftest import count
-
-
-async def wait_for(predicate, timeout=8.0, step=0.1):
-    t = 0.0
-    while t < timeout:
-        if await predicate():
-            return True
-        await asyncio.sleep(step)
-        t += step
-    return False
+from tests.arena.conftest import count, equals, on_ground, wait_until
 
 
 async def test_toss_gives_whole_stack_to_the_other_player_and_remembers_thrower(arena, bots, area):
@@ -27,7 +17,7 @@ async def test_toss_gives_whole_stack_to_the_other_player_and_remembers_thrower(
             "await bot.lookAt(bot.players.bob.entity.position.offset(0, 1.2, 0), true); await sleep(150);"
             "await bot.toss(mcData.itemsByName.bread.id, null, 3)"
         )
-        assert await wait_for(lambda: _eq(count(arena, "bob", "bread"), 3))
+        assert await wait_until(lambda: equals(count(arena, "bob", "bread"), 3))
         events = []
         while not q.empty():
             events.append(q.get_nowait())
@@ -40,10 +30,6 @@ async def test_toss_gives_whole_stack_to_the_other_player_and_remembers_thrower(
     assert sum(e["count"] for e in picked) == 3 and all(e["thrower"] == "alice" for e in picked)
     # what the bot believes matches the server
     assert await bob.eval("await sleep(300); return bot.inventory.count(mcData.itemsByName.bread.id)") == 3
-
-
-async def _eq(coro, value):
-    return (await coro) == value
 
 
 async def test_forged_window_click_claiming_diamonds_gets_nothing(arena, bots, area):
@@ -97,11 +83,7 @@ async def test_drop_key_and_click_outside_window_spawn_items(arena, bots, area):
     assert [e["count"] for e in events if e["event"] == "item_tossed"] == [1]
     # alice may pick her stick up again after the pickup delay; in any case nothing was duplicated
     spot = area.at(2.5, 4, 2.5)  # sticks other tests left elsewhere in the shared world do not count
-    total = await count(arena, "alice", "stick") + sum(
-        i["count"]
-        for i in await arena.request("items")
-        if i["item"] == "stick" and sum((a - b) ** 2 for a, b in zip(i["pos"], spot)) < 100
-    )
+    total = await count(arena, "alice", "stick") + await on_ground(arena, "stick", spot, radius=10)
     assert total == 4
 
 

@@ -8,7 +8,7 @@ import asyncio
 
 import pytest
 
-from tests.arena.conftest import count
+from tests.arena.conftest import count, equals, on_ground, wait_until
 from tests.support.node_script import run_node_script
 
 BOX_SCRIPT = r"""
@@ -51,24 +51,6 @@ def test_the_per_tick_order_favours_nobody():
     assert all(9000 < n < 11000 for n in firsts.values()), firsts
 
 
-async def _settle_until(predicate, timeout=8.0):
-    deadline = asyncio.get_running_loop().time() + timeout
-    while asyncio.get_running_loop().time() < deadline:
-        if await predicate():
-            return True
-        await asyncio.sleep(0.1)
-    return False
-
-
-async def _on_ground(arena, item, near):
-    """`item`s lying within 4 blocks of `near` (other tests may leave the same item elsewhere)."""
-    return sum(
-        i["count"]
-        for i in await arena.request("items")
-        if i["item"] == item and sum((a - b) ** 2 for a, b in zip(i["pos"], near)) < 16
-    )
-
-
 @pytest.mark.parametrize("first", ["alice", "bob"])
 async def test_two_players_equally_near_share_contested_items_whatever_the_join_order(arena, bots, area, first):
     alice, bob = bots
@@ -80,15 +62,11 @@ async def test_two_players_equally_near_share_contested_items_whatever_the_join_
     # one drop between them every 2 ticks, so every drop is decided in a tick of its own
     for i in range(drops):
         await arena.request("spawn_item", item="stick", pos=area.at(2.5, 4, 4.5), delay_ticks=10 + 2 * i)
-    assert await _settle_until(lambda: _gone(arena, "stick", area.at(2.5, 4, 4.5)), timeout=20)
+    assert await wait_until(lambda: equals(on_ground(arena, "stick", area.at(2.5, 4, 4.5)), 0), timeout=20)
     got = {n: await count(arena, n, "stick") for n in ("alice", "bob")}
     assert sum(got.values()) == drops
     # with a fair coin, P(one side gets <= 8 of 40) < 1e-4; the old pickup gave all 40 to `first`
     assert 8 < got["alice"] < 32, got
-
-
-async def _gone(arena, item, near):
-    return await _on_ground(arena, item, near) == 0
 
 
 async def test_an_item_outside_the_vanilla_box_stays_on_the_ground(arena, bots, area):
@@ -98,10 +76,10 @@ async def test_an_item_outside_the_vanilla_box_stays_on_the_ground(arena, bots, 
     await arena.request("spawn_item", item="feather", pos=area.at(4.0, 4, 8.5), delay_ticks=0)
     await asyncio.sleep(1.5)
     assert await count(arena, "alice", "feather") == 0
-    assert await _on_ground(arena, "feather", area.at(4.0, 4, 8.5)) == 1
+    assert await on_ground(arena, "feather", area.at(4.0, 4, 8.5)) == 1
     # 1.3 blocks away: inside the box
     await arena.request("spawn_item", item="bone", pos=area.at(3.8, 4, 8.5), delay_ticks=0)
-    assert await _settle_until(lambda: _eq(count(arena, "alice", "bone"), 1))
+    assert await wait_until(lambda: equals(count(arena, "alice", "bone"), 1))
 
 
 async def test_an_item_is_not_picked_up_before_its_delay(arena, bots, area):
@@ -110,7 +88,7 @@ async def test_an_item_is_not_picked_up_before_its_delay(arena, bots, area):
     await arena.request("spawn_item", item="string", pos=area.at(2.5, 4, 12.5), delay_ticks=40)
     await asyncio.sleep(1.0)  # at most 20 ticks have passed, whatever the load
     assert await count(arena, "alice", "string") == 0
-    assert await _settle_until(lambda: _eq(count(arena, "alice", "string"), 1))
+    assert await wait_until(lambda: equals(count(arena, "alice", "string"), 1))
 
 
 async def test_spawn_item_and_player_order_refuse_bad_input(arena, bots, area):
@@ -125,7 +103,3 @@ async def test_spawn_item_and_player_order_refuse_bad_input(arena, bots, area):
         await arena.request("player_order", names=["alice", "nobody"])
     with pytest.raises(Exception, match="distinct"):
         await arena.request("player_order", names=["alice", "alice"])
-
-
-async def _eq(coro, value):
-    return (await coro) == value

@@ -18,6 +18,7 @@ import pytest
 
 from pillagerbench.report.build import build_report
 from pillagerbench.report.build import main as report_main
+from tests.support.cli import start_cli
 
 EPISODES = 3
 ARGS = [
@@ -32,14 +33,7 @@ ARGS = [
 
 
 def pillagerbench(*args: str, **kw) -> subprocess.Popen:
-    return subprocess.Popen(
-        [sys.executable, "-m", "pillagerbench.cli", "run", *args],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        start_new_session=True,
-        **kw,
-    )
+    return start_cli("run", *args, **kw)
 
 
 def lines(path: Path) -> list[dict]:

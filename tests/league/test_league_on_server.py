@@ -8,31 +8,23 @@ import json
 import os
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
+from tests.support.cli import run_cli, start_cli
+
 PLAY = ["play", "budget.episodes=6", "episodes_per_match=2", "episode_length=10", "parallel=2", "display=plain"]
 
 
 def league(*args: str, **kw):
-    return subprocess.Popen(
-        [sys.executable, "-m", "pillagerbench.cli", "league", *args],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        start_new_session=True,
-        **kw,
-    )
+    return start_cli("league", *args, **kw)
 
 
 def done(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", "league", *args], capture_output=True, text=True, timeout=120
-    )
+    return run_cli(Path.cwd(), "league", *args)
 
 
 def lines(path: Path) -> list[dict]:

@@ -4,9 +4,6 @@ team server that misbehaves in every way the protocol allows (the match plays on
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 import threading
 import time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
@@ -17,6 +14,7 @@ import pytest
 from pillagerbench.config import ConfigError
 from pillagerbench.teams import find_team
 from pillagerbench.teams.remote.protocol import schemas
+from tests.support.cli import run_cli
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -48,15 +46,7 @@ def outside(tmp_path):
 
 
 def pb(cwd, path, *args):
-    env = dict(os.environ, PYTHONPATH=str(path))
-    return subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", *args],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        env=env,
-        timeout=120,
-    )
+    return run_cli(cwd, *args, env={"PYTHONPATH": str(path)})
 
 
 def test_teams_lists_entry_points_with_options(outside, tmp_path):
@@ -164,25 +154,18 @@ def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
     threading.Thread(target=server.serve_forever, daemon=True).start()
     try:
         url = f"http://127.0.0.1:{server.server_address[1]}"
-        proc = subprocess.run(
-            [
-                sys.executable,
-                "-m",
-                "pillagerbench.cli",
-                "run",
-                "red=remote",
-                f"red.url={url}",
-                "red.call_timeout_s=0.5",
-                "red.max_answer_bytes=2000",
-                "red.events_every_s=0.5",
-                "blue=do_nothing",
-                "episode_length=12",
-                "display=plain",
-                "run_dir=out",
-            ],
-            cwd=tmp_path,
-            capture_output=True,
-            text=True,
+        proc = run_cli(
+            tmp_path,
+            "run",
+            "red=remote",
+            f"red.url={url}",
+            "red.call_timeout_s=0.5",
+            "red.max_answer_bytes=2000",
+            "red.events_every_s=0.5",
+            "blue=do_nothing",
+            "episode_length=12",
+            "display=plain",
+            "run_dir=out",
             timeout=240,
         )
     finally:

@@ -144,12 +144,17 @@ def sabotage(blue: Sequence[float], sigma_blue: float | None, sigma: Estimate | 
     sb = np.std(np.asarray(blue, dtype=float), ddof=1) / math.sqrt(b.n)
     if sigma is None or sigma.n < 2 or math.isnan(sigma.ci):
         return Estimate(mean, t_critical(b.n - 1) * sb, b.n)
-    ss = sigma.se
-    var = sb**2 + ss**2
+    return Estimate(mean, welch_half_width(sb, b.n, sigma.se, sigma.n), b.n)
+
+
+def welch_half_width(se_a: float, n_a: int, se_b: float, n_b: int) -> float:
+    """95 % half-width of a difference of two independent means from their standard errors, with
+    Welch–Satterthwaite degrees of freedom (both n ≥ 2)."""
+    var = se_a**2 + se_b**2
     if var == 0:
-        return Estimate(mean, 0.0, b.n)
-    df = var**2 / ((sb**4) / (b.n - 1) + (ss**4) / (sigma.n - 1))  # Welch–Satterthwaite
-    return Estimate(mean, t_critical(df) * math.sqrt(var), b.n)
+        return 0.0
+    df = var**2 / ((se_a**4) / (n_a - 1) + (se_b**4) / (n_b - 1))
+    return float(t_critical(df) * math.sqrt(var))
 
 
 def mean_of_estimates(estimates: Sequence[Estimate]) -> Estimate:

@@ -17,7 +17,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from pillagerbench.metrics.formulas import NAN, Estimate, mean_ci, t_critical
+from pillagerbench.metrics.formulas import NAN, Estimate, mean_ci, welch_half_width
 
 COLUMNS = [
     "scenario",
@@ -36,18 +36,13 @@ COLUMNS = [
 
 
 def welch(a, b) -> Estimate:
-    """Mean of a − mean of b with a Welch–Satterthwaite 95 % interval (nan with < 2 values a side)."""
+    """Mean of a − mean of b with a Welch 95 % interval (nan with < 2 values a side)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    diff = float(a.mean() - b.mean()) if len(a) and len(b) else float("nan")
     if len(a) < 2 or len(b) < 2:
-        return Estimate(
-            float(a.mean() - b.mean()) if len(a) and len(b) else float("nan"), float("nan"), len(a) + len(b)
-        )
-    va, vb = a.var(ddof=1) / len(a), b.var(ddof=1) / len(b)
-    diff = float(a.mean() - b.mean())
-    if va + vb == 0:
-        return Estimate(diff, 0.0, len(a) + len(b))
-    df = (va + vb) ** 2 / (va**2 / (len(a) - 1) + vb**2 / (len(b) - 1))
-    return Estimate(diff, float(t_critical(df) * math.sqrt(va + vb)), len(a) + len(b))
+        return Estimate(diff, float("nan"), len(a) + len(b))
+    se_a, se_b = a.std(ddof=1) / math.sqrt(len(a)), b.std(ddof=1) / math.sqrt(len(b))
+    return Estimate(diff, welch_half_width(se_a, len(a), se_b, len(b)), len(a) + len(b))
 
 
 def verdict(diff: Estimate) -> str:

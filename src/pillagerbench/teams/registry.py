@@ -10,13 +10,12 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass, field
-from importlib import resources
 from importlib.metadata import entry_points
 from typing import Any
 
 from omegaconf import OmegaConf
 
-from pillagerbench.config import ConfigError, to_dict
+from pillagerbench.config import ConfigError, team_yaml_options
 from pillagerbench.teams.base import Team
 
 ENTRY_POINT_GROUP = "pillagerbench.teams"
@@ -40,11 +39,10 @@ class TeamEntry:
 def declared_options(name: str, cls: type[Team] | None = None) -> dict[str, Any]:
     """The options a team declares, with their defaults (without name and llm): its config file
     `conf/team/<name>.yaml`, or for a team without one, the class's `options_declared`."""
-    path = resources.files("pillagerbench.conf") / "team" / f"{name}.yaml"
-    if not path.is_file():
-        return dict(cls.options_declared) if cls is not None else {}
-    data = to_dict(OmegaConf.create(path.read_text()))
-    return {k: v for k, v in data.items() if k not in ("name", "llm", "defaults")}
+    own = team_yaml_options(name)
+    if own is not None:
+        return own
+    return dict(cls.options_declared) if cls is not None else {}
 
 
 def _entry_points() -> dict[str, list]:
