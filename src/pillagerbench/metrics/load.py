@@ -19,6 +19,10 @@ import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE
 
+# the scorings an episode can record (config key `scoring`; docs/fidelity.md): red_score/blue_score
+# are the run's own scoring, and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
+SCORINGS = ("clean", "upstream")
+
 
 class ReportError(ValueError):
     """Runs that cannot be reported together; the message says why."""
@@ -167,6 +171,13 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
             skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
             continue
         red_it = (rec.get("iterations") or {}).get("red") or []
+        scoring = rec.get("scoring") or "clean"  # runs before scoring modes were clean
+        by_mode = rec.get("scores") or {scoring: {"red": rec["red_score"], "blue": rec["blue_score"]}}
+        alternatives = {
+            f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
+            for mode in SCORINGS
+            for side in ("red", "blue")
+        }
         rows.append(
             {
                 "run": str(s.run),
@@ -190,6 +201,9 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
                 "scale": scale,
                 "red_score": float(rec["red_score"]) * scale,
                 "blue_score": float(rec["blue_score"]) * scale,
+                "scoring": scoring,
+                **alternatives,
+                "team_protocol": rec.get("protocol") or "pillagerbench",
                 "iterations": float(np.mean(red_it)) if red_it else np.nan,
                 "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
                 "t": np.array([p["t"] for p in timeline], dtype=float),
