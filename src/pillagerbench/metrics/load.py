@@ -2,7 +2,9 @@
 finished episodes, with what was skipped and why.
 
 An episode is used when its line is in episodes.jsonl, its status is ok and its timeline.json
-reaches the episode length. Everything else is listed in `skipped` (failed episodes, half-written
+reaches the episode length. An episode scored as upstream (scoring=upstream) is read as upstream's
+analysis read it: its score over time is upstream's samples (timeline_upstream.json, line i as
+second i). Everything else is listed in `skipped` (failed episodes, half-written
 episodes of a killed run, series that did not finish). Runs of different versions of a scenario
 (or different episode lengths) are refused: their scores do not compare.
 """
@@ -170,6 +172,10 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
             end = timeline[-1]["t"] if timeline else None
             skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
             continue
+        if rec.get("scoring") == "upstream" and (ep / "timeline_upstream.json").exists():
+            # as upstream's analysis read it: line i of its rewards file stands for second i
+            lines = json.loads((ep / "timeline_upstream.json").read_text())
+            timeline = [{**p, "t": p["line"]} for p in lines]
         red_it = (rec.get("iterations") or {}).get("red") or []
         scoring = rec.get("scoring") or "clean"  # runs before scoring modes were clean
         by_mode = rec.get("scores") or {scoring: {"red": rec["red_score"], "blue": rec["blue_score"]}}
