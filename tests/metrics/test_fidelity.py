@@ -8,8 +8,10 @@ import pytest
 from pillagerbench.metrics.fidelity import CLAIMS, claims_table, fidelity_table
 from pillagerbench.metrics.formulas import Estimate
 from pillagerbench.metrics.load import load_runs
+from pillagerbench.report.build import build_report
 from pillagerbench.report.fidelity import main as fidelity_main
 from tests.metrics.fake_runs import write_run
+from tests.support.cli import run_cli
 
 TEN = 10
 
@@ -164,3 +166,25 @@ def test_claims_that_cannot_be_checked_say_why(tmp_path):
         "no mushroom_war round robin among these runs" in notes
     )
     assert any(n.startswith("claims: too few episodes per pairing (≥ 3 for the claims): dash_and_dine") for n in notes)
+
+
+def test_the_report_has_the_fidelity_sections_and_says_which_scoring_and_protocol(tmp_path):
+    write_run(tmp_path / "u", "mushroom_war", "do_nothing", "passive", [(0, 12)] * TEN, upstream=[(0, 25)] * TEN)
+    result = build_report([tmp_path / "u"], tmp_path / "report")
+    assert f"{tmp_path / 'u'}: scoring upstream; LLM teams' protocol pillagerbench" in result["notes"]
+    assert any(n.startswith("claims: no round robin of the built-in opponents") for n in result["notes"])
+    md = (tmp_path / "report" / "fidelity.md").read_text()
+    assert "| mushroom_war | passive | blue | upstream | 10 | 25.00 ± 0.00 |" in md
+    assert "Fidelity" in (tmp_path / "report" / "report.html").read_text()
+
+
+def test_the_command_line_says_what_it_cannot_check_in_one_line_each(tmp_path):
+    write_run(tmp_path / "a", "mushroom_war", "balanced", "passive", [(20, 10)] * 2)
+    for command in ("fidelity", "report"):
+        proc = run_cli(tmp_path, command, str(tmp_path / "a"))
+        assert proc.returncode == 0, proc.stderr
+        lines = proc.stdout.splitlines()
+        assert sum(line.startswith("fidelity: no episodes against do_nothing") for line in lines) == 1
+        assert sum(line.startswith("claims: no round robin") for line in lines) == 1
+    proc = run_cli(tmp_path, "fidelity", str(tmp_path / "nothing-here"))
+    assert proc.returncode == 2 and proc.stderr.strip().count("\n") == 0 and "not a run directory" in proc.stderr

@@ -81,6 +81,7 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
             f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}"
         )
     notes += fidelity_notes
+    notes += modes(df)
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
     sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]
@@ -91,6 +92,18 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     page.write_text(html.page("PillagerBench report", runs.runs, notes, sections))
     files.append(page)
     return {"files": files, "notes": notes, "skipped": runs.skipped, "episodes": len(df), "out": out}
+
+
+def modes(df) -> list[str]:
+    """One line per run: its scoring and the LLM teams' protocol (docs/fidelity.md)."""
+    if not len(df):
+        return []
+    out = []
+    for run, g in df.groupby("run", sort=False):
+        scoring = ", ".join(dict.fromkeys(g["scoring"]))
+        protocol = ", ".join(dict.fromkeys(g["team_protocol"]))
+        out.append(f"{run}: scoring {scoring}; LLM teams' protocol {protocol}")
+    return out
 
 
 def main(argv: list[str]) -> int:
