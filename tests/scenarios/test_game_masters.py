@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.scenarios.dash_and_dine import REWARDS, upstream_round
-from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime
+from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime, upstream_multiplier
 from tests.scenarios.conftest import Always
 from tests.support.bots import TestBot
 
@@ -123,3 +123,8 @@ async def test_dash_and_dine_upstream_score_rounds_each_scan(server):
 
 def test_upstream_rounding_is_javascripts_halves_up():
     assert [upstream_round(x) for x in (0.4, 0.5, 2.5, 7.2, 15.8)] == [0, 1, 3, 7, 16]
+
+
+def test_upstream_counts_a_player_once_to_ten_times():
+    runs = {"Ryn": 0, "Raze": 4, "Byte": 25}
+    assert [upstream_multiplier(runs, n) for n in ("Ryn", "Raze", "Byte", "Blink")] == [1, 4, 10, 1]
