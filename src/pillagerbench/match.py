@@ -343,9 +343,10 @@ class Match:
         finally:
             # the whistle: stop every player's code, then nothing a player does counts any more
             await asyncio.gather(*(p.stop() for p in self.players.values()), return_exceptions=True)
-            for task in plays + background:
+            tasks = plays + background + ([late] if late else [])
+            for task in tasks:
                 task.cancel()
-            await asyncio.wait(plays + background, timeout=STOP_GRACE_S)
+            await asyncio.wait(tasks, timeout=STOP_GRACE_S)
         rec.game_s = round(time.monotonic() - start, 3)
         rec.server_tps = round(((await self.server.request("status"))["tick"] - first_tick) / rec.game_s, 2)
         if final is None:
