@@ -183,14 +183,14 @@ def _num(e: Estimate) -> str:
 
 
 def _check_highest(stats: Stats, a: dict, ctx: dict) -> tuple[str, str]:
+    """`team` strictly above every other team in each of `metrics` (a tie is not a lead)."""
     team, ok, evidence = a["team"], True, []
     for m in a["metrics"]:
         if math.isnan(stats[team][m].mean):
             raise _Missing(f"no {m} for {team}" + (" (no σ_blue: pillagerbench calibrate)" if m == "S" else ""))
         ranked = sorted(stats, key=lambda t: -stats[t][m].mean if not math.isnan(stats[t][m].mean) else math.inf)
-        best = ranked[0]
-        ok &= best == team
         runner = next((t for t in ranked if t != team), None)
+        ok &= runner is None or math.isnan(stats[runner][m].mean) or stats[team][m].mean > stats[runner][m].mean
         evidence.append(
             f"{m}: {team} {_num(stats[team][m])}" + (f", next {runner} {_num(stats[runner][m])}" if runner else "")
         )
