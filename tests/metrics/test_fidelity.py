@@ -60,7 +60,7 @@ def test_no_do_nothing_episodes_is_one_line(tmp_path, capsys):
     assert fidelity_main([str(tmp_path / "a")]) == 0
     out = capsys.readouterr().out.splitlines()
     assert [line for line in out if line.startswith("fidelity:")] == [
-        "fidelity: no episodes against do_nothing in these runs, so no table against upstream's references "
+        "fidelity: no built-in opponent played against do_nothing in these runs, so no table against upstream's references "
         "(play experiment=fidelity)"
     ]
 
@@ -184,7 +184,7 @@ def test_the_command_line_says_what_it_cannot_check_in_one_line_each(tmp_path):
         proc = run_cli(tmp_path, command, str(tmp_path / "a"))
         assert proc.returncode == 0, proc.stderr
         lines = proc.stdout.splitlines()
-        assert sum(line.startswith("fidelity: no episodes against do_nothing") for line in lines) == 1
+        assert sum(line.startswith("fidelity: no built-in opponent played against do_nothing") for line in lines) == 1
         assert sum(line.startswith("claims: no round robin") for line in lines) == 1
     proc = run_cli(tmp_path, "fidelity", str(tmp_path / "nothing-here"))
     assert proc.returncode == 2 and proc.stderr.strip().count("\n") == 0 and "not a run directory" in proc.stderr

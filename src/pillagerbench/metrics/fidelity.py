@@ -94,7 +94,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
                     few.append(f"{scenario} {team} ({side}): {e.n}")
     if not rows:
         notes.append(
-            "fidelity: no episodes against do_nothing in these runs, so no table against upstream's references "
+            "fidelity: no built-in opponent played against do_nothing in these runs, so no table against upstream's references "
             "(play experiment=fidelity)"
         )
     if few:
