@@ -99,7 +99,9 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
         )
     if few:
         notes.append(
-            f"fidelity: too few episodes for the check (≥ {MIN_EPISODES} per opponent and side): " + ", ".join(few)
+            f"fidelity: too few episodes for the check (≥ {MIN_EPISODES} per opponent and side): "
+            + ", ".join(few[:5])
+            + (f" and {len(few) - 5} more" if len(few) > 5 else "")
         )
     table = pd.DataFrame(rows, columns=FIDELITY_COLUMNS)
     unknown = sorted(set(table["scenario"]) - set(REFERENCE_SCORES)) if len(table) else []
