@@ -32,6 +32,8 @@ def one_line_refusal(tmp_path, *args, lines=1):
         (["episodes=-1"], "pillagerbench run: episodes=-1: input should be greater than or equal to 1"),
         (["parallel=0"], "pillagerbench run: parallel=0: input should be greater than or equal to 1"),
         (["display=fancy"], "pillagerbench run: display='fancy': input should be 'auto', 'live' or 'plain'"),
+        (["scoring=paper"], "pillagerbench run: scoring='paper': input should be 'clean' or 'upstream'"),
+        (["protocol=paper"], "pillagerbench run: protocol='paper': input should be 'pillagerbench' or 'upstream'"),
         (["server.port=70000"], "pillagerbench run: server.port=70000: input should be less than or equal to 65535"),
         (["llm_cache.mode=sometimes"], "pillagerbench run: llm_cache.mode='sometimes': input should be 'off', 'read'"),
         (["red=cot", "red.attempts=x"], "pillagerbench run: red.attempts='x': input should be a valid integer"),

@@ -25,6 +25,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "pillagerbench.report.symmetry:main",
         "each team's points as red and as blue per pairing (side effect check)",
     ),
+    "fidelity": (
+        "pillagerbench.report.fidelity:main",
+        "built-in opponents vs do_nothing against upstream's scores, and the paper's claims on a round robin",
+    ),
     "calibrate": (
         "pillagerbench.metrics.calibration:main",
         "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)",

@@ -73,6 +73,8 @@ class RunConfig(BaseModel):
     seed: int
     run_dir: str | None
     display: Literal["auto", "live", "plain"]
+    scoring: Literal["clean", "upstream"] = "clean"  # runs from before these keys: the defaults
+    protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
     parallel: int | None = Field(ge=1)
     launcher: Literal["local", "ray"]
     ray_address: str | None

@@ -4,6 +4,14 @@ Per episode: put the arena back in place, reset every player (position, empty in
 (not timed; duration recorded), game (wall clock, `episode_length` s: the game master's rules run
 and every team's score is sampled each second), whistle (all code stopped; the score at exactly
 the end is final), post-game. The record of each episode is written to the run directory.
+
+Scoring (config `scoring`, docs/fidelity.md): `clean` (the default) is the game master's score at
+exactly the whistle. `upstream` reproduces upstream's numbers as well: play (and every player's
+code) goes on past the whistle until upstream's "120 s" sample, the (L+1)-th line of a per-second
+rewards file whose lines start UPSTREAM_WAIT_S + 1 s after the clock; the game master's
+`upstream_scores` applies the scenario's own quirks (GameMaster). Such an episode records both
+scores (`scores`), its headline `red_score`/`blue_score` being upstream's; the clean timeline stays
+in timeline.json, upstream's samples go to timeline_upstream.json.
 """
 
 from __future__ import annotations
@@ -22,6 +30,11 @@ from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team, TeamContext
 
 STOP_GRACE_S = 3.0
+# upstream's judge started its code after an 80-tick wait (4 s) and wrote a rewards line each 1 s
+# after that (the first one 1 s in), so line k (from 1) was written at 4 + k s; its analysis read
+# line index L (k = L + 1): about L + 5 s after the clock started
+UPSTREAM_WAIT_S = 4.0
+SCORINGS = ("clean", "upstream")
 
 
 @dataclass
@@ -45,6 +58,10 @@ class EpisodeRecord:
     server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
     problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
     refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
+    scoring: str = "clean"  # which of `scores` red_score/blue_score are (config `scoring`)
+    scores: dict[str, dict[str, float]] = field(default_factory=dict)  # scoring -> side -> final score
+    protocol: str = "pillagerbench"  # the LLM teams' loop (config `protocol`)
+    runs: dict[str, int] = field(default_factory=dict)  # code runs started per player (upstream's steps)
 
 
 def count_refusals(events: list[dict]) -> dict[str, int]:
@@ -59,8 +76,9 @@ def count_refusals(events: list[dict]) -> dict[str, int]:
 class RecordedPlayer:
     """A player handle that also appends every event of its runs to the episode's log."""
 
-    def __init__(self, player: Player, sink: Callable[[str, list], None]):
+    def __init__(self, player: Player, sink: Callable[[str, list], None], runs: dict[str, int] | None = None):
         self._player, self._sink = player, sink
+        self._runs = {} if runs is None else runs  # code runs started per player this episode
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._player, name)
@@ -71,6 +89,7 @@ class RecordedPlayer:
             if on_event:
                 on_event(event)
 
+        self._runs[self._player.name] = self._runs.get(self._player.name, 0) + 1
         return await self._player.run(code, timeout=timeout, on_event=both)
 
 
@@ -90,7 +109,12 @@ class Match:
         seed: int = 0,
         on_tick: Callable[[dict], None] | None = None,
         llms: dict[str, Any] | None = None,
+        scoring: str = "clean",
+        protocol: str = "pillagerbench",
     ):
+        if scoring not in SCORINGS:
+            raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
+        self.scoring, self.protocol = scoring, protocol
         self.server, self.scenario, self.teams = server, scenario, teams
         self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
@@ -144,7 +168,13 @@ class Match:
     async def play_episode(self, episode: int) -> EpisodeRecord:
         sc = self.scenario
         rec = EpisodeRecord(
-            sc.key, self.teams["red"].name, self.teams["blue"].name, episode, seed=self.seed * 1000 + episode
+            sc.key,
+            self.teams["red"].name,
+            self.teams["blue"].name,
+            episode,
+            seed=self.seed * 1000 + episode,
+            scoring=self.scoring,
+            protocol=self.protocol,
         )
         out = self.run_dir / f"episode_{episode:03d}"
         out.mkdir(parents=True, exist_ok=True)
@@ -198,12 +228,13 @@ class Match:
                 side=side,
                 episode=rec.episode,
                 out_dir=team_dir,
-                players={n: RecordedPlayer(self.players[n], sink) for n in side.player_names},
+                players={n: RecordedPlayer(self.players[n], sink, rec.runs) for n in side.player_names},
                 observations={n: observations[n] for n in side.player_names},
                 episode_length=self.episode_length,
                 seed=rec.seed,
                 llm=self.llms.get(side.key),
                 last_episode=self.last_records.get(side.key, {}),
+                protocol=self.protocol,
             )
 
         async def timed_pre_game(key):
@@ -213,8 +244,11 @@ class Match:
 
         await asyncio.gather(*(timed_pre_game(k) for k in contexts))
 
-        timeline = await self._game(rec, contexts, rng, out)
-        rec.red_score, rec.blue_score = timeline[-1]["red"], timeline[-1]["blue"]
+        timeline, upstream = await self._game(rec, contexts, rng, out)
+        rec.scores = {"clean": {k: timeline[-1][k] for k in ("red", "blue")}}
+        if upstream:
+            rec.scores["upstream"] = {k: upstream[-1][k] for k in ("red", "blue")}
+        rec.red_score, rec.blue_score = rec.scores[self.scoring]["red"], rec.scores[self.scoring]["blue"]
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
         for key, ctx in contexts.items():
@@ -250,7 +284,11 @@ class Match:
         (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
         return events
 
-    async def _game(self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path) -> list[dict]:
+    async def _game(
+        self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path
+    ) -> tuple[list[dict], list[dict]]:
+        """The game; returns the clean timeline (t = 0 … L) and, with scoring=upstream, upstream's
+        samples (lines 0 … L of its rewards file)."""
         gm = self.scenario.game_master(self.server, rng)
         await gm.start()
         length = self.episode_length
@@ -260,11 +298,21 @@ class Match:
             ctx.deadline = deadline
             self.teams[ctx.side.key].iterations = []
         timeline: list[dict] = []
+        upstream: list[dict] = []
+        runs = rec.runs
+        lock = asyncio.Lock()  # one game-master step at a time (the whistle's and the rules' own)
 
         async def rules():
             while True:
                 await asyncio.sleep(gm.period_s)
-                await gm.step()
+                async with lock:
+                    await gm.step()
+
+        async def sample_upstream():
+            for line in range(int(length) + 1):
+                t = UPSTREAM_WAIT_S + line + 1
+                await asyncio.sleep(max(0.0, start + t - time.monotonic()))
+                upstream.append({"t": t, "line": line, **await gm.upstream_scores(dict(runs))})
 
         async def sample():
             for second in range(int(length)):
@@ -277,23 +325,33 @@ class Match:
         first_tick = (await self.server.request("status"))["tick"]
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
+        late = asyncio.create_task(sample_upstream(), name="upstream-scores") if self.scoring == "upstream" else None
+        final: dict | None = None
         try:
             done, _ = await asyncio.wait(
-                background, timeout=max(0.0, deadline - time.monotonic()), return_when=asyncio.FIRST_EXCEPTION
+                background + ([late] if late else []),
+                timeout=max(0.0, deadline - time.monotonic()),
+                return_when=asyncio.FIRST_EXCEPTION,
             )
-            for task in done:
-                if (exc := task.exception()) is not None:
-                    raise exc
+            _raise_first(done)
+            if late:  # upstream: the clean score at the whistle, then play on to upstream's sample
+                async with lock:
+                    await gm.step()
+                    final = await gm.scores()
+                done, _ = await asyncio.wait([late, background[0]], return_when=asyncio.FIRST_COMPLETED)
+                _raise_first(done)
         finally:
             # the whistle: stop every player's code, then nothing a player does counts any more
             await asyncio.gather(*(p.stop() for p in self.players.values()), return_exceptions=True)
-            for task in plays + background:
+            tasks = plays + background + ([late] if late else [])
+            for task in tasks:
                 task.cancel()
-            await asyncio.wait(plays + background, timeout=STOP_GRACE_S)
+            await asyncio.wait(tasks, timeout=STOP_GRACE_S)
         rec.game_s = round(time.monotonic() - start, 3)
         rec.server_tps = round(((await self.server.request("status"))["tick"] - first_tick) / rec.game_s, 2)
-        await gm.step()
-        final = await gm.scores()
+        if final is None:
+            await gm.step()
+            final = await gm.scores()
         self.server.control.unsubscribe(world)
         rec.refusals = count_refusals(self._write_world_events(world, out))
         timeline.append({"t": length, **final})
@@ -302,5 +360,13 @@ class Match:
             if task.done() and not task.cancelled() and task.exception():
                 (out / f"{task.get_name()}.error.txt").write_text(repr(task.exception()))
         (out / "timeline.json").write_text(json.dumps(timeline))
+        if late:
+            (out / "timeline_upstream.json").write_text(json.dumps(upstream))
         (out / "game_master.json").write_text(json.dumps(gm.log))
-        return timeline
+        return timeline, upstream
+
+
+def _raise_first(done: set[asyncio.Task]) -> None:
+    for task in done:
+        if not task.cancelled() and (exc := task.exception()) is not None:
+            raise exc

@@ -51,6 +51,8 @@ async def play(cfg, run_dir: Path) -> list:
             run_dir,
             episode_length=cfg.episode_length,
             seed=cfg.seed,
+            scoring=cfg.get("scoring", "clean"),
+            protocol=cfg.get("protocol", "pillagerbench"),
             on_tick=display.tick,
             llms=llms,
         )

@@ -102,3 +102,19 @@ def test_symmetry_plays_each_pairing_in_both_orders_and_mirrors_once():
 def test_symmetry_pairing_without_a_team_names_what_is_missing():
     with pytest.raises(ConfigError, match=r"pairings\[0\] needs b"):
         build("experiment=symmetry", "experiment.pairings=[{scenario: mushroom_war, a: passive}]")
+
+
+def test_fidelity_plays_every_builtin_opponent_against_do_nothing_as_blue():
+    series = build("experiment=fidelity")
+    got = {(s.scenario, s.red, s.blue) for s in series}
+    assert got == {
+        (sc, "do_nothing", team) for sc in ("mushroom_war", "dash_and_dine") for team in builtin_teams(sc)[1:]
+    }
+    assert {s.episodes for s in series} == {10}
+
+
+def test_fidelity_on_both_sides_and_a_bad_side():
+    series = build("experiment=fidelity", "experiment.sides=[blue,red]", "experiment.scenarios=[mushroom_war]")
+    assert len(series) == 8 and ("mushroom_war", "slimy", "do_nothing") in {(s.scenario, s.red, s.blue) for s in series}
+    with pytest.raises(ConfigError, match="each side is blue or red"):
+        build("experiment=fidelity", "experiment.sides=[green]")

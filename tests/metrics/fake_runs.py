@@ -16,7 +16,11 @@ def write_run(
     version: str = "1",
     length: int = 4,
     iterations: list[int] | None = None,
+    first_points: list[int] | None = None,
+    upstream: list[tuple[float, float]] | None = None,
 ) -> Path:
+    """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
+    it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream)."""
     run.mkdir(parents=True)
     config = {
         "scenario": {"name": scenario},
@@ -33,7 +37,10 @@ def write_run(
         for i, (r, b) in enumerate(scores):
             ep = run / f"episode_{i:03d}"
             ep.mkdir()
-            timeline = [{"t": t, "red": r * t / length, "blue": b * t / length} for t in range(length)]
+            start = first_points[i] if first_points else 1
+            timeline = [
+                {"t": t, "red": r * t / length if t >= start else 0.0, "blue": b * t / length} for t in range(length)
+            ]
             timeline.append({"t": length, "red": r, "blue": b})
             (ep / "timeline.json").write_text(json.dumps(timeline))
             rec = {
@@ -46,6 +53,10 @@ def write_run(
                 "status": "ok",
                 "iterations": {"red": iterations or [1, 1], "blue": [1, 1]},
             }
+            if upstream:
+                rec["scoring"] = "upstream"
+                rec["red_score"], rec["blue_score"] = upstream[i]
+                rec["scores"] = {"clean": {"red": r, "blue": b}, "upstream": dict(zip(("red", "blue"), upstream[i]))}
             (ep / "episode.json").write_text(json.dumps(rec))
             f.write(json.dumps(rec) + "\n")
     return run

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.scenarios.dash_and_dine import REWARDS
-from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime
+from pillagerbench.scenarios.dash_and_dine import REWARDS, upstream_round
+from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime, upstream_multiplier
 from tests.scenarios.conftest import Always
 from tests.support.bots import TestBot
 
@@ -87,3 +87,44 @@ async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
         await gm.step()
         assert gm.points["blue"] == REWARDS["beef"] == 4.8
         assert (await gm.scores())["blue"] == 4.8
+
+
+async def test_mushroom_war_upstream_score_counts_held_mushrooms_once_per_run_started(server):
+    # upstream: each run started a counter adding what the player holds, from 0, that never stopped.
+    # By hand, Ryn holds 2 then 3; Raze 4; Byte 1. Ryn has started 1 run, then 3; Raze none (do_nothing
+    # ran one step upstream: counted once); Byte 2.
+    sc = make_scenario("mushroom_war")
+    async with TestBot(server.port, "Ryn"), TestBot(server.port, "Raze"), TestBot(server.port, "Byte"):
+        await server.request("set_inventory", player="Ryn", items={"red_mushroom": 2})
+        await server.request("set_inventory", player="Raze", items={"red_mushroom": 4, "brown_mushroom": 9})
+        await server.request("set_inventory", player="Byte", items={"brown_mushroom": 1})
+        gm = sc.game_master(server, Always(0.99))
+        await gm.start()
+        assert await gm.upstream_scores({"Ryn": 1, "Byte": 2}) == {"red": 2 * 1 + 4 * 1, "blue": 1 * 2}
+        await server.request("set_inventory", player="Ryn", items={"red_mushroom": 3})
+        assert await gm.upstream_scores({"Ryn": 3, "Byte": 2}) == {"red": 3 * 3 + 4, "blue": 2}
+        assert await gm.scores() == {"red": 7.0, "blue": 1.0}  # clean: what they hold
+
+
+async def test_dash_and_dine_upstream_score_rounds_each_scan(server):
+    # scans worth 7.2 (3 berries), 2.4 (1 berry), 15.8 (1 bread + 2 berries) by hand:
+    # upstream adds round(7.2) + round(2.4) + round(15.8) = 7 + 2 + 16 = 25; clean 25.4
+    sc = make_scenario("dash_and_dine")
+    async with TestBot(server.port, "Red_Server"), TestBot(server.port, "Blue_Server"):
+        gm = sc.game_master(server, Always(0.99))
+        await gm.start()
+        for items in ({"sweet_berries": 3}, {"sweet_berries": 1}, {"bread": 1, "sweet_berries": 2}):
+            await server.request("set_inventory", player="Red_Server", items=items)
+            await gm.step()
+        assert REWARDS["sweet_berries"] == 2.4 and REWARDS["bread"] == 11
+        assert (await gm.scores())["red"] == 25.4
+        assert await gm.upstream_scores({}) == {"red": 25.0, "blue": 0.0}
+
+
+def test_upstream_rounding_is_javascripts_halves_up():
+    assert [upstream_round(x) for x in (0.4, 0.5, 2.5, 7.2, 15.8)] == [0, 1, 3, 7, 16]
+
+
+def test_upstream_counts_a_player_once_to_ten_times():
+    runs = {"Ryn": 0, "Raze": 4, "Byte": 25}
+    assert [upstream_multiplier(runs, n) for n in ("Ryn", "Raze", "Byte", "Blink")] == [1, 4, 10, 1]

@@ -19,11 +19,11 @@ OPPONENTS = {name: cls.scenarios[0] for name, cls in TEAMS.items() if cls.scenar
 EPISODE_S = 60  # potato_cookie serves its first cookies after about 30 s on an idle 2-core machine
 
 
-async def one_episode(scenario_key: str, red: str, blue: str, run_dir, length: float = EPISODE_S):
+async def one_episode(scenario_key: str, red: str, blue: str, run_dir, length: float = EPISODE_S, **match_options):
     sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
     teams = {"red": make_team(red, sc.key), "blue": make_team(blue, sc.key)}
     async with ArenaServer(log_path=run_dir / "server.log") as server:
-        match = Match(server, sc, teams, run_dir, episode_length=length, seed=1)
+        match = Match(server, sc, teams, run_dir, episode_length=length, seed=1, **match_options)
         try:
             await match.setup()
             return await match.play_episode(0)
@@ -79,6 +79,22 @@ async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
         assert any(line.startswith(f"<{p}>") for line in chat for p in red_players)  # the server's chat log
         world = [json.loads(line) for line in open(tmp_path / name / "episode_000" / "world_events.jsonl")]
         assert any(e["event"] == "item_picked_up" for e in world)
+
+
+async def test_upstream_scoring_plays_on_to_upstreams_sample_and_records_both_scores(tmp_path):
+    rec = await one_episode("mushroom_war", "passive", "do_nothing", tmp_path, length=3, scoring="upstream")
+    assert rec.status == "ok", rec.error
+    assert rec.scoring == "upstream" and set(rec.scores) == {"clean", "upstream"}
+    assert (rec.red_score, rec.blue_score) == (rec.scores["upstream"]["red"], rec.scores["upstream"]["blue"])
+    assert rec.runs["Ryn"] >= 1 and rec.runs["Raze"] >= 1 and "Byte" not in rec.runs  # do_nothing runs nothing
+    assert rec.game_s >= 3 + 5  # play went on to upstream's "120 s" sample
+    ep = tmp_path / "episode_000"
+    assert [p["t"] for p in json.loads((ep / "timeline.json").read_text())] == [0, 1, 2, 3]
+    upstream = json.loads((ep / "timeline_upstream.json").read_text())
+    assert [(p["t"], p["line"]) for p in upstream] == [(5, 0), (6, 1), (7, 2), (8, 3)]
+    assert upstream[-1]["red"] == rec.red_score
+    saved = json.loads((ep / "episode.json").read_text())
+    assert saved["scores"] == rec.scores and saved["protocol"] == "pillagerbench"
 
 
 async def test_a_dead_server_fails_the_episode_and_the_series_goes_on(tmp_path):

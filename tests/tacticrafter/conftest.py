@@ -110,11 +110,13 @@ def requests_of(server: FakeLLMServer, role: str) -> list:
     return [r for r in server.requests if r.role == role]
 
 
-async def play_series(red, blue, run_dir: Path, *, episodes: int = 1, length: float = 20, llms=None, seed: int = 1):
+async def play_series(
+    red, blue, run_dir: Path, *, episodes: int = 1, length: float = 20, llms=None, seed: int = 1, **match_options
+):
     sc = make_scenario("mushroom_war")
     teams = {side: make_team(t, sc.key) if isinstance(t, str) else t for side, t in (("red", red), ("blue", blue))}
     async with ArenaServer(log_path=run_dir / "server.log") as server:
-        match = Match(server, sc, teams, run_dir, episode_length=length, seed=seed, llms=llms or {})
+        match = Match(server, sc, teams, run_dir, episode_length=length, seed=seed, llms=llms or {}, **match_options)
         try:
             await match.setup()
             return [await match.play_episode(e) for e in range(episodes)]

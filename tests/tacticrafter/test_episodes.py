@@ -12,9 +12,12 @@ from pillagerbench.teams.tacticrafter import TactiCrafter
 
 from .conftest import (
     CRITIC,
+    GRAPH,
     LOOP,
     NO_CODE,
     ONE_PASS,
+    OPPONENT,
+    TACTICS_1,
     THROWS,
     code_answer,
     context,
@@ -140,3 +143,32 @@ async def test_bad_inputs_in_the_game_keep_the_team_playing(tmp_path, fake_llm, 
     assert out["llm"]["action"]["failed_calls"] >= 1
     code = load(tmp_path / "bad" / "episode_000" / "red" / "code.json")
     assert code["Ryn"]["code"] == LOOP and code["Raze"]["code"] == ONE_PASS
+
+
+async def test_upstream_protocol_neither_reruns_nor_asks_again(tmp_path, fake_llm, llm_client):
+    """Cap of 2 iterations. Ryn: one-pass code, then an answer without code: upstream's loop spends
+    an iteration on it (no run, no re-ask, no fallback to the last good code), then idles. Raze:
+    one-pass code twice, then idles (ours would run it again after the cap)."""
+    fake_llm.add(
+        Rule(role="causal", reply=json.dumps(GRAPH)),
+        Rule(role="opponent", reply=OPPONENT),
+        Rule(role="tactics", reply=TACTICS_1),
+        Rule(role="critic", reply=CRITIC),
+        Rule(role="action", regex="You are Ryn", match="No code yet.", reply=code_answer(ONE_PASS)),
+        Rule(role="action", regex="You are Ryn", reply=NO_CODE),
+        Rule(role="action", regex="You are Raze", reply=code_answer(ONE_PASS)),
+    )
+    team = make_team("tacticrafter", "mushroom_war", iterations=2, attempts=3)
+    (rec,) = await play_series(
+        team, "do_nothing", tmp_path, length=25, llms={"red": llm_client("red")}, protocol="upstream"
+    )
+    assert rec.status == "ok", rec.error
+    out = load(tmp_path / "episode_000" / "red" / "tacticrafter.json")
+    assert out["protocol"] == "upstream"
+    ryn, raze = out["agents"]["Ryn"], out["agents"]["Raze"]
+    assert [i.get("entry") for i in ryn["iterations"]] == ["onePass", None] and ryn["iterations"][1]["no_code"]
+    ryn_actions = [c for c in ryn["calls"] if c["role"] == "action"]
+    assert len(ryn_actions) == 2 and len(ryn_actions[1]["attempts"]) == 1  # ours: 3 attempts
+    assert [i["entry"] for i in raze["iterations"]] == ["onePass", "onePass"]
+    assert ryn["reruns"] == raze["reruns"] == 0 and "idle_from_s" in raze
+    assert rec.iterations["red"] == [2, 2] and rec.runs == {"Ryn": 1, "Raze": 2}

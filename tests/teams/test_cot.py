@@ -225,3 +225,29 @@ async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
     assert c1["status"] == "partial" and set(c1["programs"]) == {"Ryn"}
     assert "does not parse" in c1["failures"]["Raze"]
     assert second.iterations["red"][0] >= 1 and second.iterations["red"][1] == 0
+
+
+ONCE = "async function main{name}(bot) {{\n  bot.chat('{name} was here')\n}}"
+
+
+async def test_upstream_protocol_asks_once(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply="Explain: hmm.\nPlan: we will see."))
+    team = make_team("cot", "mushroom_war", attempts=3)
+    ctx = context(tmp_path, llm_client())
+    ctx.protocol = "upstream"
+    await team.pre_game(ctx)
+    assert fake_llm.count == 1 and team.programs == [None, None]  # never sent back (ours: 3 calls)
+    rec = json.loads((tmp_path / "red" / "cot.json").read_text())
+    assert rec["protocol"] == "upstream" and len(rec["attempts"]) == 1
+
+
+async def test_upstream_protocol_runs_a_program_at_most_10_times(tmp_path, fake_llm, llm_client):
+    """Programs that end at once: upstream's loop starts them 10 times, ours until the whistle."""
+    fake_llm.add(Rule(role="cot", reply=answer(ONCE.format(name="Ryn"), ONCE.format(name="Raze"))))
+    team = make_team("cot", "mushroom_war", restart_pause_s=0.2)
+    (rec,) = await play_series(
+        "mushroom_war", team, "do_nothing", tmp_path, length=12, llms={"red": llm_client("red")}, protocol="upstream"
+    )
+    assert rec.status == "ok", rec.error
+    assert rec.protocol == "upstream" and rec.iterations["red"] == [10, 10]
+    assert rec.runs == {"Ryn": 10, "Raze": 10}

@@ -99,6 +99,8 @@ def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Pat
 def _comparable(spec: SeriesSpec) -> dict:
     d = spec.to_dict()
     d["config"] = {k: v for k, v in d["config"].items() if k not in IGNORED_ON_RESUME}
+    for key, default in (("scoring", "clean"), ("protocol", "pillagerbench")):  # runs from before these keys
+        d["config"].setdefault(key, default)
     return d
 
 

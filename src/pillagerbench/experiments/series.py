@@ -217,7 +217,16 @@ async def _play(
     await server.start()
     llms = make_llms(cfg, teams, series_dir)
     match = Match(
-        server, scenario, teams, series_dir, episode_length=cfg.episode_length, seed=cfg.seed, on_tick=tick, llms=llms
+        server,
+        scenario,
+        teams,
+        series_dir,
+        episode_length=cfg.episode_length,
+        seed=cfg.seed,
+        on_tick=tick,
+        llms=llms,
+        scoring=cfg.get("scoring", "clean"),  # series of runs before these keys: the defaults
+        protocol=cfg.get("protocol", "pillagerbench"),
     )
     ok = [i for i in sorted(finished) if finished[i].get("status") == "ok"]
     if ok:  # what the teams saw of the last episode before the kill

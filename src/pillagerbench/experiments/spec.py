@@ -13,6 +13,8 @@ Protocols (conf/experiment/*.yaml, key `protocol`):
 - adaptation:  train against one opponent, then from that checkpoint one episode against each
 - symmetry:    each pairing of `pairings` in both orders (A red vs B blue, B red vs A blue); a
                pairing of a team with itself is one mirror match
+- fidelity:    every built-in opponent of each scenario (or `opponents`) against do_nothing, on each
+               side of `sides` (blue: the opponent blue, do_nothing red, as upstream measured)
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from omegaconf import DictConfig, OmegaConf
 from pillagerbench.config import ConfigError, load_config, to_dict
 from pillagerbench.experiments.layout import checkpoint_dir
 
-PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry")
+PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir")
 # command-line overrides an experiment chooses itself for each series
@@ -239,6 +241,20 @@ class _Builder:
                 orders = [(p.a, p.b)] if p.a == p.b else [(p.a, p.b), (p.b, p.a)]
                 for red, blue in orders:
                     self.add(p.scenario, red, blue, self.exp.episodes, repetition=rep)
+
+    def fidelity(self) -> None:
+        sides = list(self.exp.get("sides") or ["blue"])
+        bad = [s for s in sides if s not in ("blue", "red")]
+        if bad:
+            raise ConfigError(f"experiment.sides={sides}: each side is blue or red (e.g. [blue, red])")
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for sc in self.exp.scenarios:
+                for team in _opponents(self.exp, "opponents", sc):
+                    if team == "do_nothing":
+                        continue
+                    for side in sides:
+                        red, blue = ("do_nothing", team) if side == "blue" else (team, "do_nothing")
+                        self.add(sc, red, blue, self.exp.episodes, repetition=rep)
 
     def benchmark(self) -> None:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):

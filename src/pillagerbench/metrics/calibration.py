@@ -19,6 +19,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.load import ReportError, Runs, load_runs
@@ -26,27 +27,44 @@ from pillagerbench.metrics.load import ReportError, Runs, load_runs
 CALIBRATION = "calibration.json"
 
 
+def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
+    """(scenario, team, episodes) for every built-in or other team that played `side` against a
+    do_nothing team on the other side, in ordinary series (shared by σ_blue and the fidelity check)."""
+    if not len(df):
+        return
+    other = "red" if side == "blue" else "blue"
+    ref = df[(df[f"{other}_team"] == "do_nothing") & df["group"].isna()]
+    yield from ((sc, team, g) for (sc, team), g in ref.groupby(["scenario", f"{side}_team"], sort=False))
+
+
+def opponent_groups(df: pd.DataFrame, sigma: dict) -> list:
+    """Per opponent (blue team) of the red rows in df: (red scores, blue scores, σ_blue, σ estimate),
+    the input of formulas.over_opponents."""
+    out = []
+    for (scenario, blue_team), g in df.groupby(["scenario", "blue_team"], sort=False):
+        s = sigma.get((scenario, blue_team))
+        out.append((g["red_score"].to_numpy(), g["blue_score"].to_numpy(), s.mean if s else None, s))
+    return out
+
+
 def calibration_from_runs(runs: Runs) -> dict:
-    df = runs.episodes
     scenarios: dict[str, dict] = {}
-    if len(df):
-        ref = df[(df["red_team"] == "do_nothing") & df["group"].isna()]
-        for (scenario, blue), g in ref.groupby(["scenario", "blue_team"], sort=False):
-            e = mean_ci(g["blue_raw"])
-            entry = scenarios.setdefault(
-                scenario,
-                {
-                    "version": str(g["version"].iloc[0]),
-                    "episode_length": float(g["episode_length"].iloc[0]),
-                    "opponents": {},
-                },
-            )
-            entry["opponents"][blue] = {
-                "sigma_blue": e.mean,
-                "ci": None if math.isnan(e.ci) else e.ci,
-                "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None,
-                "n": e.n,
-            }
+    for scenario, blue, g in against_do_nothing(runs.episodes, "blue"):
+        e = mean_ci(g["blue_raw"])
+        entry = scenarios.setdefault(
+            scenario,
+            {
+                "version": str(g["version"].iloc[0]),
+                "episode_length": float(g["episode_length"].iloc[0]),
+                "opponents": {},
+            },
+        )
+        entry["opponents"][blue] = {
+            "sigma_blue": e.mean,
+            "ci": None if math.isnan(e.ci) else e.ci,
+            "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None,
+            "n": e.n,
+        }
     return {
         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         "sources": [str(r) for r in runs.runs],

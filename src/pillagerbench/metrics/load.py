@@ -2,7 +2,9 @@
 finished episodes, with what was skipped and why.
 
 An episode is used when its line is in episodes.jsonl, its status is ok and its timeline.json
-reaches the episode length. Everything else is listed in `skipped` (failed episodes, half-written
+reaches the episode length. An episode scored as upstream (scoring=upstream) is read as upstream's
+analysis read it: its score over time is upstream's samples (timeline_upstream.json, line i as
+second i). Everything else is listed in `skipped` (failed episodes, half-written
 episodes of a killed run, series that did not finish). Runs of different versions of a scenario
 (or different episode lengths) are refused: their scores do not compare.
 """
@@ -18,6 +20,10 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE
+
+# the scorings an episode can record (config key `scoring`; docs/fidelity.md): red_score/blue_score
+# are the run's own scoring, and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
+SCORINGS = ("clean", "upstream")
 
 
 class ReportError(ValueError):
@@ -166,7 +172,18 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
             end = timeline[-1]["t"] if timeline else None
             skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
             continue
+        if rec.get("scoring") == "upstream" and (ep / "timeline_upstream.json").exists():
+            # as upstream's analysis read it: line i of its rewards file stands for second i
+            lines = json.loads((ep / "timeline_upstream.json").read_text())
+            timeline = [{**p, "t": p["line"]} for p in lines]
         red_it = (rec.get("iterations") or {}).get("red") or []
+        scoring = rec.get("scoring") or "clean"  # runs before scoring modes were clean
+        by_mode = rec.get("scores") or {scoring: {"red": rec["red_score"], "blue": rec["blue_score"]}}
+        alternatives = {
+            f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
+            for mode in SCORINGS
+            for side in ("red", "blue")
+        }
         rows.append(
             {
                 "run": str(s.run),
@@ -190,6 +207,9 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
                 "scale": scale,
                 "red_score": float(rec["red_score"]) * scale,
                 "blue_score": float(rec["blue_score"]) * scale,
+                "scoring": scoring,
+                **alternatives,
+                "team_protocol": rec.get("protocol") or "pillagerbench",
                 "iterations": float(np.mean(red_it)) if red_it else np.nan,
                 "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
                 "t": np.array([p["t"] for p in timeline], dtype=float),

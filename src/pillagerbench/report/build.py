@@ -17,6 +17,7 @@ from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.load import ReportError, load_runs
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report import html, plots, tables
+from pillagerbench.report.fidelity import fidelity_sections
 
 
 def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None = None) -> dict:
@@ -28,6 +29,7 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     out.mkdir(parents=True, exist_ok=True)
     main = tables.main_episodes(df)
     symmetry, one_order = side_symmetry(main)
+    fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma)
     t = {
         "summary": (tables.summary(main, sigma, runs.ledger), "Summary per red team (all scenarios and opponents)"),
         "per_scenario": (tables.summary(main, sigma, runs.ledger, by_scenario=True), "Per red team and scenario"),
@@ -38,6 +40,11 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
         ),
         "learning_curve": (tables.learning_curve(main), "Points difference per episode index"),
         "side_symmetry": (symmetry, "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)"),
+        "fidelity": (
+            fidelity,
+            "Fidelity: built-in opponents against do_nothing beside upstream's reference (✓: within ±25 %)",
+        ),
+        "claims": (claims, "Fidelity: the paper's Benchmark Analysis claims on this round robin"),
         "calibration": (tables.calibration(sigma), "σ_blue used for the sabotage metric"),
         "skipped": (tables.skipped(runs.skipped), "Skipped"),
     }
@@ -73,15 +80,30 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
             f"{len(without_model)} team-episode(s) with problems (model or team server not answering ...), e.g. "
             f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}"
         )
+    notes += fidelity_notes
+    notes += modes(df)
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
     sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]
+    sections += [(t[k][1], "table", t[k][0]) for k in ("fidelity", "claims") if len(t[k][0])]
     sections += [(title, "image", path) for title, path in figures]
     sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "skipped")]
     page = out / "report.html"
     page.write_text(html.page("PillagerBench report", runs.runs, notes, sections))
     files.append(page)
     return {"files": files, "notes": notes, "skipped": runs.skipped, "episodes": len(df), "out": out}
+
+
+def modes(df) -> list[str]:
+    """One line per run: its scoring and the LLM teams' protocol (docs/fidelity.md)."""
+    if not len(df):
+        return []
+    out = []
+    for run, g in df.groupby("run", sort=False):
+        scoring = ", ".join(dict.fromkeys(g["scoring"]))
+        protocol = ", ".join(dict.fromkeys(g["team_protocol"]))
+        out.append(f"{run}: scoring {scoring}; LLM teams' protocol {protocol}")
+    return out
 
 
 def main(argv: list[str]) -> int:

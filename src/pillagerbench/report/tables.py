@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pillagerbench.metrics.calibration import opponent_groups
 from pillagerbench.metrics.formulas import Estimate, iterations, llm_metrics, mean_ci, over_opponents, pairing
 
 METRICS = ("P", "S", "D", "W")
@@ -62,14 +63,6 @@ def _row(estimates: dict[str, Estimate], n: int) -> dict:
     return row
 
 
-def _groups_by_opponent(df: pd.DataFrame, sigma: dict) -> list:
-    out = []
-    for (scenario, blue_team), g in df.groupby(["scenario", "blue_team"], sort=False):
-        s = sigma.get((scenario, blue_team))
-        out.append((g["red_score"].to_numpy(), g["blue_score"].to_numpy(), s.mean if s else None, s))
-    return out
-
-
 def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     rows = []
     for scenario in scenario_order(df):
@@ -92,7 +85,7 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
                     "scenario": scenario,
                     "red": red,
                     "blue": ALL,
-                    **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd)),
+                    **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
                 }
             )
     return pd.DataFrame(
@@ -113,7 +106,7 @@ def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool
         row = {
             "red": red,
             **({"scenario": scenario} if by_scenario else {}),
-            **_row(over_opponents(_groups_by_opponent(rd, sigma)), len(rd)),
+            **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
             "T_resp": llm["T_resp"],
             "N_out": llm["N_out"],
             "R_tps": llm["R_tps"],
@@ -149,7 +142,7 @@ def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
                                 "scenario": scenario,
                                 "group": group,
                                 "group_x": _group_x(gd, group),
-                                **_row(over_opponents(_groups_by_opponent(g, sigma)), len(g)),
+                                **_row(over_opponents(opponent_groups(g, sigma)), len(g)),
                             }
                         )
     return pd.DataFrame(

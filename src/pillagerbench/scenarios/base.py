@@ -51,6 +51,11 @@ class GameMaster(ABC):
     async def scores(self) -> dict[str, float]:
         """The current score of each side, by side key."""
 
+    async def upstream_scores(self, runs: dict[str, int]) -> dict[str, float]:
+        """The score as upstream's code computed it (scoring=upstream, docs/fidelity.md), given the
+        code runs each player has started so far this episode. Without quirks: `scores`."""
+        return await self.scores()
+
     async def say(self, message: str) -> None:
         self.log.append({"chat": message})
         await self.server.request("chat", message=message)

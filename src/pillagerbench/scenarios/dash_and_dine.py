@@ -8,6 +8,7 @@ lost): rows of ripe crops at the stated positions, y + 64.
 
 from __future__ import annotations
 
+import math
 import random
 from dataclasses import dataclass
 
@@ -248,6 +249,7 @@ class DashAndDineMaster(GameMaster):
     async def start(self) -> None:
         self.locked: dict[str, list[str]] = {key: [] for key in SERVERS}
         self.points: dict[str, float] = {key: 0.0 for key in SERVERS}
+        self.rounded: dict[str, float] = {key: 0.0 for key in SERVERS}  # upstream's sum of rounded scans
 
     async def step(self) -> None:
         for key, server_player in SERVERS.items():
@@ -272,7 +274,17 @@ class DashAndDineMaster(GameMaster):
                     gained += slot["count"] * REWARDS[item]
             if gained > 0:
                 self.points[key] += gained
+                self.rounded[key] += upstream_round(gained)
                 await self.say(f"Scored {gained:g} points for {key}_team")
 
     async def scores(self) -> dict[str, float]:
         return {key: round(v, 4) for key, v in self.points.items()}
+
+    async def upstream_scores(self, runs: dict[str, int]) -> dict[str, float]:
+        """Upstream's quirk: each scan's points were rounded before they were added."""
+        return dict(self.rounded)
+
+
+def upstream_round(x: float) -> float:
+    """JavaScript's Math.round (halves up), as upstream's server loop rounded each scan."""
+    return float(math.floor(x + 0.5))

@@ -148,17 +148,40 @@ class MushroomWarMaster(GameMaster):
         if respawn:
             await self.server.request("set_blocks", blocks=[[*p, "slime_block"] for p in respawn])
 
-    async def scores(self) -> dict[str, float]:
-        # every inventory asked at once: the server answers them in one turn, so neither side's
-        # holdings are read before the other's (a mushroom changing hands is counted once)
-        names = [n for side in self.scenario.sides for n in side.player_names]
+    async def held(self) -> dict[str, int]:
+        """Own-colour mushrooms each player holds. Every inventory is asked at once: the server answers
+        them in one turn, so neither side's holdings are read before the other's (a mushroom changing
+        hands is counted once)."""
+        names = {n: side.key for side in self.scenario.sides for n in side.player_names}
         replies = await asyncio.gather(
             *(self.server.request("inventory", player=n) for n in names), return_exceptions=True
         )
-        held = {n: [] if isinstance(r, BaseException) else r for n, r in zip(names, replies)}  # offline: nothing
         return {
-            side.key: float(
-                sum(s["count"] for n in side.player_names for s in held[n] if s["name"] == TEAMS[side.key]["item"])
-            )
+            n: 0 if isinstance(r, BaseException) else sum(s["count"] for s in r if s["name"] == TEAMS[key]["item"])
+            for (n, key), r in zip(names.items(), replies)
+        }  # offline: nothing
+
+    async def scores(self) -> dict[str, float]:
+        held = await self.held()
+        return {side.key: float(sum(held[n] for n in side.player_names)) for side in self.scenario.sides}
+
+    async def upstream_scores(self, runs: dict[str, int]) -> dict[str, float]:
+        """Upstream's quirk: each code run of a player started a counter that adds what it holds (from
+        0) and never stops, so a player counts what it holds once per run started (once at least:
+        upstream's do_nothing ran one step; at most UPSTREAM_MAX_STEPS times)."""
+        held = await self.held()
+        return {
+            side.key: float(sum(held[n] * upstream_multiplier(runs, n) for n in side.player_names))
             for side in self.scenario.sides
         }
+
+
+# upstream capped every team at 10 steps per player and episode (scripted, CoT and Random runners;
+# TactiCrafter's iteration cap in the paper's configs). Our teams may start more runs (Random runs
+# one action per run), so the multiplier is capped there.
+UPSTREAM_MAX_STEPS = 10
+
+
+def upstream_multiplier(runs: dict[str, int], player: str) -> int:
+    """How many of upstream's score counters a player had running: one per run started, 1 to 10."""
+    return min(UPSTREAM_MAX_STEPS, max(1, runs.get(player, 0)))

@@ -32,6 +32,13 @@ class TeamContext:
     last_episode: dict[str, Any] = field(default_factory=dict)  # what the match recorded last episode
     seed: int = 0
     llm: Any = None  # an LLM client for LLM teams (pillagerbench.llm)
+    # the LLM teams' loop (config `protocol`): "pillagerbench" (ours: reruns, re-asks) or "upstream"
+    # (the paper's: no rerun after the iteration cap or a failed answer, CoT's 10 steps, no re-asks)
+    protocol: str = "pillagerbench"
+
+    @property
+    def upstream_protocol(self) -> bool:
+        return self.protocol == "upstream"
 
     def time_left(self) -> float:
         return float("inf") if self.deadline is None else max(0.0, self.deadline - time.monotonic())

@@ -5,7 +5,9 @@ its program, started again whenever it ends or throws, until the whistle.
 
 An answer that cannot be used (no code, too few blocks, syntax errors, calls to primitives the
 scenario lacks, no entry point) is sent back to the LLM with the problems, up to `attempts` calls;
-after that, every player without a usable program does nothing this episode. Everything (prompt,
+after that, every player without a usable program does nothing this episode. With protocol=upstream
+(the paper's loop) the answer is never sent back and a program is started at most
+UPSTREAM_STEPS times, as upstream's 10 steps. Everything (prompt,
 answers, programs, problems, iterations) goes to `<team out_dir>/cot.json`.
 """
 
@@ -26,6 +28,7 @@ from pillagerbench.teams.base import Team, TeamContext
 
 PROMPTS = load_prompts(Path(__file__).parent)
 ROLE = "cot"
+UPSTREAM_STEPS = 10  # upstream ran a CoT player's program at most this many times per episode
 
 
 def task_text(ctx: TeamContext) -> str:
@@ -120,6 +123,7 @@ class ChainOfThought(Team):
             "episode": ctx.episode,
             "team": ctx.side.team_name,
             "players": players,
+            "protocol": ctx.protocol,
             "messages": messages,
             "attempts": [],
             "programs": {},
@@ -136,7 +140,8 @@ class ChainOfThought(Team):
                 kw["temperature"] = float(self.temperature)
             if self.max_tokens is not None:
                 kw["max_tokens"] = int(self.max_tokens)
-            for attempt in range(self.attempts):
+            attempts = 1 if ctx.upstream_protocol else self.attempts
+            for attempt in range(attempts):
                 t0 = time.monotonic()
                 try:
                     answer = await ctx.llm.complete(messages, role=ROLE, **kw)
@@ -163,7 +168,7 @@ class ChainOfThought(Team):
                     best = result
                 if result.complete:
                     break
-                if attempt + 1 < self.attempts:
+                if attempt + 1 < attempts:
                     messages = messages + [
                         {"role": "assistant", "content": answer.text},
                         {
@@ -205,6 +210,9 @@ class ChainOfThought(Team):
             await asyncio.sleep(ctx.time_left())
             return
         while ctx.time_left() > 0:
+            if ctx.upstream_protocol and self.iterations[k] >= UPSTREAM_STEPS:
+                await asyncio.sleep(ctx.time_left())  # upstream: no 11th step
+                return
             self.iterations[k] += 1
             started = time.monotonic()
             try:

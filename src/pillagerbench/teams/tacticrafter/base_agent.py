@@ -10,6 +10,9 @@ from the critique, until the iteration cap or the whistle.
   When a new answer has no usable code after its retries, or the LLM fails, the agent runs its
   last good code (or, if it has none, the code it has unless that failed at once). After
   `max_llm_failures` failed code requests in an episode the agent stops asking.
+- protocol=upstream (the paper's loop, TeamContext.protocol): no rerun after the cap (the player
+  idles), no fallback code when an answer is unusable or the LLM fails (the iteration passes without
+  a run and the agent asks again, as upstream's did), the action answer is never re-asked.
 - No LLM call starts unless the time left exceeds both `min_llm_time_s` and the role's expected
   latency; a call still running at the whistle is abandoned. BudgetExceeded stops every LLM call
   of the team for the rest of the episode.
@@ -222,7 +225,7 @@ class BaseAgent:
             self.action_messages(ctx),
             role=ACTION,
             parse=lambda a: parse_code(a.text, ctx.scenario.primitives),
-            attempts=self.team.attempts,
+            attempts=1 if ctx.upstream_protocol else self.team.attempts,
             deadline=ctx.deadline,
             retry=lambda p: PROMPTS["code_retry"].render(problem=p),
         )
@@ -257,9 +260,20 @@ class BaseAgent:
         t, player = self.team, ctx.players[self.name]
         program = self.program
         failures = 0
+        upstream = ctx.upstream_protocol
         while ctx.time_left() > 0:
-            if program is None:
+            if program is None and not upstream:
                 program = self.good
+            if program is None and upstream:  # an unusable answer: an iteration without a run, as upstream's
+                if t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, ACTION):
+                    self._idle(ctx)
+                    await asyncio.sleep(ctx.time_left())
+                    break
+                t.iterations[self.k] += 1
+                self.record["iterations"].append({"n": t.iterations[self.k], "counted": True, "no_code": True})
+                if t.iterations[self.k] < t.max_iterations:
+                    program = await self.write_code(ctx)
+                continue
             if program is None:  # nothing runnable: ask for code while that is possible
                 if failures < t.max_llm_failures and self.can_call(ctx, ACTION):
                     program = await self.write_code(ctx)
@@ -267,7 +281,7 @@ class BaseAgent:
                         failures += 1
                         await asyncio.sleep(min(t.restart_pause_s, ctx.time_left()))
                     continue
-                self.record["idle_from_s"] = round(ctx.episode_length - ctx.time_left(), 2)
+                self._idle(ctx)
                 await asyncio.sleep(ctx.time_left())
                 break
             counted = t.iterations[self.k] < t.max_iterations
@@ -308,6 +322,10 @@ class BaseAgent:
                 it["ended_by_whistle"] = True
                 break
             fallback = self.good or (None if failed_at_once else program)
+            if upstream and (t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, CRITIC)):
+                self._idle(ctx)  # upstream: no more steps after the cap (nor once no call can finish)
+                await asyncio.sleep(ctx.time_left())
+                break
             if (
                 not counted
                 or t.iterations[self.k] >= t.max_iterations
@@ -323,11 +341,14 @@ class BaseAgent:
             new = await self.write_code(ctx) if self.can_call(ctx, ACTION) else None
             if new is None:
                 failures += 1
-                program = fallback
+                program = None if upstream else fallback
                 if duration < t.restart_pause_s:
                     await asyncio.sleep(min(t.restart_pause_s - duration, max(0.0, ctx.time_left())))
             else:
                 program = new
+
+    def _idle(self, ctx) -> None:
+        self.record["idle_from_s"] = round(ctx.episode_length - ctx.time_left(), 2)
 
     def summary(self) -> dict[str, Any]:
         """What the team keeps of this agent (memory's code.json entry)."""

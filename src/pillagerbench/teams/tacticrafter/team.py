@@ -161,6 +161,7 @@ class TactiCrafter(Team):
             "episode": ctx.episode,
             "team": ctx.side.team_name,
             "players": players,
+            "protocol": ctx.protocol,
             "options": {
                 "iterations": self.max_iterations,
                 "causal": self.causal_enabled,

@@ -1,0 +1,55 @@
+"""`pillagerbench fidelity RUN_DIR... [--calibration FILE]`: the built-in opponents against
+do_nothing beside upstream's reference scores (±25 %), and the paper's Benchmark Analysis claims
+checked on a round robin (metrics/fidelity.py has the maths and the data)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+from pillagerbench.metrics import calibration as calib
+from pillagerbench.metrics.fidelity import claims_table, fidelity_table
+from pillagerbench.metrics.load import ReportError, Runs, load_runs
+from pillagerbench.report.tables import to_markdown
+
+
+def fidelity_sections(runs: Runs, sigma: dict) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
+    """The fidelity table, the claims table and one note per thing that could not be checked."""
+    table, notes = fidelity_table(runs.episodes)
+    claims, more = claims_table(runs.episodes, sigma)
+    return table, claims, notes + more
+
+
+def tally(frame: pd.DataFrame, column: str) -> str:
+    counts = frame[column].value_counts()
+    return ", ".join(f"{counts.get(mark, 0)} {mark}" for mark in ("✓", "✗", "–"))
+
+
+def main(argv: list[str]) -> int:
+    p = argparse.ArgumentParser(prog="pillagerbench fidelity", description=__doc__.split("\n\n")[0])
+    p.add_argument("runs", nargs="+", help="run directories (experiment=fidelity, calibration, round robins)")
+    p.add_argument("--calibration", default=None, help="a calibration.json for σ_blue (sabotage claims)")
+    a = p.parse_args(argv)
+    try:
+        runs = load_runs([Path(r) for r in a.runs])
+        sigma, _ = calib.resolve(runs, Path(a.calibration) if a.calibration else None)
+    except ReportError as exc:
+        print(f"pillagerbench fidelity: {exc}", file=sys.stderr)
+        return 2
+    table, claims, notes = fidelity_sections(runs, sigma)
+    for note in notes:
+        print(note)
+    if len(table):
+        print("\nBuilt-in opponents against do_nothing (Dash & Dine ×0.1; ± is the 95 % interval)\n")
+        print(to_markdown(table), end="")
+        print(f"{len(table)} row(s): {tally(table, 'within_25pct')} (within ±25 % of upstream's reference)")
+    if len(claims):
+        print("\nThe paper's Benchmark Analysis claims\n")
+        print(to_markdown(claims), end="")
+        print(f"{len(claims)} claim(s): {tally(claims, 'holds')}")
+    if len(runs.skipped):
+        print(f"{len(runs.skipped)} item(s) skipped (pillagerbench report lists them)")
+    return 0
