@@ -11,7 +11,7 @@ from __future__ import annotations
 import asyncio
 import random
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
@@ -67,6 +67,7 @@ class MushroomWar(Scenario):
     key = "mushroom_war"
     title = "Mushroom War"
     primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
+    random_tick_speed: ClassVar[int] = 3
 
     @property
     def sides(self) -> tuple[Side, ...]:
@@ -121,8 +122,11 @@ class MushroomWarMaster(GameMaster):
     period_s = 1.0
 
     async def start(self) -> None:
-        self.clean: dict[str, bool | None] = {key: None for key in TEAMS}
+        # as upstream's: both teams start "dirty" (their areas start with more slime than the cutoff), so the
+        # first announcement is a change; teams are named by index, red 0 and blue 1
+        self.clean: dict[str, bool] = {key: False for key in TEAMS}
         self.original_slime = [p for d in TEAMS.values() for p in slime(d)]
+        await self.say("starting cleanup scenario...")
 
     async def step(self) -> None:
         for key, d in TEAMS.items():
@@ -132,7 +136,8 @@ class MushroomWarMaster(GameMaster):
             clean = len(waste) <= WASTE_CUTOFF
             if clean != self.clean[key]:
                 self.clean[key] = clean
-                await self.say(f"Team {key} is clean!" if clean else f"Team {key} is too dirty!")
+                index = list(TEAMS).index(key)
+                await self.say(f"Team {index} is clean!" if clean else f"Team {index} is too dirty!")
             if clean:
                 present = {
                     tuple(b[:3])
