@@ -117,6 +117,8 @@ const OPS = {
     if (speed !== undefined) serv.pb.randomTickSpeed = speed
     return true
   },
+  // vanilla's growth speed f of the crop at `pos` (CropBlock.getGrowthSpeed; a growth step is 1 in floor(25 / f) + 1)
+  crop_growth_speed: async (serv, { pos }) => serv.pb.crops.growthSpeed(toBlockPos(pos)),
   summon: async (serv, { mob, pos }) => serv.pb.mobs.summon(mob, toPos(pos)),
   mobs: async (serv) => serv.pb.mobs.list(),
   items: async (serv) => Object.values(serv.entities).filter(e => e.type === 'object' && e.itemId && !e.collected)
