@@ -39,11 +39,11 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     await gm_sure.start()
     await gm_sure.step()
     assert {"chat": "Team 0 is clean!"} in gm_sure.log  # upstream's naming: red 0, blue 1
+    assert await blocks_named(server, "red_mushroom_block", RED["center"]) == set(red_caps)
+    assert len(await blocks_named(server, "slime_block", RED["center"])) == 7  # 0.05 > P_SLIME: no respawn
     await server.request("set_blocks", blocks=[[*p, "slime_block"] for p in slime(RED)])
     await gm_sure.step()
     assert gm_sure.log[-1] == {"chat": "Team 0 is too dirty!"}
-    assert await blocks_named(server, "red_mushroom_block", RED["center"]) == set(red_caps)
-    assert len(await blocks_named(server, "slime_block", RED["center"])) == 7  # 0.05 > P_SLIME: no respawn
 
 
 async def test_slime_respawns_at_its_original_positions(server):
