@@ -20,13 +20,17 @@ EPISODE_S = 60  # potato_cookie serves its first cookies after about 30 s on an 
 
 
 async def one_episode(scenario_key: str, red: str, blue: str, run_dir, length: float = EPISODE_S):
-    sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
+    sc = make_scenario(scenario_key)  # Dash & Dine's crops grow by vanilla random ticks at speed 200
     teams = {"red": make_team(red, sc.key), "blue": make_team(blue, sc.key)}
     async with ArenaServer(log_path=run_dir / "server.log") as server:
         match = Match(server, sc, teams, run_dir, episode_length=length, seed=1)
         try:
             await match.setup()
-            return await match.play_episode(0)
+            rec = await match.play_episode(0)
+            modes = {p["name"]: p["gamemode"] for p in await server.request("players")}
+            # Dash & Dine's servers are creative (unkillable), every team player survival
+            assert modes == {p.name: 1 if p.gamemode == "creative" else 0 for p in sc.all_players()}
+            return rec
         finally:
             await match.close()
 
