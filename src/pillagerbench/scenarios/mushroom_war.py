@@ -99,13 +99,13 @@ class MushroomWar(Scenario):
                 f"the blue team is {' and '.join(b.player_names)}.",
                 f"The red team's area is centred at ({vec(r.center)}), the blue team's at ({vec(b.center)}). "
                 f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
-                f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas start "
-                f"polluted with slime blocks ({len(slime(RED))} in each).",
+                f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas are "
+                "polluted with slime blocks.",
                 f"The red area holds {len(RED['mushrooms'])} giant mushrooms made of {len(caps(RED)) // len(RED['mushrooms'])} "
                 f"red_mushroom_block each; the blue area holds the same made of brown_mushroom_block.",
                 "Mining a mushroom block gives 0 to 2 mushrooms, most often none.",
                 f"Mined mushroom blocks grow back only while the team's area contains {WASTE_CUTOFF} slime blocks "
-                "or fewer. Removed slime blocks come back after a while.",
+                "or fewer. Removed slime blocks quickly come back.",
                 "The game lasts an unknown amount of time.",
                 "The red team scores 1 point for every red_mushroom its players hold; the blue team 1 point for every "
                 "brown_mushroom its players hold. Items given away or dropped no longer count. The team with the most "
