@@ -181,8 +181,8 @@ async def dug_and_harvested(arena, alice, script):
 async def test_sweet_berry_bush_gives_1_to_2_at_age_2_and_2_to_3_at_age_3(arena, bots, area):
     alice, _ = bots
     await arena.request("seed", seed=11)
-    young = [area.at(x, 4, 1) for x in range(0, 7)] + [area.at(x, 4, 5) for x in range(0, 7)]
-    ripe = [area.at(x, 4, 3) for x in range(0, 7)]
+    young = [area.at(x, 4, 1) for x in range(7)] + [area.at(x, 4, 5) for x in range(7)]
+    ripe = [area.at(x, 4, 3) for x in range(7)]
     await arena.request(
         "set_blocks",
         blocks=[[*p, "sweet_berry_bush", {"age": 2}] for p in young] + [[*p, "sweet_berry_bush", {"age": 3}] for p in ripe],
