@@ -174,9 +174,7 @@ class Match:
         rec.player_order = await self.server.request("player_order", names=self.player_order(rec.episode))
         t0 = time.monotonic()
         await sc.arena.build(self.server)
-        await self.server.request(
-            "crop_growth", chance=sc.crop_growth_chance, random_tick_speed=sc.random_tick_speed
-        )
+        await self.server.request("crop_growth", chance=sc.crop_growth_chance, random_tick_speed=sc.random_tick_speed)
         observations = dict(
             zip(
                 [p.name for p in sc.all_players()],

@@ -173,7 +173,9 @@ async def dug_and_harvested(arena, alice, script):
     try:
         await alice.eval(script)
         await asyncio.sleep(0.5)
-        return [e for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] in ("block_dug", "berries_harvested")]
+        return [
+            e for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] in ("block_dug", "berries_harvested")
+        ]
     finally:
         arena.control.unsubscribe(q)
 
@@ -185,11 +187,13 @@ async def test_sweet_berry_bush_gives_1_to_2_at_age_2_and_2_to_3_at_age_3(arena,
     ripe = [area.at(x, 4, 3) for x in range(7)]
     await arena.request(
         "set_blocks",
-        blocks=[[*p, "sweet_berry_bush", {"age": 2}] for p in young] + [[*p, "sweet_berry_bush", {"age": 3}] for p in ripe],
+        blocks=[[*p, "sweet_berry_bush", {"age": 2}] for p in young]
+        + [[*p, "sweet_berry_bush", {"age": 3}] for p in ripe],
     )
     await area.put(alice, 3, 2)
     clicks = "".join(
-        "await bot.activateBlock(bot.blockAt(new Vec3(%d, %d, %d))); await sleep(60);\n" % tuple(p) for p in young + ripe
+        "await bot.activateBlock(bot.blockAt(new Vec3(%d, %d, %d))); await sleep(60);\n" % tuple(p)
+        for p in young + ripe
     )
     events = await dug_and_harvested(arena, alice, clicks)
     got = {tuple(e["pos"]): e["count"] for e in events if e["event"] == "berries_harvested"}
@@ -272,9 +276,7 @@ async def test_growth_speed_of_a_crop_is_vanillas(arena, area):
 async def test_sugar_cane_is_planted_only_beside_water(arena, bots, area):
     alice, _ = bots
     wet, dry = area.at(2, 3, 2), area.at(6, 3, 2)
-    await arena.request(
-        "set_blocks", blocks=[[*wet, "sand"], [wet[0], 3, 1, "water"], [*dry, "sand"]]
-    )
+    await arena.request("set_blocks", blocks=[[*wet, "sand"], [wet[0], 3, 1, "water"], [*dry, "sand"]])
     await area.put(alice, 4, 3, {"sugar_cane": 2})
     await alice.eval(
         "".join(

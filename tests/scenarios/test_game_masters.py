@@ -106,7 +106,12 @@ async def test_dash_and_dine_world_as_the_reference(server):
     assert {p.gamemode for s in sc.sides for p in s.players} == {"survival"}
     # per-farm yields, the random tick speed, 14 chickens and the reference's food rows, no added hints
     text = sc.description()
-    for fact in ("random tick speed is 200", "14 chickens", "about 160 sweet berries per minute", "poisonous_potato",
-                 "- sugar_cane: farmed: 0"):
+    for fact in (
+        "random tick speed is 200",
+        "14 chickens",
+        "about 160 sweet berries per minute",
+        "poisonous_potato",
+        "- sugar_cane: farmed: 0",
+    ):
         assert fact in text
     assert "whoever" not in text and "empties" not in text

@@ -149,14 +149,18 @@ def build_arena() -> Arena:
         blocks += [(x, GROUND_Y, z, "sand"), (x, GROUND_Y, z - 1, "water")]
         blocks += [(x, y, z, "sugar_cane") for y in range(Y, Y + 3)]
     # sweet berry bushes, ripe, on dirt
-    blocks += [(x, GROUND_Y, z, "dirt") for x, z in BERRIES] + [(x, Y, z, "sweet_berry_bush", {"age": 3}) for x, z in BERRIES]
+    blocks += [(x, GROUND_Y, z, "dirt") for x, z in BERRIES] + [
+        (x, Y, z, "sweet_berry_bush", {"age": 3}) for x, z in BERRIES
+    ]
     # cocoa: jungle logs 2 high with ripe pods on their south side
     blocks += [(*p, "jungle_log") for p in COCOA_LOGS]
     blocks += [(*p, "cocoa", {"age": 2, "facing": "north"}) for p in COCOA_PODS]
     # melons and pumpkins: moist farmland 5 x 5; each stem has grown its fruit on the outer side
     blocks += [(x, GROUND_Y, z, "farmland", MOIST) for x, z in rect(-17, -13, -3, 1)]
-    for cells, fruit, stem, dx, facing in ((MELONS, "melon", "attached_melon_stem", -1, "west"),
-                                           (PUMPKINS, "pumpkin", "attached_pumpkin_stem", 1, "east")):
+    for cells, fruit, stem, dx, facing in (
+        (MELONS, "melon", "attached_melon_stem", -1, "west"),
+        (PUMPKINS, "pumpkin", "attached_pumpkin_stem", 1, "east"),
+    ):
         blocks += [(x, Y, z, stem, {"facing": facing}) for x, z in cells] + [(x + dx, Y, z, fruit) for x, z in cells]
     blocks += crop_field(BEETROOTS, "beetroots", 3)
     blocks += crop_field(CARROTS, "carrots", 7)
@@ -183,7 +187,11 @@ POINTS_OF_INTEREST = [
     ("furnace", "3 furnaces, each loaded with 64 coal", FURNACES[1]),
     ("bowl_chest", "chest with 64 bowls", BOWL_CHEST),
     ("bucket_chest", "chest with 16 buckets, and one cow next to it", BUCKET_CHEST),
-    ("egg_chest", f"chest that an egg farm of {CHICKENS} chickens fills with eggs (about 2 eggs per minute)", EGG_CHEST),
+    (
+        "egg_chest",
+        f"chest that an egg farm of {CHICKENS} chickens fills with eggs (about 2 eggs per minute)",
+        EGG_CHEST,
+    ),
     ("tool_chest", "2 crafting tables and a chest with 64 gold nuggets and a netherite hoe", TOOL_CHEST),
     ("sugar_cane_farm", "3-wide sugar cane farm (about 11 sugar cane per minute)", (-11, Y, -8)),
     ("berry_farm", "3-wide sweet berry farm (about 160 sweet berries per minute)", (-11, Y, 6)),

@@ -154,7 +154,12 @@ def opponent_chat(
     speakers = opponent_speakers(scenario, opponent)
     # the game master names a side as upstream's did: "Team 1 is clean!", "... for team_blue"
     index = [s.key for s in scenario.sides].index(opponent.key)
-    about = (opponent.team_name.lower(), f"team {opponent.key.lower()}", f"team_{opponent.key.lower()}", f"team {index} ")
+    about = (
+        opponent.team_name.lower(),
+        f"team {opponent.key.lower()}",
+        f"team_{opponent.key.lower()}",
+        f"team {index} ",
+    )
     heard = longest_chat(digests)
     if world_chat and len(world_chat) > len(heard):
         heard = list(world_chat)
