@@ -288,3 +288,19 @@ async def test_sugar_cane_is_planted_only_beside_water(arena, bots, area):
     )
     assert (await block(arena, [wet[0], 4, wet[2]]))["name"] == "sugar_cane"
     assert (await block(arena, [dry[0], 4, dry[2]]))["name"] == "air"
+
+
+async def test_breaking_the_second_cane_block_pops_the_third(arena, bots, area):
+    # vanilla: sugar cane without cane or soil under it breaks and drops, so harvesting a column at
+    # ground + 2 (upstream's harvestSugarCane) gives two canes
+    alice, _ = bots
+    col = [area.at(3, y, 3) for y in (4, 5, 6)]
+    await arena.request(
+        "set_blocks",
+        blocks=[[*area.at(3, 3, 3), "sand"], [*area.at(3, 3, 2), "water"]] + [[*p, "sugar_cane"] for p in col],
+    )
+    await area.put(alice, 1, 3)
+    await alice.eval(DIG % (*col[1], *col[1]))
+    assert (await block(arena, col[2]))["name"] == "air"
+    assert (await block(arena, col[0]))["name"] == "sugar_cane"
+    assert await held_or_on_ground(arena, "alice", "sugar_cane") == 2

@@ -15,6 +15,7 @@ const BLOCK_DROPS = {
   grass_block: [{ item: 'dirt', count: [1, 1] }],
   farmland: [{ item: 'dirt', count: [1, 1] }],
   melon: [{ item: 'melon_slice', count: [3, 7] }],
+  sugar_cane: [{ item: 'sugar_cane', count: [1, 1] }],
   wheat: { ripe: [{ item: 'wheat', count: [1, 1] }, { item: 'wheat_seeds', count: [1, 1], bonus: BONUS }], young: [{ item: 'wheat_seeds', count: [1, 1] }] },
   carrots: { ripe: [{ item: 'carrot', count: [2, 2], bonus: BONUS }], young: [{ item: 'carrot', count: [1, 1] }] },
   potatoes: {

@@ -126,9 +126,26 @@ module.exports.server = function (serv, settings) {
     serv.pb.crops.track(above)
   }
 
-  // A fruit broken next to its stem: the stem lets go at once (vanilla's neighbour update).
+  // A plant whose block below is gone breaks and drops (vanilla's canSurvive on a neighbour update):
+  // sugar cane above a broken cane block (so harvesting the second block of a column also gives the
+  // third), a crop on broken farmland.
+  async function popUnsupported (world, pos) {
+    for (let at = pos.offset(0, 1, 0); ; at = at.offset(0, 1, 0)) {
+      const b = await world.getBlock(at)
+      if (!GROWTH[b.name] || GROWTH[b.name].attachedTo || b.name === 'cocoa') return
+      const drops = serv.pb.dropsFor(b) || []
+      await serv.setBlock(world, at, 0)
+      serv.pb.spawnDrops(world, at, drops)
+      serv.emit('control_event', { event: 'block_popped', pos: [at.x, at.y, at.z], block: b.name, drops: drops.map(d => [reg.items[d.id].name, d.count]) })
+      if (b.name !== 'sugar_cane') return
+    }
+  }
+
   serv.on('control_event', (e) => {
-    if (e.event !== 'block_dug' || (e.block !== 'melon' && e.block !== 'pumpkin')) return
+    if (e.event !== 'block_dug') return
+    popUnsupported(serv.overworld, new Vec3(...e.pos)).catch(err => serv.emit('pluginError', err, 'unsupported plants'))
+    // a fruit broken next to its stem: the stem lets go at once (vanilla's neighbour update)
+    if (e.block !== 'melon' && e.block !== 'pumpkin') return
     const p = new Vec3(...e.pos)
     for (const [dx, dz] of Object.values(FACING)) {
       const at = p.offset(dx, 0, dz)
