@@ -86,6 +86,7 @@ async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
         assert set(first_two) < {"bread", "beef", "cake"}
         expected = 2 * REWARDS["potato"] + sum({"bread": 1, "beef": 2, "cake": 1}[i] * REWARDS[i] for i in first_two)
         assert abs(gm.points["red"] - expected) < 1e-9
+        assert gm.log[0] == {"chat": "starting dining scenario..."}
         assert any("Locked-in potato as a submission item for team_red" == e.get("chat") for e in gm.log)
         # raw beef scores (upstream's keys never matched it)
         await server.request("set_inventory", player="Blue_Server", items={"beef": 1})

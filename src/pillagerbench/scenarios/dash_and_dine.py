@@ -275,6 +275,7 @@ class DashAndDineMaster(GameMaster):
     async def start(self) -> None:
         self.locked: dict[str, list[str]] = {key: [] for key in SERVERS}
         self.points: dict[str, float] = {key: 0.0 for key in SERVERS}
+        await self.say("starting dining scenario...")  # as upstream's servers
 
     async def step(self) -> None:
         for key, server_player in SERVERS.items():
