@@ -204,7 +204,7 @@ class Match:
         rec.player_order = await self.server.request("player_order", names=self.player_order(rec.episode))
         t0 = time.monotonic()
         await sc.arena.build(self.server)
-        await self.server.request("crop_growth", chance=sc.crop_growth_chance)
+        await self.server.request("crop_growth", chance=sc.crop_growth_chance, random_tick_speed=sc.random_tick_speed)
         observations = dict(
             zip(
                 [p.name for p in sc.all_players()],
@@ -213,6 +213,8 @@ class Match:
                 ),
             )
         )
+        for p in sc.all_players():
+            await self.server.request("gamemode", player=p.name, mode=p.gamemode)
         rec.reset_s = round(time.monotonic() - t0, 3)
 
         contexts = {}

@@ -235,3 +235,101 @@ async def test_harvest_berries_and_destroy_crop(server, area, make_player):
     assert bush["name"] == "sweet_berry_bush" and int(bush["properties"]["age"]) == 1  # picked, the bush stays
     for x in (4, 5):
         assert (await server.request("get_block", pos=area.at(x, 4, 3)))["name"] == "air"
+
+
+async def test_berries_are_planted_on_farmland_and_dirt_never_on_grass(server, area, make_player):
+    # upstream's plantSweetBerryBushes searches farmland and dirt: the lawn around stays a lawn
+    await area.blocks((3, 3, 0, "dirt"), (5, 3, 0, "farmland"))
+    p = await make_player(area, 0, 0, {"sweet_berries": 10})
+    events = await p.run("await plantSweetBerryBushes(bot)")
+    assert errors(events) == []
+    assert "All available land has been planted with sweet_berries." in chats_by(events, p.name)
+    assert await count(server, p.name, "sweet_berries") == 8
+    for x in (3, 5):
+        assert (await server.request("get_block", pos=area.at(x, 4, 0)))["name"] == "sweet_berry_bush"
+    bushes = await server.request("find_blocks", names=["sweet_berry_bush"], center=area.at(0, 4, 0), radius=32)
+    assert len(bushes) == 2
+
+
+async def test_sugar_cane_is_planted_on_sand_beside_water_not_on_grass(server, area, make_player):
+    await area.blocks((3, 3, 0, "sand"), (3, 3, -1, "water"), (6, 3, 0, "sand"))
+    p = await make_player(area, 0, 2, {"sugar_cane": 10})
+    events = await p.run("await plantSugarCane(bot)")
+    assert errors(events) == []
+    assert (await server.request("get_block", pos=area.at(3, 4, 0)))["name"] == "sugar_cane"
+    assert (await server.request("get_block", pos=area.at(6, 4, 0)))["name"] == "air"  # no water beside it
+    canes = await server.request("find_blocks", names=["sugar_cane"], center=area.at(0, 4, 0), radius=32)
+    assert len(canes) == 1
+
+
+async def test_craft_item_without_a_table_throws_as_upstream(server, area, make_player):
+    p = await make_player(area, 0, 0, {"wheat": 3, "milk_bucket": 3, "sugar": 2, "egg": 1, "sugar_cane": 1})
+    events = await p.run("await craftItem(bot, 'sugar', 1)\nawait craftItem(bot, 'cake', 1)")
+    said = chats_by(events, p.name)
+    assert "Craft without a crafting table" in said and "I did the recipe for sugar 1 times" in said
+    assert errors(events) and "No crafting table nearby" in errors(events)[0]
+    assert await count(server, p.name, "cake") == 0
+
+
+async def test_no_fail_counter_where_upstream_had_none(server, area, make_player):
+    # upstream's placeItem (item missing), smeltItem (no item, no furnace), tillLand and milkCow count no
+    # failures: twelve in a row go on without an error
+    p = await make_player(area, 0, 0)
+    events = await p.run(
+        "for (let i = 0; i < 12; i++) {\n"
+        "  await placeItem(bot, 'slime_block', bot.entity.position.offset(2, 0, 0))\n"
+        "  await smeltItem(bot, 'potato', 'coal', 1)\n"
+        "  await tillLand(bot)\n"
+        "  await milkCow(bot)\n"
+        "  await bot.waitForTicks(25)\n"  # 4 chats a loop: under the 25 chats per 100 ticks limit
+        "}\nreturn 'done'"
+    )
+    assert errors(events) == []
+    said = chats_by(events, p.name)
+    assert said.count("No slime_block in inventory") == 12
+    assert said.count("No hoe in inventory.") == 12
+    assert said.count("No cow nearby, please explore first") == 12
+
+
+async def test_mine_block_goes_to_the_target_nearest_to_the_bot_each_time(server, area, make_player):
+    # searched around a point near the far end, the three blocks are found far-first; upstream's
+    # collectblock (and ours) digs the one nearest to the bot each time: near, middle, far
+    xs = (2, 6, 10)
+    await area.blocks(*[(x, 4, 0, "slime_block") for x in xs])
+    p = await make_player(area, 0, 0)
+    q = server.control.subscribe()
+    try:
+        events = await p.run(f"await mineBlock(bot, 'slime_block', 3, new Vec3({area.x0 + 9}, 4, 0), 12)")
+        await asyncio.sleep(0.3)
+        dug = [e["pos"][0] - area.x0 for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "block_dug"]
+    finally:
+        server.control.unsubscribe(q)
+    assert errors(events) == []
+    assert dug == list(xs)
+
+
+async def test_harvest_goes_to_the_crop_nearest_to_the_bot_each_time(server, area, make_player):
+    xs = (2, 6, 10)
+    await area.blocks(*[(x, 3, 0, "farmland") for x in xs], *[(x, 4, 0, "wheat", {"age": 7}) for x in xs])
+    p = await make_player(area, 0, 0)
+    q = server.control.subscribe()
+    try:
+        events = await p.run(f"await harvestWheat(bot, new Vec3({area.x0 + 10}, 4, 0))")
+        await asyncio.sleep(0.3)
+        dug = [e["pos"][0] - area.x0 for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "block_dug"]
+    finally:
+        server.control.unsubscribe(q)
+    assert errors(events) == []
+    assert dug == list(xs)
+
+
+async def test_wait_signal_calls_its_task_with_bot_and_chats_when_it_happens(server, area, make_player):
+    p = await make_player(area, 0, 0)
+    events = await p.run(
+        "let given = null\n"
+        "const got = await waitSignal(bot, async (b) => { given = b; await bot.waitForTicks(30); bot.chat('task done') }, 300)\n"
+        "bot.chat(got === false && given === bot ? 'task had bot' : 'task had ' + typeof given)"
+    )
+    assert errors(events) == []
+    # the timeout is announced when it happens, before the longer task ends
+    assert chats_by(events, p.name) == ["[waiting signal]", "[signal timeout]", "task done", "task had bot"]

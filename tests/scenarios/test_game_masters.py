@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.scenarios.dash_and_dine import REWARDS, upstream_round
+from pillagerbench.scenarios.dash_and_dine import EGG_CHEST, REWARDS, upstream_round
 from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime, upstream_multiplier
 from tests.scenarios.conftest import Always
 from tests.support.bots import TestBot
@@ -22,10 +22,12 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     await server.request("set_blocks", blocks=[[*p, "air"] for p in red_caps[:5]])
     gm = sc.game_master(server, Always(0.0))  # every chance happens
     await gm.start()
-    # 15 slime blocks in the red area: too dirty, nothing regrows (slime respawn is a no-op: all present)
+    # 15 slime blocks in the red area: too dirty, nothing regrows (slime respawn is a no-op: all present);
+    # as upstream's, the game master starts with both teams dirty, so it says nothing about it
     await gm.step()
     assert len(await blocks_named(server, "red_mushroom_block", RED["center"])) == 10
-    assert {"chat": "Team red is too dirty!"} in gm.log
+    assert gm.log[0] == {"chat": "starting cleanup scenario..."}
+    assert not any("dirty" in e.get("chat", "") or "clean!" in e.get("chat", "") for e in gm.log)
     # clean 8 of them: 7 left, the area counts as clean and every missing cap regrows
     gm_clean = sc.game_master(server, Always(0.99))  # no slime comes back while we check
     await gm_clean.start()
@@ -36,9 +38,12 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     gm_sure = sc.game_master(server, Always(0.05))  # below P_REGROW (0.1), above P_SLIME (0.02)
     await gm_sure.start()
     await gm_sure.step()
-    assert {"chat": "Team red is clean!"} in gm_sure.log
+    assert {"chat": "Team 0 is clean!"} in gm_sure.log  # upstream's naming: red 0, blue 1
     assert await blocks_named(server, "red_mushroom_block", RED["center"]) == set(red_caps)
     assert len(await blocks_named(server, "slime_block", RED["center"])) == 7  # 0.05 > P_SLIME: no respawn
+    await server.request("set_blocks", blocks=[[*p, "slime_block"] for p in slime(RED)])
+    await gm_sure.step()
+    assert gm_sure.log[-1] == {"chat": "Team 0 is too dirty!"}
 
 
 async def test_slime_respawns_at_its_original_positions(server):
@@ -81,7 +86,8 @@ async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
         assert set(first_two) < {"bread", "beef", "cake"}
         expected = 2 * REWARDS["potato"] + sum({"bread": 1, "beef": 2, "cake": 1}[i] * REWARDS[i] for i in first_two)
         assert abs(gm.points["red"] - expected) < 1e-9
-        assert any("Locked-in potato as a submission item for red_team" == e.get("chat") for e in gm.log)
+        assert gm.log[0] == {"chat": "starting dining scenario..."}
+        assert any("Locked-in potato as a submission item for team_red" == e.get("chat") for e in gm.log)
         # raw beef scores (upstream's keys never matched it)
         await server.request("set_inventory", player="Blue_Server", items={"beef": 1})
         await gm.step()
@@ -128,3 +134,26 @@ def test_upstream_rounding_is_javascripts_halves_up():
 def test_upstream_counts_a_player_once_to_ten_times():
     runs = {"Ryn": 0, "Raze": 4, "Byte": 25}
     assert [upstream_multiplier(runs, n) for n in ("Ryn", "Raze", "Byte", "Blink")] == [1, 4, 10, 1]
+
+
+async def test_dash_and_dine_world_as_the_reference(server):
+    """14 chickens laying into an egg chest that starts empty, one cow, creative (unkillable) servers."""
+    sc = make_scenario("dash_and_dine")
+    await sc.arena.build(server)
+    mobs = await server.request("mobs")
+    assert sum(m["name"] == "chicken" for m in mobs) == 14
+    assert sum(m["name"] == "cow" for m in mobs) == 1
+    assert await server.request("get_chest", pos=list(EGG_CHEST)) == {}
+    assert all(p.gamemode == "creative" for p in sc.extra_players)
+    assert {p.gamemode for s in sc.sides for p in s.players} == {"survival"}
+    # per-farm yields, the random tick speed, 14 chickens and the reference's food rows, no added hints
+    text = sc.description()
+    for fact in (
+        "random tick speed is 200",
+        "14 chickens",
+        "about 160 sweet berries per minute",
+        "poisonous_potato",
+        "- sugar_cane: farmed: 0",
+    ):
+        assert fact in text
+    assert "whoever" not in text and "empties" not in text

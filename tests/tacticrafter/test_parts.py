@@ -142,8 +142,10 @@ def test_digests_feed_the_causal_and_opponent_prompts():
     ryn = [
         chat("<Ryn> Harvested 4 wheat", wheat=4),
         chat("<Byte> Harvested 3 potato"),
-        chat("Locked-in baked_potato as a submission item for blue_team"),
-        chat("Scored 6 points for red_team"),
+        chat("Locked-in baked_potato as a submission item for team_blue"),
+        chat("Scored 6 points for team_red"),
+        chat("Team 1 is clean!"),  # the game masters name sides as upstream's: team_blue, Team 1
+        chat("Team 0 is too dirty!"),
         chat("<Blue_Server> thanks"),
         chat("<Raze> Milked cow"),
         observe(wheat=4),
@@ -158,7 +160,8 @@ def test_digests_feed_the_causal_and_opponent_prompts():
     opp = opponent_chat(digests, sc, sc.side("blue"))
     assert opp.splitlines() == [
         "<Byte> Harvested 3 potato",
-        "Locked-in baked_potato as a submission item for blue_team",
+        "Locked-in baked_potato as a submission item for team_blue",
+        "Team 1 is clean!",
         "<Blue_Server> thanks",
     ]
 

@@ -35,7 +35,7 @@ class Arena:
     chests: dict[Pos, dict[str, int]] = field(default_factory=dict)
     furnaces: dict[Pos, dict[str, Any]] = field(default_factory=dict)
     mobs: Sequence[tuple[str, tuple[float, float, float]]] = field(default_factory=list)
-    egg_farms: list[tuple[Pos, float]] = field(default_factory=list)  # (chest, seconds per egg)
+    egg_farms: list[tuple[Pos, float]] = field(default_factory=list)  # (chest, a chicken lays every s..2s s)
 
     def block_names(self) -> dict[Pos, str]:
         return {tuple(b[:3]): b[3] for b in self.blocks}

@@ -15,6 +15,7 @@ from pillagerbench.scenarios.arena import Arena
 class PlayerSpec:
     name: str
     spawn: tuple[float, float, float]  # block coordinates; players stand at the block's centre
+    gamemode: str = "survival"  # Dash & Dine's servers are creative (unkillable), as upstream's
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,9 @@ class Scenario(ABC):
     title: ClassVar[str]
     primitives: ClassVar[tuple[str, ...]]
     version: ClassVar[str] = "1"
+    # 0: crops grow by vanilla's random ticks at `random_tick_speed`; > 0: a fixed chance per crop per second
     crop_growth_chance: float = 0.0
+    random_tick_speed: ClassVar[int] = 0  # vanilla's gamerule randomTickSpeed in the reference's world
     options: dict[str, Any] = field(default_factory=dict)
 
     @property

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass
+from typing import ClassVar
 
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
@@ -64,28 +65,33 @@ REWARDS = {
     "tropical_fish": 1.2,
 }
 
-# The food list shown to LLMs: item, how to get it.
+# The food list shown to LLMs (reference §4.2): item, how to get it.
 FOODS = [
     ("baked_potato", "smelt a potato in a furnace"),
     ("beef", "dropped by a cow"),
     ("beetroot", "farmed"),
     ("beetroot_soup", "craft 6 beetroot + 1 bowl"),
     ("bread", "craft 3 wheat"),
-    ("cake", "craft 3 milk_bucket + 2 sugar + 1 egg + 3 wheat (the buckets come back)"),
+    ("cake", "craft 3 milk_bucket + 2 sugar + 3 wheat + 1 egg"),
     ("carrot", "farmed"),
     ("chicken", "dropped by a chicken"),
     ("cooked_beef", "smelt beef"),
     ("cooked_chicken", "smelt chicken"),
-    ("cookie", "craft 2 wheat + 1 cocoa_beans (makes 8)"),
+    ("cookie", "craft 2 wheat + 1 cocoa_beans"),
     ("golden_carrot", "craft 8 gold_nugget + 1 carrot"),
-    ("melon_slice", "farmed (break a melon)"),
+    ("melon_slice", "farmed"),
+    ("poisonous_potato", "sometimes comes with harvested potatoes"),
     ("potato", "farmed"),
     ("pumpkin_pie", "craft 1 pumpkin + 1 sugar + 1 egg"),
-    ("sweet_berries", "farmed (right-click a ripe bush)"),
-    ("sugar", "craft 1 sugar_cane (not food, worth 0)"),
+    ("sugar", "craft 1 sugar_cane"),
+    ("sugar_cane", "farmed"),
+    ("sweet_berries", "farmed"),
 ]
 
-SERVERS = {"red": PlayerSpec("Red_Server", (-1, Y, -9)), "blue": PlayerSpec("Blue_Server", (-1, Y, 7))}
+SERVERS = {
+    "red": PlayerSpec("Red_Server", (-1, Y, -9), gamemode="creative"),
+    "blue": PlayerSpec("Blue_Server", (-1, Y, 7), gamemode="creative"),
+}
 PLAYERS = {"red": [("Ryn", (-5, Y, -10)), ("Raze", (-5, Y, -8))], "blue": [("Byte", (-5, Y, 6)), ("Blink", (-5, Y, 8))]}
 
 # Points of interest: (description, reference position, builder). Builders add to an Arena.
@@ -96,13 +102,33 @@ EGG_CHEST = (-7, Y, 5)
 TOOL_CHEST = (-11, Y + 1, -1)
 
 
-def row(x0: int, width: int, z: int, depth: int = 2):
-    return [(x, z + dz) for x in range(x0, x0 + width) for dz in range(depth)]
+def rect(x0: int, x1: int, z0: int, z1: int) -> list[tuple[int, int]]:
+    return [(x, z) for x in range(x0, x1 + 1) for z in range(z0, z1 + 1)]
 
 
-def crop_field(x0, width, z, crop, age):
-    cells = row(x0, width, z)
-    return [(x, GROUND_Y, zz, "farmland") for x, zz in cells] + [(x, Y, zz, crop, {"age": age}) for x, zz in cells]
+# Farmland of the built farms is moist (moisture 7), as beside water; our farmland does not dry out.
+MOIST = {"moisture": 7}
+
+
+def crop_field(cells, crop, age):
+    return [(x, GROUND_Y, z, "farmland", MOIST) for x, z in cells] + [(x, Y, z, crop, {"age": age}) for x, z in cells]
+
+
+# Farm sizes and shapes are not in the reference (its region files are lost); each is the smallest
+# shape that fits the farm's stated width and gives the farm's stated yield per minute under vanilla
+# growth at randomTickSpeed 200 (docs/fidelity.md, "World and rules against the reference").
+SUGAR_CANE = rect(-12, -10, -8, -8)  # 3 columns: 11.0 cane/min (stated ~11)
+BERRIES = rect(-12, -10, 5, 7)  # 9 bushes: 158 berries/min (stated ~160)
+COCOA_LOGS = [(x, y, z) for x in range(-16, -13) for z in (-9, -8) for y in (Y, Y + 1)]  # 12 jungle logs
+COCOA_PODS = [(x, Y, -7) for x in range(-16, -13)]  # 3 ripe pods: 52.7 beans/min (stated ~54)
+MELONS = [(-16, z) for z in range(-3, 2)]  # 5 melon stems and 5 pumpkin stems, a fruit column between
+PUMPKINS = [(-14, z) for z in range(-3, 2)]  # them and one outside each: 98 fruit/min (stated ~125)
+BEETROOTS = rect(-16, -14, 5, 7)  # 3 x 3: 15.4 beetroot/min (stated ~13)
+CARROTS = rect(-20, -18, -9, -7)  # 3 x 3: 36.8 carrots/min (stated ~35)
+WHEAT = rect(-20, -18, -3, 1)  # 3 x 5: 17.5 wheat/min (stated ~17)
+POTATOES = rect(-20, -18, 5, 7)  # 3 x 3: 36.8 potatoes/min (stated ~35)
+CHICKENS = 14  # the saved world's entity file; vanilla laying (300-600 s each) gives 1.9 eggs/min (stated ~2)
+EGG_LAY_S = 300.0
 
 
 def build_arena() -> Arena:
@@ -119,62 +145,63 @@ def build_arena() -> Arena:
         (-12, Y, -1, "crafting_table"),
         (-10, Y, -1, "crafting_table"),
     ]
-    # sugar cane: 3 wide, 3 high, on sand beside water
-    for x in range(-12, -9):
-        blocks += [(x, GROUND_Y, -8, "sand"), (x, GROUND_Y, -9, "water")] + [
-            (x, y, -8, "sugar_cane") for y in range(Y, Y + 3)
-        ]
-    blocks += [(x, Y, zz, "sweet_berry_bush", {"age": 3}) for x, zz in row(-12, 3, 6)]
-    # cocoa: 2-high jungle logs with ripe pods on both sides
-    for x in range(-16, -13):
-        for y in (Y, Y + 1):
-            blocks += [
-                (x, y, -8, "jungle_log"),
-                (x, y, -9, "cocoa", {"age": 2, "facing": "south"}),
-                (x, y, -7, "cocoa", {"age": 2, "facing": "north"}),
-            ]
-    # melons and pumpkins: 5 stems on farmland, fruit grown beside them
-    for i, x in enumerate(range(-17, -12)):
-        fruit, stem, facing, dz = (
-            ("melon", "attached_melon_stem", "north", -1)
-            if i % 2 == 0
-            else ("pumpkin", "attached_pumpkin_stem", "south", 1)
-        )
-        blocks += [(x, GROUND_Y, -1, "farmland"), (x, Y, -1, stem, {"facing": facing}), (x, Y, -1 + dz, fruit)]
-    blocks += crop_field(-16, 3, 6, "beetroots", 3)
-    blocks += crop_field(-20, 3, -8, "carrots", 7)
-    blocks += crop_field(-21, 5, -1, "wheat", 7)
-    blocks += crop_field(-20, 3, 6, "potatoes", 7)
+    # sugar cane: 3 high, on sand beside water
+    for x, z in SUGAR_CANE:
+        blocks += [(x, GROUND_Y, z, "sand"), (x, GROUND_Y, z - 1, "water")]
+        blocks += [(x, y, z, "sugar_cane") for y in range(Y, Y + 3)]
+    # sweet berry bushes, ripe, on dirt
+    blocks += [(x, GROUND_Y, z, "dirt") for x, z in BERRIES] + [
+        (x, Y, z, "sweet_berry_bush", {"age": 3}) for x, z in BERRIES
+    ]
+    # cocoa: jungle logs 2 high with ripe pods on their south side
+    blocks += [(*p, "jungle_log") for p in COCOA_LOGS]
+    blocks += [(*p, "cocoa", {"age": 2, "facing": "north"}) for p in COCOA_PODS]
+    # melons and pumpkins: moist farmland 5 x 5; each stem has grown its fruit on the outer side
+    blocks += [(x, GROUND_Y, z, "farmland", MOIST) for x, z in rect(-17, -13, -3, 1)]
+    for cells, fruit, stem, dx, facing in (
+        (MELONS, "melon", "attached_melon_stem", -1, "west"),
+        (PUMPKINS, "pumpkin", "attached_pumpkin_stem", 1, "east"),
+    ):
+        blocks += [(x, Y, z, stem, {"facing": facing}) for x, z in cells] + [(x + dx, Y, z, fruit) for x, z in cells]
+    blocks += crop_field(BEETROOTS, "beetroots", 3)
+    blocks += crop_field(CARROTS, "carrots", 7)
+    blocks += crop_field(WHEAT, "wheat", 7)
+    blocks += crop_field(POTATOES, "potatoes", 7)
     return Arena(
         box=((-26, 1, -16), (6, Y + 8, 14)),
         blocks=blocks,
         chests={
             BOWL_CHEST: {"bowl": 64},
             BUCKET_CHEST: {"bucket": 16},
-            EGG_CHEST: {"egg": 16},  # eggs laid before the game
+            EGG_CHEST: {},  # only what the chickens lay during the game
             TOOL_CHEST: {"gold_nugget": 64, "netherite_hoe": 1},
         },
         furnaces={p: {"fuel": ["coal", 64]} for p in FURNACES},
-        mobs=[("cow", (-6.5, Y, -8.5))] + [("chicken", (-6.5, Y, 6.5))] * 4,
-        egg_farms=[(EGG_CHEST, 30.0)],
+        mobs=[("cow", (-6.5, Y, -8.5))] + [("chicken", (-6.5, Y, 6.5))] * CHICKENS,
+        egg_farms=[(EGG_CHEST, EGG_LAY_S)],
     )
 
 
-# Points of interest: placeholder name for scripts, text for LLMs, reference position.
+# Points of interest: placeholder name for scripts, text for LLMs (with the yields upstream's
+# description stated), reference position.
 POINTS_OF_INTEREST = [
-    ("furnace", "3 furnaces, each pre-loaded with 64 coal", FURNACES[1]),
+    ("furnace", "3 furnaces, each loaded with 64 coal", FURNACES[1]),
     ("bowl_chest", "chest with 64 bowls", BOWL_CHEST),
-    ("bucket_chest", "chest with 16 buckets, a cow next to it", BUCKET_CHEST),
-    ("egg_chest", "chest filled with eggs by an egg farm of chickens", EGG_CHEST),
+    ("bucket_chest", "chest with 16 buckets, and one cow next to it", BUCKET_CHEST),
+    (
+        "egg_chest",
+        f"chest that an egg farm of {CHICKENS} chickens fills with eggs (about 2 eggs per minute)",
+        EGG_CHEST,
+    ),
     ("tool_chest", "2 crafting tables and a chest with 64 gold nuggets and a netherite hoe", TOOL_CHEST),
-    ("sugar_cane_farm", "3-wide sugar cane farm", (-11, Y, -8)),
-    ("berry_farm", "3-wide sweet berry farm", (-11, Y, 6)),
-    ("cocoa_farm", "2-high cocoa bean farm on jungle logs", (-15, Y, -8)),
-    ("melon_pumpkin_farm", "5-wide melon and pumpkin farm", (-15, Y, -1)),
-    ("beetroot_farm", "3-wide beetroot farm", (-15, Y, 6)),
-    ("carrot_farm", "3-wide carrot farm", (-19, Y, -8)),
-    ("wheat_farm", "5-wide wheat farm", (-19, Y, -1)),
-    ("potato_farm", "3-wide potato farm", (-19, Y, 6)),
+    ("sugar_cane_farm", "3-wide sugar cane farm (about 11 sugar cane per minute)", (-11, Y, -8)),
+    ("berry_farm", "3-wide sweet berry farm (about 160 sweet berries per minute)", (-11, Y, 6)),
+    ("cocoa_farm", "2-high cocoa bean farm (about 54 cocoa beans per minute)", (-15, Y, -8)),
+    ("melon_pumpkin_farm", "5-wide melon and pumpkin farm (about 125 melons and pumpkins per minute)", (-15, Y, -1)),
+    ("beetroot_farm", "3-wide beetroot farm (about 13 beetroots per minute)", (-15, Y, 6)),
+    ("carrot_farm", "3-wide carrot farm (about 35 carrots per minute)", (-19, Y, -8)),
+    ("wheat_farm", "5-wide wheat farm (about 17 wheat per minute)", (-19, Y, -1)),
+    ("potato_farm", "3-wide potato farm (about 35 potatoes per minute)", (-19, Y, 6)),
 ]
 
 
@@ -193,7 +220,7 @@ class DashAndDine(Scenario):
         "giveToPlayer",
         "useChest",
     )
-    crop_growth_chance: float = 0.3
+    random_tick_speed: ClassVar[int] = 200
 
     @property
     def sides(self) -> tuple[Side, ...]:
@@ -222,16 +249,16 @@ class DashAndDine(Scenario):
         lines = [
             f"Dash and Dine: two teams of two compete. The red team is {' and '.join(r.player_names)}; "
             f"the blue team is {' and '.join(b.player_names)}.",
-            "Make food and give it to your team's server, a player, to earn points: "
-            f"the red team's server is {SERVERS['red'].name} at ({vec(SERVERS['red'].spawn)}), the blue team's is "
+            "Your team earns points by making food and giving it to your team's server, which is a player.",
+            f"A server takes only {LOCK_IN_TYPES} different food types, but any amount of each of them.",
+            f"The red team's server is {SERVERS['red'].name} at ({vec(SERVERS['red'].spawn)}); the blue team's is "
             f"{SERVERS['blue'].name} at ({vec(SERVERS['blue'].spawn)}).",
-            f"Only {LOCK_IN_TYPES} different food types count for a team: the first {LOCK_IN_TYPES} types its server "
-            "receives are locked in, whoever gives them; any amount of a locked-in type scores. A server empties "
-            f"its inventory every {SERVER_PERIOD_S:g} s; anything else it received is lost.",
             f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
-            "Points are the hunger and saturation a food restores (table below). The farms are shared by both "
-            "teams and crops grow back quickly. The game lasts an unknown amount of time: aim for the most points "
-            "in the long run. The team with the most points wins. Sabotage is allowed.",
+            "A food is worth the hunger and saturation it restores (table below).",
+            "Both teams share the farms. The random tick speed is "
+            f"{self.random_tick_speed}, so crops grow back very quickly.",
+            "The game lasts an unknown amount of time: aim for the most points in the long run. "
+            "The team with the most points wins. Sabotage is allowed.",
             "Points of interest:",
             *[f"- {text}: ({vec(p)})" for _, text, p in POINTS_OF_INTEREST],
             "Food (how to get it: points):",
@@ -250,6 +277,7 @@ class DashAndDineMaster(GameMaster):
         self.locked: dict[str, list[str]] = {key: [] for key in SERVERS}
         self.points: dict[str, float] = {key: 0.0 for key in SERVERS}
         self.rounded: dict[str, float] = {key: 0.0 for key in SERVERS}  # upstream's sum of rounded scans
+        await self.say("starting dining scenario...")  # as upstream's servers
 
     async def step(self) -> None:
         for key, server_player in SERVERS.items():
@@ -269,13 +297,13 @@ class DashAndDineMaster(GameMaster):
                 locked = self.locked[key]
                 if item not in locked and len(locked) < LOCK_IN_TYPES:
                     locked.append(item)
-                    await self.say(f"Locked-in {item} as a submission item for {key}_team")
+                    await self.say(f"Locked-in {item} as a submission item for team_{key}")
                 if item in locked:
                     gained += slot["count"] * REWARDS[item]
             if gained > 0:
                 self.points[key] += gained
                 self.rounded[key] += upstream_round(gained)
-                await self.say(f"Scored {gained:g} points for {key}_team")
+                await self.say(f"Scored {gained:g} points for team_{key}")
 
     async def scores(self) -> dict[str, float]:
         return {key: round(v, 4) for key, v in self.points.items()}

@@ -11,7 +11,7 @@ from __future__ import annotations
 import asyncio
 import random
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
@@ -67,6 +67,7 @@ class MushroomWar(Scenario):
     key = "mushroom_war"
     title = "Mushroom War"
     primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
+    random_tick_speed: ClassVar[int] = 3
 
     @property
     def sides(self) -> tuple[Side, ...]:
@@ -98,13 +99,13 @@ class MushroomWar(Scenario):
                 f"the blue team is {' and '.join(b.player_names)}.",
                 f"The red team's area is centred at ({vec(r.center)}), the blue team's at ({vec(b.center)}). "
                 f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
-                f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas start "
-                f"polluted with slime blocks ({len(slime(RED))} in each).",
+                f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas are "
+                "polluted with slime blocks.",
                 f"The red area holds {len(RED['mushrooms'])} giant mushrooms made of {len(caps(RED)) // len(RED['mushrooms'])} "
                 f"red_mushroom_block each; the blue area holds the same made of brown_mushroom_block.",
                 "Mining a mushroom block gives 0 to 2 mushrooms, most often none.",
                 f"Mined mushroom blocks grow back only while the team's area contains {WASTE_CUTOFF} slime blocks "
-                "or fewer. Removed slime blocks come back after a while.",
+                "or fewer. Removed slime blocks quickly come back.",
                 "The game lasts an unknown amount of time.",
                 "The red team scores 1 point for every red_mushroom its players hold; the blue team 1 point for every "
                 "brown_mushroom its players hold. Items given away or dropped no longer count. The team with the most "
@@ -121,8 +122,11 @@ class MushroomWarMaster(GameMaster):
     period_s = 1.0
 
     async def start(self) -> None:
-        self.clean: dict[str, bool | None] = {key: None for key in TEAMS}
+        # as upstream's: both teams start "dirty" (their areas start with more slime than the cutoff), so the
+        # first announcement is a change; teams are named by index, red 0 and blue 1
+        self.clean: dict[str, bool] = {key: False for key in TEAMS}
         self.original_slime = [p for d in TEAMS.values() for p in slime(d)]
+        await self.say("starting cleanup scenario...")
 
     async def step(self) -> None:
         for key, d in TEAMS.items():
@@ -132,7 +136,8 @@ class MushroomWarMaster(GameMaster):
             clean = len(waste) <= WASTE_CUTOFF
             if clean != self.clean[key]:
                 self.clean[key] = clean
-                await self.say(f"Team {key} is clean!" if clean else f"Team {key} is too dirty!")
+                index = list(TEAMS).index(key)
+                await self.say(f"Team {index} is clean!" if clean else f"Team {index} is too dirty!")
             if clean:
                 present = {
                     tuple(b[:3])

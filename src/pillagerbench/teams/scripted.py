@@ -1,6 +1,6 @@
 """Built-in opponents: one JavaScript script per player, on the control primitives, with the
 scenario's data substituted for `$placeholders`. Each player runs its script until the whistle; a
-script that throws or ends is started again (at most `max_restarts` times, as upstream's 10 steps).
+script that throws or ends is started again (at most `max_runs` = 10 runs in all, as upstream's 10 steps).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ class ScriptedTeam(Team):
 
     scripts: ClassVar[tuple[str, ...]] = ()
     parts: ClassVar[tuple[tuple[str, ...], ...]] = ()
-    max_restarts: ClassVar[int] = 10
+    max_runs: ClassVar[int] = 10  # upstream's runner: at most 10 steps per player
 
     def code_for(self, ctx: TeamContext, index: int) -> str:
         folder = SCRIPTS / ctx.scenario.key
@@ -43,7 +43,7 @@ class ScriptedTeam(Team):
     async def _keep_running(self, ctx: TeamContext, index: int, player) -> None:
         code = self.code_for(ctx, index)
         runs = 0
-        while ctx.time_left() > 0 and runs <= self.max_restarts:
+        while ctx.time_left() > 0 and runs < self.max_runs:
             runs += 1
             events = await player.run(code)  # the match stops it at the whistle
             if ctx.time_left() > 0 and ev.errors(events):

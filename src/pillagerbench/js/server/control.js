@@ -108,11 +108,17 @@ const OPS = {
     serv.setTickInterval(tps); serv.pb.tps = tps
     return true
   },
-  crop_growth: async (serv, { chance }) => {
+  // random_tick_speed: vanilla's gamerule randomTickSpeed (crops grow by vanilla's rules, plugins/crops.js);
+  // chance > 0 instead grows every crop one step per second with that chance (tests)
+  crop_growth: async (serv, { chance = 0, random_tick_speed: speed }) => {
     if (!(chance >= 0 && chance <= 1)) throw new ControlError(`chance must be within 0..1, got ${JSON.stringify(chance)}`)
+    if (speed !== undefined && !(Number.isInteger(speed) && speed >= 0 && speed <= 4096)) throw new ControlError(`random_tick_speed must be an integer 0..4096, got ${JSON.stringify(speed)}`)
     serv.pb.cropGrowthChance = chance
+    if (speed !== undefined) serv.pb.randomTickSpeed = speed
     return true
   },
+  // vanilla's growth speed f of the crop at `pos` (CropBlock.getGrowthSpeed; a growth step is 1 in floor(25 / f) + 1)
+  crop_growth_speed: async (serv, { pos }) => serv.pb.crops.growthSpeed(toBlockPos(pos)),
   summon: async (serv, { mob, pos }) => serv.pb.mobs.summon(mob, toPos(pos)),
   mobs: async (serv) => serv.pb.mobs.list(),
   items: async (serv) => Object.values(serv.entities).filter(e => e.type === 'object' && e.itemId && !e.collected)

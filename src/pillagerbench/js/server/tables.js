@@ -1,8 +1,13 @@
 'use strict'
 // The rules of our Minecraft, as data. Plugins read these tables; nothing here runs.
 
-// Block drops. count: [min, max] uniform (values below 0 clamp to 0, as vanilla's mushroom blocks:
-// uniform -6..2 gives 0 with p=7/9, mean 1/3). `ripe` = the same with age at max; `young` otherwise.
+// Block drops (vanilla 1.16/1.19 loot tables). count: [min, max] uniform (values below 0 clamp to 0, as
+// vanilla's mushroom blocks: uniform -6..2 gives 0 with p=7/9, mean 1/3); bonus: [n, p] adds a
+// binomial(n, p) to the count (loot function binomial_with_bonus_count: extra 3, p 0.5714286);
+// chance: the drop happens with this probability. `ripe` = at the crop's maximum age (tables.GROWTH),
+// `young` otherwise; sweet berry bushes list a rule per age (SweetBerryBushBlock.use: 1-2 berries
+// at age 2, one more at age 3).
+const BONUS = [3, 0.5714286]
 const BLOCK_DROPS = {
   red_mushroom_block: [{ item: 'red_mushroom', count: [-6, 2] }],
   brown_mushroom_block: [{ item: 'brown_mushroom', count: [-6, 2] }],
@@ -10,30 +15,45 @@ const BLOCK_DROPS = {
   grass_block: [{ item: 'dirt', count: [1, 1] }],
   farmland: [{ item: 'dirt', count: [1, 1] }],
   melon: [{ item: 'melon_slice', count: [3, 7] }],
-  wheat: { ripe: [{ item: 'wheat', count: [1, 1] }, { item: 'wheat_seeds', count: [0, 3] }], young: [{ item: 'wheat_seeds', count: [1, 1] }] },
-  carrots: { ripe: [{ item: 'carrot', count: [1, 4] }], young: [{ item: 'carrot', count: [1, 1] }] },
-  potatoes: { ripe: [{ item: 'potato', count: [1, 4] }], young: [{ item: 'potato', count: [1, 1] }] },
-  beetroots: { ripe: [{ item: 'beetroot', count: [1, 1] }, { item: 'beetroot_seeds', count: [1, 3] }], young: [{ item: 'beetroot_seeds', count: [1, 1] }] },
-  cocoa: { ripe: [{ item: 'cocoa_beans', count: [2, 3] }], young: [{ item: 'cocoa_beans', count: [1, 1] }] },
-  sweet_berry_bush: { ripe: [{ item: 'sweet_berries', count: [2, 3] }], young: [] },
+  sugar_cane: [{ item: 'sugar_cane', count: [1, 1] }],
+  wheat: { ripe: [{ item: 'wheat', count: [1, 1] }, { item: 'wheat_seeds', count: [1, 1], bonus: BONUS }], young: [{ item: 'wheat_seeds', count: [1, 1] }] },
+  carrots: { ripe: [{ item: 'carrot', count: [2, 2], bonus: BONUS }], young: [{ item: 'carrot', count: [1, 1] }] },
+  potatoes: {
+    ripe: [{ item: 'potato', count: [2, 2], bonus: BONUS }, { item: 'poisonous_potato', count: [1, 1], chance: 0.02 }],
+    young: [{ item: 'potato', count: [1, 1] }]
+  },
+  beetroots: { ripe: [{ item: 'beetroot', count: [1, 1] }, { item: 'beetroot_seeds', count: [1, 1], bonus: BONUS }], young: [{ item: 'beetroot_seeds', count: [1, 1] }] },
+  cocoa: { ripe: [{ item: 'cocoa_beans', count: [3, 3] }], young: [{ item: 'cocoa_beans', count: [1, 1] }] },
+  sweet_berry_bush: { byAge: { 2: [{ item: 'sweet_berries', count: [1, 2] }], 3: [{ item: 'sweet_berries', count: [2, 3] }] }, young: [] },
   melon_stem: [{ item: 'melon_seeds', count: [0, 1] }],
   pumpkin_stem: [{ item: 'pumpkin_seeds', count: [0, 1] }],
   attached_melon_stem: [{ item: 'melon_seeds', count: [0, 1] }],
   attached_pumpkin_stem: [{ item: 'pumpkin_seeds', count: [0, 1] }]
 }
 
-// Crops that grow by random ticks: property and maximum.
+// Crop growth by vanilla random ticks (plugins/crops.js). Each tick a section of 16x16x16 blocks gets
+// `randomTickSpeed` random ticks at uniformly drawn positions, so a block gets randomTickSpeed / 4096
+// random ticks per game tick. On its random tick a crop grows one step with its `chance`:
+// 'crop' = CropBlock's 1 / (floor(25 / f) + 1), f its growth speed from the farmland around it
+// (CropBlock.getGrowthSpeed); 'beetroot' = that, on 2 of 3 random ticks (BeetrootBlock.randomTick);
+// a number = a fixed chance (CocoaBlock and SweetBerryBushBlock: 1 in 5; sugar cane: every tick, a new
+// block after 16 of them, SugarCaneBlock). A ripe stem (age 7) tries, with the 'crop' chance, to grow
+// its fruit on a random side (StemBlock.randomTick). A block with `attachedTo` is an attached stem: it
+// turns back into a ripe stem as soon as its fruit is gone (AttachedStemBlock.updateShape).
 const GROWTH = {
-  wheat: { prop: 'age', max: 7 },
-  carrots: { prop: 'age', max: 7 },
-  potatoes: { prop: 'age', max: 7 },
-  beetroots: { prop: 'age', max: 3 },
-  cocoa: { prop: 'age', max: 2 },
-  sweet_berry_bush: { prop: 'age', max: 3 },
-  melon_stem: { prop: 'age', max: 7, fruit: 'melon', attached: 'attached_melon_stem' },
-  pumpkin_stem: { prop: 'age', max: 7, fruit: 'pumpkin', attached: 'attached_pumpkin_stem' },
-  sugar_cane: { prop: 'age', max: 3, column: 3 } // grows a block after 4 growth steps (vanilla: 16 random ticks)
+  wheat: { prop: 'age', max: 7, chance: 'crop' },
+  carrots: { prop: 'age', max: 7, chance: 'crop' },
+  potatoes: { prop: 'age', max: 7, chance: 'crop' },
+  beetroots: { prop: 'age', max: 3, chance: 'beetroot' },
+  cocoa: { prop: 'age', max: 2, chance: 0.2 },
+  sweet_berry_bush: { prop: 'age', max: 3, chance: 0.2 },
+  melon_stem: { prop: 'age', max: 7, chance: 'crop', fruit: 'melon', attached: 'attached_melon_stem' },
+  pumpkin_stem: { prop: 'age', max: 7, chance: 'crop', fruit: 'pumpkin', attached: 'attached_pumpkin_stem' },
+  attached_melon_stem: { attachedTo: 'melon', stem: 'melon_stem' },
+  attached_pumpkin_stem: { attachedTo: 'pumpkin', stem: 'pumpkin_stem' },
+  sugar_cane: { prop: 'age', max: 15, chance: 1, column: 3 }
 }
+const SECTION_BLOCKS = 4096
 
 // Planting: item -> block it becomes and what it must stand on (or hang on, for cocoa).
 const PLANTING = {
@@ -44,7 +64,8 @@ const PLANTING = {
   melon_seeds: { block: 'melon_stem', soil: ['farmland'] },
   pumpkin_seeds: { block: 'pumpkin_stem', soil: ['farmland'] },
   sweet_berries: { block: 'sweet_berry_bush', soil: ['grass_block', 'dirt', 'coarse_dirt', 'podzol', 'farmland'] },
-  sugar_cane: { block: 'sugar_cane', soil: ['grass_block', 'dirt', 'sand', 'sugar_cane'] },
+  // on sugar cane, or on soil with water beside it (SugarCaneBlock.canSurvive)
+  sugar_cane: { block: 'sugar_cane', soil: ['grass_block', 'dirt', 'coarse_dirt', 'podzol', 'sand', 'red_sand', 'sugar_cane'], water: ['grass_block', 'dirt', 'coarse_dirt', 'podzol', 'sand', 'red_sand'] },
   cocoa_beans: { block: 'cocoa', side: ['jungle_log', 'jungle_wood'] }
 }
 const FRUIT_SOIL = ['farmland', 'dirt', 'grass_block', 'coarse_dirt', 'podzol']
@@ -185,6 +206,6 @@ const ATTACK_SPEED = {
 }
 
 module.exports = {
-  PICKUP, BLOCK_DROPS, GROWTH, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
+  PICKUP, BLOCK_DROPS, GROWTH, SECTION_BLOCKS, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
   FUEL_LEFTOVER, CRAFT_LEFTOVER, MOBS, ATTACK_DAMAGE, REACH, DIG, MOVEMENT, SUPPORTING, REPLACEABLE, ATTACK_SPEED
 }

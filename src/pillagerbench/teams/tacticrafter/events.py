@@ -152,7 +152,14 @@ def opponent_chat(
     server logged it (`world_chat`, the match's chat log) when our players heard less (their bots
     only hear chat while they run code)."""
     speakers = opponent_speakers(scenario, opponent)
-    about = (opponent.team_name.lower(), f"team {opponent.key.lower()}")
+    # the game master names a side as upstream's did: "Team 1 is clean!", "... for team_blue"
+    index = [s.key for s in scenario.sides].index(opponent.key)
+    about = (
+        opponent.team_name.lower(),
+        f"team {opponent.key.lower()}",
+        f"team_{opponent.key.lower()}",
+        f"team {index} ",
+    )
     heard = longest_chat(digests)
     if world_chat and len(world_chat) > len(heard):
         heard = list(world_chat)

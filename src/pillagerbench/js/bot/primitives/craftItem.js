@@ -48,19 +48,14 @@ module.exports = {
         } catch (err) {
           if (h.isStop(err) || !run.active) throw err
           ctx.chat(`I cannot do the recipe for ${name} ${count} times`)
-          run.fail('craftItem', TOO_MANY)
         }
         return
       }
-      const all = bot.recipesAll(item.id, null, table || true)
+      // as upstream's: without a table only the 2x2 recipes count, and none means 'No crafting table nearby'
+      const all = bot.recipesAll(item.id, null, table)
       if (all.length === 0) {
         if (!table && bot.recipesAll(item.id, null, true).length > 0) throw new Error('No crafting table nearby')
         throw new Error(`There is no recipe for ${name}`)
-      }
-      if (!table && bot.recipesAll(item.id, null, null).length === 0) {
-        ctx.chat(`I cannot make ${name} without a crafting table`)
-        run.fail('craftItem', TOO_MANY)
-        return
       }
       const { missing } = missingFor(all)
       ctx.chat(`I cannot make ${name} because I need: ${missing.map(([n, k]) => `${k} more ${n}`).join(', ')}`)

@@ -28,7 +28,7 @@ module.exports = {
 
     async function tillLand (_bot, lands = ['dirt']) {
       const hoe = h.items().find(i => i.name.endsWith('_hoe'))
-      if (!hoe) { ctx.chat('No hoe in inventory.'); run.fail('farm', TOO_MANY); return }
+      if (!hoe) { ctx.chat('No hoe in inventory.'); return }
       const ids = lands.map(blockId) // ids, not a function: findBlocks can then skip whole chunk sections
       const targets = h.scanBlocks(bot.entity.position, ids)
         .filter(p => isAir(bot.blockAt(p.offset(0, 1, 0)))).slice(0, MAX_BLOCKS)
@@ -69,7 +69,8 @@ module.exports = {
     }
 
     const plant = (crop, lands, dirs) => (_bot) => plantCrop(_bot, crop, lands, dirs)
-    const plantSweetBerryBushes = plant('sweet_berries', ['farmland', 'dirt', 'grass_block'], [UP])
+    // the soils upstream's wrappers search (the server would also take grass, as vanilla does)
+    const plantSweetBerryBushes = plant('sweet_berries', ['farmland', 'dirt'], [UP])
     const plantWheatSeeds = plant('wheat_seeds', ['farmland'], [UP])
     const plantPotatoes = plant('potato', ['farmland'], [UP])
     const plantCarrots = plant('carrot', ['farmland'], [UP])
@@ -77,7 +78,7 @@ module.exports = {
     const plantMelonSeeds = plant('melon_seeds', ['farmland'], [UP])
     const plantPumpkinSeeds = plant('pumpkin_seeds', ['farmland'], [UP])
     const plantCocoaBeans = plant('cocoa_beans', ['jungle_log'], SIDES)
-    const plantSugarCane = plant('sugar_cane', ['dirt', 'sand', 'grass_block'], [UP])
+    const plantSugarCane = plant('sugar_cane', ['dirt', 'sand'], [UP])
 
     async function harvest (_bot, pos, crop, goalNear = true, activateBlock = false, matching = () => true) {
       checkString(crop, 'crop for harvest')
@@ -85,6 +86,7 @@ module.exports = {
       const center = pos ? h.toVec3(pos, 'position for harvest') : bot.entity.position
       const targets = bot.findBlocks({ matching: id, maxDistance: 25, count: 1000, point: center })
         .filter(p => matching(bot.blockAt(p))).slice(0, 20)
+      // as upstream's collectblock: always the remaining target nearest to the bot next
       if (targets.length === 0) {
         ctx.chat(`No ${crop} nearby`)
         run.fail('farm', TOO_MANY)
@@ -92,7 +94,7 @@ module.exports = {
       }
       ctx.chat(`Harvesting ${crop}`)
       let n = 0
-      for (const p of targets) {
+      for (const p of h.nearestFirst(targets)) {
         const b = bot.blockAt(p)
         if (!b || b.type !== id || !matching(b)) continue
         if (goalNear) {
@@ -135,15 +137,15 @@ module.exports = {
 
     async function milkCow (_bot) {
       const cow = bot.nearestEntity(e => e.name === 'cow' && !ctx.observer.dead.has(e.id) && e.position.distanceTo(bot.entity.position) < 48)
-      if (!cow) { ctx.chat('No cow nearby, please explore first'); run.fail('farm', TOO_MANY); return false }
-      if (!h.findItem('bucket')) { ctx.chat('No bucket in inventory.'); run.fail('farm', TOO_MANY); return false }
+      if (!cow) { ctx.chat('No cow nearby, please explore first'); return false }
+      if (!h.findItem('bucket')) { ctx.chat('No bucket in inventory.'); return false }
       if (bot.entity.position.distanceTo(cow.position) > 3) await h.goto(new goals.GoalFollow(cow, 2))
       if (!await equipBucket(_bot)) return false
       const before = h.itemCount('milk_bucket')
       await run.race(bot.lookAt(cow.position.offset(0, 1, 0), true))
       bot.useOn(cow)
       for (let i = 0; i < 20 && h.itemCount('milk_bucket') <= before; i++) await h.waitTicks(1)
-      if (h.itemCount('milk_bucket') <= before) { ctx.chat('Failed to milk cow'); run.fail('farm', TOO_MANY); return false }
+      if (h.itemCount('milk_bucket') <= before) { ctx.chat('Failed to milk cow'); return false }
       ctx.chat('Milked cow')
       return true
     }

@@ -26,7 +26,7 @@ module.exports = {
         return
       }
       let mined = 0
-      for (const pos of targets) {
+      for (const pos of h.nearestFirst(targets)) { // nearest to the bot each time, as upstream's collectblock
         const target = bot.blockAt(pos)
         if (!target || target.type !== block.id) continue
         if (bot.entity.position.distanceTo(pos.offset(0.5, 0.5, 0.5)) > 4) {

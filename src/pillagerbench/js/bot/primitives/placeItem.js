@@ -28,7 +28,6 @@ module.exports = {
       const item = h.findItem(name)
       if (!item) {
         ctx.chat(`No ${name} in inventory`)
-        run.fail('placeItem', TOO_MANY)
         return
       }
       const before = h.itemCount(name)

@@ -32,20 +32,17 @@ module.exports = {
       const have = h.itemCount(itemName)
       if (have === 0) {
         ctx.chat(`No ${itemName} in inventory`)
-        run.fail('smeltItem', TOO_MANY)
         return
       }
       count = Math.min(Math.floor(count), have)
       const furnaces = bot.findBlocks({ matching: mcData.blocksByName.furnace.id, maxDistance: 32, count: 16 })
       if (furnaces.length === 0) {
         ctx.chat('No furnace nearby')
-        run.fail('smeltItem', TOO_MANY)
         return
       }
       const furnace = await openFree(furnaces)
       if (!furnace) {
         ctx.chat('No available furnace')
-        run.fail('smeltItem', TOO_MANY)
         return
       }
       run.cleanups.push(() => { try { furnace.close() } catch (_) {} })

@@ -17,10 +17,17 @@ module.exports.server = function (serv) {
     if (rule && !Array.isArray(rule)) {
       const g = GROWTH[block.name]
       const age = Number((block.getProperties?.() || {})[g.prop] ?? 0)
-      rule = age >= (block.name === 'sweet_berry_bush' ? 2 : g.max) ? rule.ripe : rule.young
+      rule = rule.byAge ? (rule.byAge[age] || rule.young) : age >= g.max ? rule.ripe : rule.young
     }
     if (!rule) return null
-    return rule.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
+    return rule.filter(d => d.chance === undefined || serv.pb.random() < d.chance)
+      .map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) + bonus(d.bonus) })).filter(d => d.count > 0)
+  }
+  // binomial_with_bonus_count: one more for each of n trials that succeeds with p
+  const bonus = (b) => {
+    let n = 0
+    if (b) for (let i = 0; i < b[0]; i++) if (serv.pb.random() < b[1]) n++
+    return n
   }
 
   // cause: 'block' (dug, harvested) or 'mob' (loot), for the pickup delay (tables.PICKUP)

@@ -31,6 +31,14 @@ module.exports.server = function (serv) {
   })
 
   const none = { id: -1, data: 0 }
+  const WATER_SIDES = [[1, 0], [-1, 0], [0, 1], [0, -1]]
+  async function besideWater (world, pos) {
+    for (const [dx, dz] of WATER_SIDES) {
+      const name = (await world.getBlock(pos.offset(dx, 0, dz))).name
+      if (name === 'water' || name === 'frosted_ice') return true
+    }
+    return false
+  }
   serv.once('asap', () => { for (const [itemName, rule] of Object.entries(PLANTING)) registerPlanting(itemName, rule) })
   function registerPlanting (itemName, rule) {
     const block = reg.blocksByName[rule.block]
@@ -45,6 +53,7 @@ module.exports.server = function (serv) {
       } else {
         const below = await player.world.getBlock(placedPosition.offset(0, -1, 0))
         if (!rule.soil.includes(below.name)) return none
+        if (rule.water?.includes(below.name) && !await besideWater(player.world, below.position)) return none
         if (block.states?.some(s => s.name === 'age')) props = { age: 0 }
       }
       serv.pb.crops.track(placedPosition)

@@ -1,7 +1,7 @@
 'use strict'
 // Farm animals: summoned still (no random launch velocity), take damage by the held weapon, die and
-// drop their loot; cows can be milked with a bucket; egg farms put eggs into a chest while a chicken
-// lives near it. Velocities sent to clients are clamped (flying-squid's knockback overflowed int16
+// drop their loot; cows can be milked with a bucket; egg farms: each chicken near a chest lays eggs
+// into it at vanilla's rate. Velocities sent to clients are clamped (flying-squid's knockback overflowed int16
 // and disconnected every client nearby).
 const { Vec3 } = require('vec3')
 const { MOBS, ATTACK_DAMAGE } = require('../tables')
@@ -25,9 +25,12 @@ module.exports.server = function (serv) {
     removeAll: () => {
       for (const e of Object.values(serv.entities)) if (e.type === 'mob' || e.type === 'object') serv.destroyEntity(e)
     },
+    // Each chicken within `radius` of the chest lays an egg into it every intervalS to 2 x intervalS
+    // seconds (vanilla Chicken.eggTime: 6000 + random 6000 ticks, so intervalS = 300). A chicken's first
+    // egg comes after the time left of a cycle already under way (the world was saved mid-cycle).
     addEggFarm: (chest, intervalS, radius = 6) => {
       if (!(intervalS > 0)) throw new ControlError('egg farm interval_s must be > 0')
-      eggFarms.push({ chest, intervalTicks: Math.max(1, Math.round(intervalS * 20)), radius, next: serv.tickCount + Math.round(intervalS * 20) })
+      eggFarms.push({ chest, intervalTicks: Math.max(1, Math.round(intervalS * 20)), radius, next: new Map() })
     },
     clearEggFarms: () => { eggFarms.length = 0 }
   }
@@ -65,13 +68,27 @@ module.exports.server = function (serv) {
     })
   }
 
+  const cycle = (farm) => farm.intervalTicks + Math.floor(serv.pb.random() * (farm.intervalTicks + 1))
+  // the time left of a cycle under way: density proportional to P(cycle > t)
+  function leftOfCycle (farm) {
+    for (;;) {
+      const t = serv.pb.random() * 2 * farm.intervalTicks
+      const pLonger = t < farm.intervalTicks ? 1 : (2 * farm.intervalTicks - t) / farm.intervalTicks
+      if (serv.pb.random() < pLonger) return Math.floor(t)
+    }
+  }
   serv.on('tick', serv.guarded('egg farms', (delta, tick) => {
+    if (eggFarms.length === 0) return
+    const chickens = Object.values(serv.entities).filter(e => e.name === 'chicken' && !e.dead)
     for (const farm of eggFarms) {
-      if (tick < farm.next) continue
-      farm.next = tick + farm.intervalTicks
-      const chickens = Object.values(serv.entities).filter(e => e.name === 'chicken' && !e.dead &&
-        e.position.distanceTo(new Vec3(farm.chest[0] + 0.5, farm.chest[1], farm.chest[2] + 0.5)) <= farm.radius)
-      if (chickens.length) serv.pb.chests.add(new Vec3(...farm.chest), 'egg', 1)
+      const at = new Vec3(farm.chest[0] + 0.5, farm.chest[1], farm.chest[2] + 0.5)
+      for (const c of chickens) {
+        if (c.position.distanceTo(at) > farm.radius) continue
+        if (!farm.next.has(c.id)) farm.next.set(c.id, tick + leftOfCycle(farm))
+        if (tick < farm.next.get(c.id)) continue
+        farm.next.set(c.id, tick + cycle(farm))
+        serv.pb.chests.add(new Vec3(...farm.chest), 'egg', 1)
+      }
     }
   }))
 }

@@ -4,11 +4,16 @@ const FIELD = new Vec3($beetroot_farm)
 await getItemFromChest(bot, new Vec3($bowl_chest), { bowl: 64 })
 await harvestBeetroot(bot, FIELD)
 await plantBeetrootSeeds(bot)
+// up to 20 melon and pumpkin stems within 32 blocks, nearest first, broken by hand
 bot.chat('Destroying melon and pumpkin stems')
+const STEMS = ['melon_stem', 'pumpkin_stem', 'attached_melon_stem', 'attached_pumpkin_stem'].map(n => mcData.blocksByName[n].id)
 let destroyed = 0
-for (const name of ['melon_stem', 'pumpkin_stem', 'attached_melon_stem', 'attached_pumpkin_stem']) {
-  if (destroyed >= 20) break
-  destroyed += await destroyCrop(bot, name)
+for (const p of bot.findBlocks({ matching: STEMS, maxDistance: 32, count: 20 })) {
+  const b = bot.blockAt(p)
+  if (!b || !STEMS.includes(b.type)) continue
+  await bot.pathfinder.goto(new GoalNear(p.x, p.y, p.z, 3))
+  await bot.dig(bot.blockAt(p))
+  destroyed++
 }
 bot.chat('Destroyed ' + destroyed + ' melons and pumpkin stems')
 await plantBeetrootSeeds(bot)
