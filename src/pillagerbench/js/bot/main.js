@@ -8,6 +8,7 @@
 //   {"id": n, "ok": true, "result": ...}     reply to request n (or "ok": false, "error": "...")
 //   {"fatal": "..."}                         the bot was kicked or disconnected; the process exits
 // Requests in: {"id", "op": "run", "code", "timeout"?} | {"id", "op": "stop"} | {"id", "op": "observe"} |
+//   {"id", "op": "lag", "reset"?} |
 //   {"id", "op": "clear"} | {"id", "op": "equip", "equipment"} | {"id", "op": "settle", "pos"?} | {"id", "op": "ping"}
 const readline = require('readline')
 
@@ -23,6 +24,7 @@ const { Vec3 } = require('vec3')
 const { Run, isStop } = require('./run')
 const { waitTicks } = require('./ticks')
 const { Observer } = require('./observe')
+const { LagMeter } = require('./lag')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
 
@@ -45,6 +47,7 @@ bot.loadPlugin(pathfinder)
 
 let mcData = null
 let observer = null
+let lag = null // physics-tick lag of this process (lag.js)
 let current = null // the active Run
 const buffered = [] // events that happened between runs, delivered with the next run
 let chatCount = 0
@@ -179,6 +182,12 @@ const OPS = {
     return true
   },
   observe: async () => observer.observe(),
+  // Physics-tick lag since the last `lag` request with reset: true (see lag.js).
+  lag: async ({ reset }) => {
+    const result = lag.read()
+    if (reset) lag.reset()
+    return result
+  },
   clear: async () => {
     buffered.length = 0
     pendingEcho.length = 0
@@ -237,6 +246,7 @@ function startProtocol () {
 bot.once('spawn', async () => {
   mcData = require('minecraft-data')(bot.version)
   observer = new Observer(bot)
+  lag = new LagMeter(bot)
   bot.pathfinder.setMovements(sandbox.defaultMovements(bot))
   bot.pathfinder.thinkTimeout = 2000
   bot.pathfinder.tickTimeout = 20 // ms of path search per tick: keeps the bot answering stop() quickly
