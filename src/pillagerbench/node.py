@@ -109,15 +109,15 @@ def node_env() -> dict[str, str]:
 PROFILE_ENV = "PILLAGERBENCH_NODE_PROFILE"
 
 
-def profile_args(*, permission: bool = False) -> list[str]:
+def profile_args() -> list[str]:
     """With PILLAGERBENCH_NODE_PROFILE=DIR set, V8 CPU profiles of our Node processes go to DIR
-    (one .cpuprofile per process, written when it exits; docs/performance.md). `permission`: the
-    process runs under Node's permission model and needs leave to write there."""
+    (one .cpuprofile per process, written when it exits; docs/performance.md). Node writes none
+    under its permission model, so bots being profiled run without it: for measuring only."""
     where = os.environ.get(PROFILE_ENV)
     if not where:
         return []
     Path(where).mkdir(parents=True, exist_ok=True)
-    return ["--cpu-prof", f"--cpu-prof-dir={where}"] + ([f"--allow-fs-write={where}"] if permission else [])
+    return ["--cpu-prof", f"--cpu-prof-dir={where}"]
 
 
 def setup_main(argv: list[str]) -> int:

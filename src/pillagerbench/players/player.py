@@ -44,15 +44,15 @@ class PlayerError(RuntimeError):
 def bot_command(settings: dict[str, Any]) -> list[str]:
     """The node command line of a bot process, under Node's permission model."""
     modules = ensure_node_modules(quiet=True)
+    profile = profile_args()  # Node writes no profile under its permission model: measuring only
+    permission = [] if profile else ["--permission", f"--allow-fs-read={modules}", f"--allow-fs-read={JS_DIR / 'bot'}"]
     return [
         str(node_binary()),
-        "--permission",
-        f"--allow-fs-read={modules}",
-        f"--allow-fs-read={JS_DIR / 'bot'}",
+        *permission,
         f"--max-old-space-size={HEAP_LIMIT_MB}",
         "--stack-size=2000",
         "--max-semi-space-size=4",  # a small young generation: ~25 MB less RSS per bot
-        *profile_args(permission=True),
+        *profile,
         str(BOT_MAIN),
         json.dumps(settings),
     ]

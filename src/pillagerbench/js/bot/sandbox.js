@@ -9,6 +9,7 @@ const { goals, Movements } = require('mineflayer-pathfinder')
 const { isStop } = require('./run')
 const { waitTicks } = require('./ticks')
 const { lockPrototypes } = require('./lockdown')
+const { defaultMovements } = require('./movements')
 
 const FILENAME = 'agent.js'
 const SYNC_TIMEOUT_MS = 1000
@@ -47,15 +48,6 @@ function harden (bot) {
 const MOVEMENT_OPTIONS = ['canDig', 'digCost', 'placeCost', 'allow1by1towers', 'allowFreeMotion', 'allowParkour',
   'allowSprinting', 'dontCreateFlow', 'dontMineUnderFallingBlock', 'maxDropDown', 'infiniteLiquidDropdownDistance',
   'liquidCost', 'entityCost', 'canOpenDoors', 'allowEntityDetection']
-
-function defaultMovements (bot) {
-  const m = new Movements(bot)
-  m.canDig = false
-  m.allow1by1towers = false
-  m.scafoldingBlocks = []
-  m.allowParkour = false
-  return m
-}
 
 // The `bot` agent code sees. Every method checks that the run is still active; async ones settle
 // when the run stops.
