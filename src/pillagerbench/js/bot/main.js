@@ -46,6 +46,14 @@ const bot = mineflayer.createBot({
 })
 bot.loadPlugin(pathfinder)
 bot._client.on('connect', () => batchWrites(bot._client.socket)) // one write per tick (batch.js)
+if (process.env.PB_TRACE) { // packets received by name: count and bytes, logged at exit
+  const got = {}
+  bot._client.on('packet', (data, meta, buffer) => {
+    const g = got[meta.name] || (got[meta.name] = [0, 0])
+    g[0]++; g[1] += buffer ? buffer.length : 0
+  })
+  process.on('exit', () => log(`[trace] packets ${JSON.stringify(Object.entries(got).sort((a, b) => b[1][1] - a[1][1]).slice(0, 15))}`))
+}
 
 let mcData = null
 let observer = null
