@@ -22,7 +22,7 @@ BOT_LATE_PCT_MAX = 2.0  # % of a bot's physics ticks more than a whole tick (50 
 
 # CPU cores one built-in match uses while playing (bots + server + Python), the worst of the two
 # scenarios in benchmarks/match_cost.py (docs/performance.md has the table).
-MATCH_CORES = 0.6
+MATCH_CORES = 0.35
 # Share of the free cores the matches may take; the rest absorbs bursts (logins, arena resets).
 HEADROOM = 0.8
 
