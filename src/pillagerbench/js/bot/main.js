@@ -20,6 +20,9 @@ const heartbeat = setInterval(() => out({ hb: 1 }), settings.heartbeatMs || 200)
 
 const mineflayer = require('mineflayer')
 const { pathfinder } = require('mineflayer-pathfinder')
+const { plugin: tool } = require('mineflayer-tool')
+const { plugin: collectBlock } = require('mineflayer-collectblock')
+const { plugin: pvp } = require('mineflayer-pvp')
 const { Vec3 } = require('vec3')
 const { Run, isStop } = require('./run')
 const { waitTicks } = require('./ticks')
@@ -45,6 +48,10 @@ const bot = mineflayer.createBot({
   logErrors: false
 })
 bot.loadPlugin(pathfinder)
+// Upstream's bots had these too; agent code reaches them through the facade (sandbox.js).
+bot.loadPlugin(tool)
+bot.loadPlugin(collectBlock)
+bot.loadPlugin(pvp)
 bot._client.on('connect', () => batchWrites(bot._client.socket)) // one write per tick (batch.js)
 if (process.env.PB_TRACE) { // packets received by name: count and bytes, logged at exit
   const got = {}
@@ -111,6 +118,8 @@ function waitEchoes (maxMs) {
 // Stop whatever the bot is doing on behalf of the run, then settle the run.
 function halt (run, reason) {
   if (!run.active) return
+  try { bot.pvp.forceStop() } catch (_) {}
+  try { bot.collectBlock.cancelTask().catch(() => {}) } catch (_) {}
   try { bot.pathfinder.stop(); bot.pathfinder.setGoal(null) } catch (_) {}
   try { if (bot.targetDigBlock) bot.stopDigging() } catch (_) {}
   try { bot.clearControlStates() } catch (_) {}
@@ -258,6 +267,11 @@ bot.once('spawn', async () => {
   observer = new Observer(bot)
   lag = new LagMeter(bot)
   bot.pathfinder.setMovements(sandbox.defaultMovements(bot))
+  // collectblock and pvp set their own Movements on every call (stock ones dig and build towers):
+  // give them ours, so the pathfinder's rules stay the same whoever asks
+  // (collectblock skips blocks its Movements may not break, so its own may dig, as upstream's did)
+  bot.collectBlock.movements = Object.assign(sandbox.defaultMovements(bot), { canDig: true })
+  bot.pvp.movements = sandbox.defaultMovements(bot)
   bot.pathfinder.thinkTimeout = 2000
   // ms of path search per tick. 7 with the cheaper block lookup of movements.js visits about as many
   // nodes per tick as 20 did with the stock one (docs/performance.md): the same searches for a third
