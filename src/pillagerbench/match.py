@@ -25,6 +25,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.load import lag_verdict
 from pillagerbench.players import Player
 from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team, TeamContext
@@ -56,6 +57,9 @@ class EpisodeRecord:
     seed: int = 0
     player_order: list[str] = field(default_factory=list)  # the server's player order this episode
     server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
+    bot_lag: dict[str, dict | None] = field(default_factory=dict)  # player -> physics-tick lag in the game (load.py)
+    lagged: bool = False  # played under lag: a threshold of load.py crossed (scores may be low for it)
+    lag_reason: str | None = None
     problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
     refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
     scoring: str = "clean"  # which of `scores` red_score/blue_score are (config `scoring`)
@@ -270,6 +274,12 @@ class Match:
             if team.problems:
                 rec.problems.setdefault(key, []).extend(team.problems)
 
+    async def _bot_lag(self, *, reset: bool = False) -> dict[str, dict | None]:
+        """Each bot's physics-tick lag since the last reset (None for a bot that did not answer)."""
+        names = list(self.players)
+        got = await asyncio.gather(*(self.players[n].lag(reset=reset) for n in names), return_exceptions=True)
+        return {n: (g if isinstance(g, dict) else None) for n, g in zip(names, got)}
+
     @staticmethod
     def _write_world_events(queue: asyncio.Queue, out: Path) -> list[dict]:
         """world_events.jsonl: every event the server pushed during the game; chat.txt: the chat log
@@ -324,6 +334,7 @@ class Match:
                 self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
 
         world = self.server.control.subscribe()  # what happened in the world, as the server saw it
+        await self._bot_lag(reset=True)
         first_tick = (await self.server.request("status"))["tick"]
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
@@ -351,6 +362,8 @@ class Match:
             await asyncio.wait(tasks, timeout=STOP_GRACE_S)
         rec.game_s = round(time.monotonic() - start, 3)
         rec.server_tps = round(((await self.server.request("status"))["tick"] - first_tick) / rec.game_s, 2)
+        rec.bot_lag = await self._bot_lag()
+        rec.lagged, rec.lag_reason = lag_verdict(rec.server_tps, rec.bot_lag)
         if final is None:
             await gm.step()
             final = await gm.scores()

@@ -106,6 +106,20 @@ def node_env() -> dict[str, str]:
     return env
 
 
+PROFILE_ENV = "PILLAGERBENCH_NODE_PROFILE"
+
+
+def profile_args() -> list[str]:
+    """With PILLAGERBENCH_NODE_PROFILE=DIR set, V8 CPU profiles of our Node processes go to DIR
+    (one .cpuprofile per process, written when it exits; docs/performance.md). Node writes none
+    under its permission model, so bots being profiled run without it: for measuring only."""
+    where = os.environ.get(PROFILE_ENV)
+    if not where:
+        return []
+    Path(where).mkdir(parents=True, exist_ok=True)
+    return ["--cpu-prof", f"--cpu-prof-dir={where}"]
+
+
 def setup_main(argv: list[str]) -> int:
     """`pillagerbench setup`: install the npm packages now instead of on first use."""
     path = ensure_node_modules()

@@ -89,6 +89,16 @@ def summarize_problems(records: list) -> tuple[list[str], bool]:
     return lines, all_failed
 
 
+def summarize_lag(records: list) -> list[str]:
+    """One line per episode played under lag (pillagerbench/load.py), after a count."""
+    hit = [r for r in records if getattr(r, "lagged", False)]
+    if not hit:
+        return []
+    return [f"{len(hit)} of {len(records)} episode(s) played under lag (scores may be low; docs/performance.md):"] + [
+        f"  episode {r.episode}: {r.lag_reason}" for r in hit
+    ]
+
+
 def main(argv: list[str]) -> int:
     """One match from Hydra overrides (`pillagerbench run` without experiment=/resume=, see cli.py)."""
     return run_match(load_config(argv))
@@ -108,6 +118,8 @@ def run_match(cfg) -> int:
     problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")
     for line in problems:
+        print(line)
+    for line in summarize_lag(records):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if (failed and failed == len(records)) or all_without_model else 0

@@ -200,3 +200,40 @@ def test_try_command(tmp_path):
     kinds = [json.loads(line)[0] for line in proc.stdout.splitlines()]
     assert kinds == ["onChat", "onError", "observe"]
     assert without_state  # helper import used by other tests
+
+
+async def test_observation_reads_the_same_blocks_as_blockat_and_findblocks(server, area, make_player):
+    # observe.js reads state ids from the chunk data instead of building a Block per position; its
+    # voxels and chests must be what bot.blockAt and bot.findBlocks report (chests in several
+    # sections, one just past 16 blocks, one across a chunk border, some blocks at the box's edge)
+    x0 = area.x0
+    await area.blocks(
+        (3, 4, 0, "chest"),
+        (-5, 4, 9, "chest"),
+        (12, 4, -9, "chest"),
+        (17, 4, 0, "chest"),
+        (8, 6, 8, "red_mushroom_block"),
+        (-8, 2, -8, "oak_planks"),
+        (1, 5, 1, "oak_fence"),
+        (2, 7, 2, "stone"),
+    )
+    p = await make_player(area, 0, 0)
+    code = """
+const c = bot.entity.position.floored()
+const names = new Set()
+for (let x = -8; x <= 8; x++) for (let y = -2; y <= 2; y++) for (let z = -8; z <= 8; z++) {
+  const b = bot.blockAt(c.offset(x, y, z), false)
+  if (b && b.name !== 'air' && b.name !== 'cave_air' && b.name !== 'void_air') names.add(b.name)
+}
+const chests = bot.findBlocks({ matching: mcData.blocksByName.chest.id, maxDistance: 16, count: 64 }).map(p => p.toString())
+bot.chat(JSON.stringify({ voxels: [...names], chests }))
+await bot.waitForTicks(2)
+"""
+    events = await p.run(code)
+    assert not errors(events), errors(events)
+    reference = json.loads(chats_by(events, p.name)[0])
+    obs = last_observation(events)
+    assert obs["voxels"] == reference["voxels"]  # same names in the same order
+    assert "red_mushroom_block" in obs["voxels"] and "oak_fence" in obs["voxels"] and "stone" not in obs["voxels"]
+    assert sorted(obs["nearbyChests"]) == sorted(reference["chests"])
+    assert f"({x0 + 17}, 4, 0)" not in obs["nearbyChests"] and f"({x0 - 5}, 4, 9)" in obs["nearbyChests"]

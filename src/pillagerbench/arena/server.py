@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.arena.control import ControlChannel
-from pillagerbench.node import JS_DIR, node_binary, node_env
+from pillagerbench.node import JS_DIR, node_binary, node_env, profile_args
 
 MAIN_JS = JS_DIR / "server" / "main.js"
 MC_VERSION = "1.16.5"
@@ -85,6 +85,7 @@ class ArenaServer:
         with open(self.log_path, "ab") as log:
             self.process = await asyncio.create_subprocess_exec(
                 str(node_binary()),
+                *profile_args(),
                 str(MAIN_JS),
                 json.dumps(settings),
                 stdin=asyncio.subprocess.DEVNULL,

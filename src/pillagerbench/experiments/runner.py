@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import os
 import shutil
 import time
 import traceback
@@ -28,15 +27,20 @@ from pathlib import Path
 
 from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.experiments.progress import ExperimentProgress
-from pillagerbench.experiments.series import count_finished, run_series
+from pillagerbench.experiments.series import count_finished, read_finished, run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
+from pillagerbench.load import choose_parallel
 
-CPUS_PER_MATCH = 1.0  # a built-in match uses about one core (benchmarks/experiments_throughput.py)
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
 
 
-def default_parallel() -> int:
-    return max(1, int((os.cpu_count() or 1) / CPUS_PER_MATCH))
+def local_parallel(cfg, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
+    """Matches at once on this machine: the user's `parallel` if given, else as many as the measured
+    headroom allows (pillagerbench/load.py), with one line saying so when that is not the CPU count."""
+    if cfg.get("parallel"):
+        return int(cfg.get("parallel")), None
+    choice = choose_parallel(cpus, load)
+    return choice.parallel, (choice.explain() if choice.parallel != choice.cpus else None)
 
 
 def make_experiment_dir(cfg) -> Path:
@@ -193,7 +197,9 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
     launcher = str(cfg.get("launcher") or "local")
     closer = None
     if launcher == "local":
-        parallel = int(cfg.get("parallel") or default_parallel())
+        parallel, why = local_parallel(cfg)
+        if why:
+            print(why, flush=True)
         launch = local_launcher(run_dir)
     elif launcher == "ray":
         from pillagerbench.experiments.ray_launcher import RayLauncher
@@ -241,6 +247,23 @@ def check_series(specs: list[SeriesSpec]) -> None:
     preflight.check([side for s in specs for side in preflight.sides_of(s.config)])
 
 
+def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
+    """The episodes played under lag (pillagerbench/load.py): a count, then up to `show` of them."""
+    hit = [
+        (s.id, i, rec.get("lag_reason"))
+        for s in specs
+        for i, rec in sorted(read_finished(dirs[s.id])[0].items())
+        if rec.get("lagged")
+    ]
+    if not hit:
+        return []
+    lines = [f"{len(hit)} episode(s) played under lag (scores may be low; try a lower parallel=; docs/performance.md):"]
+    lines += [f"  {sid} episode {i}: {why}" for sid, i, why in hit[:show]]
+    if len(hit) > show:
+        lines.append(f"  ... and {len(hit) - show} more (pillagerbench report lists all)")
+    return lines
+
+
 def main_experiment(cfg, argv: list[str]) -> int:
     """`pillagerbench run experiment=NAME ...` and `pillagerbench run resume=RUN_DIR ...`."""
     if cfg.get("resume"):
@@ -272,5 +295,7 @@ def main_experiment(cfg, argv: list[str]) -> int:
         f"{episodes}/{sum(s.episodes for s in specs)} episodes finished; "
         f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else "")
     )
+    for line in lag_lines(specs, dirs):
+        print(line)
     print(f"run directory: {run_dir}")
     return 1 if errors else 0

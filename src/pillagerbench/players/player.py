@@ -27,7 +27,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env
+from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
 
 BOT_MAIN = JS_DIR / "bot" / "main.js"
 HEAP_LIMIT_MB = 256
@@ -44,14 +44,15 @@ class PlayerError(RuntimeError):
 def bot_command(settings: dict[str, Any]) -> list[str]:
     """The node command line of a bot process, under Node's permission model."""
     modules = ensure_node_modules(quiet=True)
+    profile = profile_args()  # Node writes no profile under its permission model: measuring only
+    permission = [] if profile else ["--permission", f"--allow-fs-read={modules}", f"--allow-fs-read={JS_DIR / 'bot'}"]
     return [
         str(node_binary()),
-        "--permission",
-        f"--allow-fs-read={modules}",
-        f"--allow-fs-read={JS_DIR / 'bot'}",
+        *permission,
         f"--max-old-space-size={HEAP_LIMIT_MB}",
         "--stack-size=2000",
         "--max-semi-space-size=4",  # a small young generation: ~25 MB less RSS per bot
+        *profile,
         str(BOT_MAIN),
         json.dumps(settings),
     ]
@@ -439,6 +440,11 @@ class Player:
 
     async def observe(self) -> list:
         return [["observe", await self._request("observe")]]
+
+    async def lag(self, *, reset: bool = False) -> dict:
+        """How late this bot's 50 ms physics ticks were since the last `lag(reset=True)`, measured in
+        the bot process (js/bot/lag.js): ticks, wall_s, tick_rate, late_mean_ms, late_max_ms, late_pct."""
+        return await self._request("lag", reset=reset)
 
     async def reset(
         self,

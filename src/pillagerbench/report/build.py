@@ -46,6 +46,7 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
         ),
         "claims": (claims, "Fidelity: the paper's Benchmark Analysis claims on this round robin"),
         "calibration": (tables.calibration(sigma), "σ_blue used for the sabotage metric"),
+        "lagged": (tables.lagged(df), "Played under lag (used; scores may be low: see docs/performance.md)"),
         "skipped": (tables.skipped(runs.skipped), "Skipped"),
     }
     files = []
@@ -82,16 +83,23 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
         )
     notes += fidelity_notes
     notes += modes(df)
+    lag = t["lagged"][0]
+    if len(lag):
+        notes.append(
+            f"{len(lag)} episode(s) played under lag (scores may be low; re-run them with a lower parallel=), e.g. "
+            f"{lag.iloc[-1]['series']} episode {lag.iloc[-1]['episode']}: {lag.iloc[-1]['lag_reason']}"
+        )
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
     sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]
     sections += [(t[k][1], "table", t[k][0]) for k in ("fidelity", "claims") if len(t[k][0])]
     sections += [(title, "image", path) for title, path in figures]
-    sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "skipped")]
+    sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "lagged", "skipped")]
     page = out / "report.html"
     page.write_text(html.page("PillagerBench report", runs.runs, notes, sections))
     files.append(page)
-    return {"files": files, "notes": notes, "skipped": runs.skipped, "episodes": len(df), "out": out}
+    lagged = [(str(r["series"]), int(r["episode"]), str(r["lag_reason"])) for _, r in lag.iterrows()]
+    return {"files": files, "notes": notes, "skipped": runs.skipped, "lagged": lagged, "episodes": len(df), "out": out}
 
 
 def modes(df) -> list[str]:
@@ -120,6 +128,8 @@ def main(argv: list[str]) -> int:
         return 2
     for note in result["notes"]:
         print(note)
+    for series, episode, why in result["lagged"]:
+        print(f"lagged {series} episode {episode}: {why}")
     for where, why in result["skipped"]:
         print(f"skipped {where}: {why}")
     print(f"report: {out / 'report.html'} ({len(result['files'])} files)")

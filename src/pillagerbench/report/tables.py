@@ -9,6 +9,7 @@ Markdown ("mean ± ci").
                  evaluation "after k" (paper's adaptation table and self-play figure)
 - learning_curve: D per episode index (experience) per red team (paper's D-per-episode figure)
 - calibration:   σ_blue used per scenario and opponent
+- lagged:        episodes played under lag (pillagerbench/load.py) and why
 - skipped:       what was left out and why
 """
 
@@ -176,6 +177,15 @@ def calibration(sigma: dict) -> pd.DataFrame:
         for (sc, team), e in sigma.items()
     ]
     return pd.DataFrame(rows, columns=["scenario", "opponent", "sigma_blue", "sigma_blue_ci", "episodes"])
+
+
+def lagged(df: pd.DataFrame) -> pd.DataFrame:
+    """Episodes played under lag (a threshold of pillagerbench/load.py crossed): used in every
+    figure, listed so a reader can judge or re-run them at a lower `parallel`."""
+    cols = ["series", "episode", "server_tps", "lag_reason"]
+    if not len(df) or "lagged" not in df:
+        return pd.DataFrame(columns=cols)
+    return df.loc[df["lagged"].astype(bool), cols].reset_index(drop=True)
 
 
 def skipped(items: list[tuple[str, str]]) -> pd.DataFrame:

@@ -8,6 +8,7 @@
 //   {"id": n, "ok": true, "result": ...}     reply to request n (or "ok": false, "error": "...")
 //   {"fatal": "..."}                         the bot was kicked or disconnected; the process exits
 // Requests in: {"id", "op": "run", "code", "timeout"?} | {"id", "op": "stop"} | {"id", "op": "observe"} |
+//   {"id", "op": "lag", "reset"?} |
 //   {"id", "op": "clear"} | {"id", "op": "equip", "equipment"} | {"id", "op": "settle", "pos"?} | {"id", "op": "ping"}
 const readline = require('readline')
 
@@ -19,10 +20,15 @@ const heartbeat = setInterval(() => out({ hb: 1 }), settings.heartbeatMs || 200)
 
 const mineflayer = require('mineflayer')
 const { pathfinder } = require('mineflayer-pathfinder')
+const { plugin: tool } = require('mineflayer-tool')
+const { plugin: collectBlock } = require('mineflayer-collectblock')
+const { plugin: pvp } = require('mineflayer-pvp')
 const { Vec3 } = require('vec3')
 const { Run, isStop } = require('./run')
 const { waitTicks } = require('./ticks')
 const { Observer } = require('./observe')
+const { LagMeter } = require('./lag')
+const { batchWrites } = require('./batch')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
 
@@ -42,9 +48,23 @@ const bot = mineflayer.createBot({
   logErrors: false
 })
 bot.loadPlugin(pathfinder)
+// Upstream's bots had these too; agent code reaches them through the facade (sandbox.js).
+bot.loadPlugin(tool)
+bot.loadPlugin(collectBlock)
+bot.loadPlugin(pvp)
+bot._client.on('connect', () => batchWrites(bot._client.socket)) // one write per tick (batch.js)
+if (process.env.PB_TRACE) { // packets received by name: count and bytes, logged at exit
+  const got = {}
+  bot._client.on('packet', (data, meta, buffer) => {
+    const g = got[meta.name] || (got[meta.name] = [0, 0])
+    g[0]++; g[1] += buffer ? buffer.length : 0
+  })
+  process.on('exit', () => log(`[trace] packets ${JSON.stringify(Object.entries(got).sort((a, b) => b[1][1] - a[1][1]).slice(0, 15))}`))
+}
 
 let mcData = null
 let observer = null
+let lag = null // physics-tick lag of this process (lag.js)
 let current = null // the active Run
 const buffered = [] // events that happened between runs, delivered with the next run
 let chatCount = 0
@@ -98,6 +118,8 @@ function waitEchoes (maxMs) {
 // Stop whatever the bot is doing on behalf of the run, then settle the run.
 function halt (run, reason) {
   if (!run.active) return
+  try { bot.pvp.forceStop() } catch (_) {}
+  try { bot.collectBlock.cancelTask().catch(() => {}) } catch (_) {}
   try { bot.pathfinder.stop(); bot.pathfinder.setGoal(null) } catch (_) {}
   try { if (bot.targetDigBlock) bot.stopDigging() } catch (_) {}
   try { bot.clearControlStates() } catch (_) {}
@@ -179,6 +201,12 @@ const OPS = {
     return true
   },
   observe: async () => observer.observe(),
+  // Physics-tick lag since the last `lag` request with reset: true (see lag.js).
+  lag: async ({ reset }) => {
+    const result = lag.read()
+    if (reset) lag.reset()
+    return result
+  },
   clear: async () => {
     buffered.length = 0
     pendingEcho.length = 0
@@ -237,9 +265,18 @@ function startProtocol () {
 bot.once('spawn', async () => {
   mcData = require('minecraft-data')(bot.version)
   observer = new Observer(bot)
+  lag = new LagMeter(bot)
   bot.pathfinder.setMovements(sandbox.defaultMovements(bot))
+  // collectblock and pvp set their own Movements on every call (stock ones dig and build towers):
+  // give them ours, so the pathfinder's rules stay the same whoever asks
+  // (collectblock skips blocks its Movements may not break, so its own may dig, as upstream's did)
+  bot.collectBlock.movements = Object.assign(sandbox.defaultMovements(bot), { canDig: true })
+  bot.pvp.movements = sandbox.defaultMovements(bot)
   bot.pathfinder.thinkTimeout = 2000
-  bot.pathfinder.tickTimeout = 20 // ms of path search per tick: keeps the bot answering stop() quickly
+  // ms of path search per tick. 7 with the cheaper block lookup of movements.js visits about as many
+  // nodes per tick as 20 did with the stock one (docs/performance.md): the same searches for a third
+  // of the CPU, and the bot answers stop() quickly.
+  bot.pathfinder.tickTimeout = 7
   bot.on('physicsTick', () => { if (observer.ticks % CHAT_WINDOW_TICKS === 0) chatCount = 0 })
   bot.on('messagestr', (message, position) => {
     if (position === 'game_info') return
@@ -248,6 +285,7 @@ bot.once('spawn', async () => {
     emit('onChat', message)
   })
   bot.on('mount', () => { try { bot.dismount() } catch (_) {} })
+  if (process.env.PB_TRACE) bot.on('path_update', (r) => log(`[trace] path ${r.status} ${Math.round(r.time)} ms ${r.visitedNodes} nodes ${r.path.length} long`))
   try { await bot.waitForChunksToLoad() } catch (_) {}
   sandbox.harden(bot)
   const p = bot.entity.position

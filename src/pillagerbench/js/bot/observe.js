@@ -17,6 +17,56 @@ function timeOfDayName (t) {
 
 const vec = (v) => ({ x: v.x, y: v.y, z: v.z })
 
+// The state id at integer x, y, z read from the chunk data (undefined where no chunk is loaded).
+// bot.blockAt builds a whole Block per call (biome, light, block entity); every event's
+// observation reads some 1500 positions, so it reads state ids and names them instead.
+function stateIdAt (world, p, local) {
+  const column = world.getColumnAt(p)
+  if (!column) return undefined
+  return column.getBlockStateId(local.set(p.x & 15, p.y, p.z & 15))
+}
+
+// Positions of blocks whose state id is in `ids` within `radius` of `center` (distance from the
+// block's corner, as bot.findBlocks measures it), nearest first, at most `count`; the sections
+// searched are those bot.findBlocks searches (within 2 sections, counted along the axes), and a
+// section whose palette lacks the block is skipped.
+function findStates (bot, ids, center, radius, count) {
+  const c = center.floored()
+  const reach = Math.ceil((radius + 8) / 16)
+  const cs = new Vec3(Math.floor(c.x / 16), Math.floor(c.y / 16), Math.floor(c.z / 16))
+  const offset = Math.abs(bot.game.minY >> 4)
+  const sections = bot.game.height >> 4
+  const local = new Vec3(0, 0, 0)
+  const found = []
+  for (let dx = -reach; dx <= reach; dx++) {
+    for (let dz = -reach; dz <= reach; dz++) {
+      const column = bot.world.getColumn(cs.x + dx, cs.z + dz)
+      if (!column) continue
+      for (let dy = -reach; dy <= reach; dy++) {
+        if (Math.abs(dx) + Math.abs(dy) + Math.abs(dz) > reach) continue
+        const sy = cs.y + dy + offset
+        if (sy < 0 || sy >= sections) continue
+        const section = column.sections[sy]
+        if (!section || (section.palette && !section.palette.some(s => ids.has(s)))) continue
+        const x0 = (cs.x + dx) * 16
+        const y0 = sy * 16 + bot.game.minY
+        const z0 = (cs.z + dz) * 16
+        for (let x = 0; x < 16; x++) {
+          for (let y = 0; y < 16; y++) {
+            for (let z = 0; z < 16; z++) {
+              if (!ids.has(column.getBlockStateId(local.set(x, y0 + y, z)))) continue
+              const p = new Vec3(x0 + x, y0 + y, z0 + z)
+              if (p.distanceTo(c) <= radius) found.push(p)
+            }
+          }
+        }
+      }
+    }
+  }
+  found.sort((a, b) => a.distanceTo(c) - b.distanceTo(c))
+  return found.slice(0, count)
+}
+
 class Observer {
   constructor (bot) {
     this.bot = bot
@@ -44,8 +94,11 @@ class Observer {
     const bot = this.bot
     if (!bot.entity) return
     for (const name of (voxels || this.voxels())) this.blockRecords.add(name)
-    const chestId = bot.registry.blocksByName.chest.id
-    for (const p of bot.findBlocks({ matching: chestId, maxDistance: 16, count: 64 })) {
+    if (!this.chestStates) {
+      const chest = bot.registry.blocksByName.chest
+      this.chestStates = new Set(Array.from({ length: chest.maxStateId - chest.minStateId + 1 }, (_, i) => chest.minStateId + i))
+    }
+    for (const p of findStates(bot, this.chestStates, bot.entity.position, 16, 64)) {
       const key = p.toString()
       if (!this.chests.has(key)) this.chests.set(key, 'Unknown')
     }
@@ -60,11 +113,16 @@ class Observer {
     const names = new Set()
     if (!bot.entity) return []
     const c = bot.entity.position.floored()
+    const byState = bot.registry.blocksByStateId
+    const p = new Vec3(0, 0, 0)
+    const local = new Vec3(0, 0, 0)
     for (let x = -8; x <= 8; x++) {
       for (let y = -2; y <= 2; y++) {
         for (let z = -8; z <= 8; z++) {
-          const b = bot.blockAt(c.offset(x, y, z), false)
-          if (b && b.name !== 'air' && b.name !== 'cave_air' && b.name !== 'void_air') names.add(b.name)
+          const id = stateIdAt(bot.world, p.set(c.x + x, c.y + y, c.z + z), local)
+          if (id === undefined) continue
+          const name = byState[id]?.name ?? 'air'
+          if (name !== 'air' && name !== 'cave_air' && name !== 'void_air') names.add(name)
         }
       }
     }
@@ -144,4 +202,4 @@ class Observer {
   }
 }
 
-module.exports = { Observer, timeOfDayName }
+module.exports = { Observer, timeOfDayName, findStates }

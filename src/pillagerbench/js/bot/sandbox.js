@@ -9,6 +9,7 @@ const { goals, Movements } = require('mineflayer-pathfinder')
 const { isStop } = require('./run')
 const { waitTicks } = require('./ticks')
 const { lockPrototypes } = require('./lockdown')
+const { defaultMovements } = require('./movements')
 
 const FILENAME = 'agent.js'
 const SYNC_TIMEOUT_MS = 1000
@@ -48,15 +49,6 @@ const MOVEMENT_OPTIONS = ['canDig', 'digCost', 'placeCost', 'allow1by1towers', '
   'allowSprinting', 'dontCreateFlow', 'dontMineUnderFallingBlock', 'maxDropDown', 'infiniteLiquidDropdownDistance',
   'liquidCost', 'entityCost', 'canOpenDoors', 'allowEntityDetection']
 
-function defaultMovements (bot) {
-  const m = new Movements(bot)
-  m.canDig = false
-  m.allow1by1towers = false
-  m.scafoldingBlocks = []
-  m.allowParkour = false
-  return m
-}
-
 // The `bot` agent code sees. Every method checks that the run is still active; async ones settle
 // when the run stops.
 function makeFacade (bot, run, { chat, save, report }) {
@@ -86,6 +78,24 @@ function makeFacade (bot, run, { chat, save, report }) {
     })
   }
 
+  // Upstream's plugins (mineflayer-collectblock, mineflayer-tool, mineflayer-pvp), behind the same
+  // run checks; stopping a run also cancels their tasks (main.js halt).
+  const collectBlock = {
+    collect: async((target, options = {}) => bot.collectBlock.collect(target, collectOptions(options))),
+    cancelTask: async(() => bot.collectBlock.cancelTask())
+  }
+  const tool = {
+    equipForBlock: async((block, options = {}) => bot.tool.equipForBlock(block, toolOptions(options)))
+  }
+  const pvp = {
+    attack: async((entity) => bot.pvp.attack(entity)),
+    stop: async(() => bot.pvp.stop()),
+    forceStop: sync(() => bot.pvp.forceStop()),
+    get target () { return bot.pvp.target },
+    get followRange () { return bot.pvp.followRange },
+    get attackRange () { return bot.pvp.attackRange }
+  }
+
   const facade = {
     get username () { return bot.username },
     get entity () { return bot.entity },
@@ -107,6 +117,9 @@ function makeFacade (bot, run, { chat, save, report }) {
     get experience () { return bot.experience },
     get controlState () { return { ...bot.controlState } },
     pathfinder,
+    collectBlock,
+    tool,
+    pvp,
     blockAt: sync((p, extra) => bot.blockAt(p, extra)),
     findBlock: sync((o) => bot.findBlock(o)),
     findBlocks: sync((o) => bot.findBlocks(o)),
@@ -165,6 +178,28 @@ function makeFacade (bot, run, { chat, save, report }) {
   facade.addListener = facade.on
   facade.off = facade.removeListener
   return facade
+}
+
+// The options agent code may give the plugins: known keys only, plain values.
+function collectOptions (o) {
+  const out = {}
+  if (o && typeof o === 'object') {
+    if (o.ignoreNoPath !== undefined) out.ignoreNoPath = Boolean(o.ignoreNoPath)
+    if (o.append !== undefined) out.append = Boolean(o.append)
+    if (Array.isArray(o.chestLocations)) out.chestLocations = o.chestLocations.slice()
+    if (typeof o.itemFilter === 'function') out.itemFilter = o.itemFilter
+  }
+  return out
+}
+
+function toolOptions (o) {
+  const out = {}
+  if (o && typeof o === 'object') {
+    if (o.requireHarvest !== undefined) out.requireHarvest = Boolean(o.requireHarvest)
+    if (o.getFromChest !== undefined) out.getFromChest = Boolean(o.getFromChest)
+    if (Number.isFinite(o.maxTools)) out.maxTools = o.maxTools
+  }
+  return out
 }
 
 // A fresh context for one run. `names`: primitive functions; `log`: console output.

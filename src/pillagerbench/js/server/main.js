@@ -12,7 +12,7 @@ const channel = new net.Socket({ fd: settings.controlFd ?? 3, readable: true, wr
 const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
-const PLUGINS = ['guard', 'refusals', 'interact', 'player_list', 'teleport', 'movement', 'inventory', 'windows', 'blocks', 'crafting', 'furnace',
+const PLUGINS = ['batching', 'guard', 'refusals', 'interact', 'player_list', 'teleport', 'movement', 'inventory', 'windows', 'blocks', 'crafting', 'furnace',
   'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events']
 
 function main () {
