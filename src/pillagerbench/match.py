@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.players import Player
+from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team, TeamContext
 
@@ -57,21 +58,33 @@ def count_refusals(events: list[dict]) -> dict[str, int]:
 
 
 class RecordedPlayer:
-    """A player handle that also appends every event of its runs to the episode's log."""
+    """A player handle that also appends every event of its runs to the episode's log, and tells
+    the replay recording (when one is on) when each program starts, fails and ends."""
 
-    def __init__(self, player: Player, sink: Callable[[str, list], None]):
-        self._player, self._sink = player, sink
+    def __init__(self, player: Player, sink: Callable[[str, list], None], match: Match | None = None):
+        self._player, self._sink, self._match = player, sink, match
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._player, name)
 
+    def _program(self, what: str, message: str | None = None) -> None:
+        recorder = self._match.recorder if self._match else None
+        if recorder is not None:
+            recorder.program(self._player.name, what, message)
+
     async def run(self, code: str, *, timeout: float | None = None, on_event=None) -> list:
         def both(event):
             self._sink(self._player.name, event)
+            if isinstance(event, list) and event and event[0] == "onError":
+                self._program("error", str((event[1] or {}).get("onError", "")) if len(event) > 1 else "")
             if on_event:
                 on_event(event)
 
-        return await self._player.run(code, timeout=timeout, on_event=both)
+        self._program("start")
+        try:
+            return await self._player.run(code, timeout=timeout, on_event=both)
+        finally:
+            self._program("end")
 
 
 def winner_of(red: float, blue: float) -> str:
@@ -97,6 +110,7 @@ class Match:
         self.on_tick = on_tick or (lambda status: None)
         self.players: dict[str, Player] = {}
         self.last_records: dict[str, dict] = {}
+        self.recorder: Recorder | None = None  # the replay recording of the game being played
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -162,6 +176,12 @@ class Match:
         except Exception as exc:  # noqa: BLE001 - one failed episode never ends the series
             rec.status, rec.error = "failed", f"{type(exc).__name__}: {exc}"
         finally:
+            if self.recorder is not None:  # the game failed: the recording ends where it stopped
+                recorder, self.recorder = self.recorder, None
+                try:
+                    await recorder.stop()
+                except Exception:  # noqa: BLE001 - the server is gone; the file is closed by stop()
+                    pass
             for f in files.values():
                 f.close()
             rec.duration_s = round(time.monotonic() - t_start, 3)
@@ -198,7 +218,7 @@ class Match:
                 side=side,
                 episode=rec.episode,
                 out_dir=team_dir,
-                players={n: RecordedPlayer(self.players[n], sink) for n in side.player_names},
+                players={n: RecordedPlayer(self.players[n], sink, self) for n in side.player_names},
                 observations={n: observations[n] for n in side.player_names},
                 episode_length=self.episode_length,
                 seed=rec.seed,
@@ -250,6 +270,22 @@ class Match:
         (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
         return events
 
+    def _recorder(self, rec: EpisodeRecord, out: Path) -> Recorder:
+        """The replay recording of this episode's game (docs/replays.md)."""
+        sc = self.scenario
+        header = {
+            "scenario": sc.key,
+            "title": sc.title,
+            "episode": rec.episode,
+            "length": self.episode_length,
+            "seed": rec.seed,
+            "sides": {
+                s.key: {"team": self.teams[s.key].name, "color": s.color, "players": s.player_names} for s in sc.sides
+            },
+            "extra_players": [p.name for p in sc.extra_players],
+        }
+        return Recorder(self.server, out / RECORDING, header, box=sc.arena.box)
+
     async def _game(self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path) -> list[dict]:
         gm = self.scenario.game_master(self.server, rng)
         await gm.start()
@@ -271,9 +307,12 @@ class Match:
                 await asyncio.sleep(max(0.0, start + second - time.monotonic()))
                 scores = await gm.scores()
                 timeline.append({"t": second, **scores})
+                recorder.score(second, scores)
                 self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
 
         world = self.server.control.subscribe()  # what happened in the world, as the server saw it
+        recorder = self.recorder = self._recorder(rec, out)
+        await recorder.start()
         first_tick = (await self.server.request("status"))["tick"]
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
@@ -294,6 +333,9 @@ class Match:
         rec.server_tps = round(((await self.server.request("status"))["tick"] - first_tick) / rec.game_s, 2)
         await gm.step()
         final = await gm.scores()
+        recorder.score(length, final)
+        self.recorder = None
+        await recorder.stop(final)
         self.server.control.unsubscribe(world)
         rec.refusals = count_refusals(self._write_world_events(world, out))
         timeline.append({"t": length, **final})
