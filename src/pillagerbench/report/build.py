@@ -16,10 +16,12 @@ from pathlib import Path
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.load import ReportError, load_runs
 from pillagerbench.metrics.symmetry import side_symmetry
-from pillagerbench.report import html, plots, tables
+from pillagerbench.report import html, plots, replays, tables
 
 
-def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None = None) -> dict:
+def build_report(
+    run_dirs: list[str | Path], out: Path, calibration: Path | None = None, with_replays: bool = True
+) -> dict:
     runs = load_runs(run_dirs)
     sigma, notes = calib.resolve(runs, calibration)
     if not sigma:
@@ -78,6 +80,12 @@ def build_report(run_dirs: list[str | Path], out: Path, calibration: Path | None
     sections = [(t[k][1], "table", t[k][0]) for k in ("summary", "per_scenario", "pairings", "groups", "side_symmetry")]
     sections += [(title, "image", path) for title, path in figures]
     sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "skipped")]
+    if with_replays:
+        replay_rows, pages = replays.write_all(runs.series, out)
+        files += pages
+        recorded = sum(1 for r in replay_rows if r["replay"])
+        notes.append(f"replays: {recorded} of {len(replay_rows)} episode(s) have a replay page (linked below)")
+        sections.append(("Replays (one page per episode, opens offline)", "html", replays.table_html(replay_rows)))
     page = out / "report.html"
     page.write_text(html.page("PillagerBench report", runs.runs, notes, sections))
     files.append(page)
@@ -89,10 +97,11 @@ def main(argv: list[str]) -> int:
     p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs)")
     p.add_argument("--out", default=None, help="output directory (default: FIRST_RUN/report)")
     p.add_argument("--calibration", default=None, help="a calibration.json (pillagerbench calibrate)")
+    p.add_argument("--no-replays", action="store_true", help="do not write each episode's replay.html")
     a = p.parse_args(argv)
     out = Path(a.out) if a.out else Path(a.runs[0]) / "report"
     try:
-        result = build_report(a.runs, out, Path(a.calibration) if a.calibration else None)
+        result = build_report(a.runs, out, Path(a.calibration) if a.calibration else None, not a.no_replays)
     except ReportError as exc:
         print(f"pillagerbench report: {exc}", file=sys.stderr)
         return 2

@@ -34,7 +34,7 @@ def image_html(path: Path, alt: str) -> str:
 
 
 def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[str, str, Any]]) -> str:
-    """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path) or "text"."""
+    """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path), "text" or "html" (markup as is)."""
     parts = [
         f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>",
         f"<style>{STYLE}</style></head><body><h1>{html.escape(title)}</h1>",
@@ -48,6 +48,8 @@ def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[st
             parts.append(table_html(content))
         elif kind == "image":
             parts.append(image_html(content, heading))
+        elif kind == "html":
+            parts.append(str(content))
         else:
             parts.append(f"<p>{html.escape(str(content))}</p>")
     parts.append("</body></html>")
