@@ -19,7 +19,18 @@ def test_every_recorded_line_matches_the_schema():
         for line in f:
             record = RECORD.validate_python(json.loads(line))
             kinds.add(record.type)
-    assert {"header", "blocks", "frame", "blocks_changed", "item", "item_gone", "event", "score", "program", "end"} <= kinds
+    assert {
+        "header",
+        "blocks",
+        "frame",
+        "blocks_changed",
+        "item",
+        "item_gone",
+        "event",
+        "score",
+        "program",
+        "end",
+    } <= kinds
 
 
 def test_the_documented_schema_is_the_generated_one():

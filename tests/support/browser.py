@@ -46,7 +46,9 @@ def flags(profile: str) -> list[str]:
     ]
 
 
-def dump_dom(url: str, *, budget_ms: int = 5000, timeout: float = 90, extra: list[str] | None = None) -> tuple[str, str]:
+def dump_dom(
+    url: str, *, budget_ms: int = 5000, timeout: float = 90, extra: list[str] | None = None
+) -> tuple[str, str]:
     """The DOM after the page ran (virtual time `budget_ms`), and Chromium's log (console lines)."""
     with tempfile.TemporaryDirectory(prefix="pb-chromium-") as profile:
         cmd = [

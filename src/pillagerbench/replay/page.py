@@ -60,8 +60,10 @@ BODY = """
 # server events shown in the feed (the rest stay in the recording): event -> text
 WORLD_EVENTS = {
     "block_dug": lambda e: f"{e.get('player')} dug {e.get('block', 'a block')}",
-    "item_picked_up": lambda e: f"{e.get('player')} picked up {e.get('count', 1)} {e.get('item')}"
-    + (f" (thrown by {e['thrower']})" if e.get("thrower") else ""),
+    "item_picked_up": lambda e: (
+        f"{e.get('player')} picked up {e.get('count', 1)} {e.get('item')}"
+        + (f" (thrown by {e['thrower']})" if e.get("thrower") else "")
+    ),
     "item_tossed": lambda e: f"{e.get('player')} tossed {e.get('count', 1)} {e.get('item')}",
     "item_crafted": lambda e: f"{e.get('player')} crafted {e.get('count', 1)} {e.get('item')}",
     "mob_killed": lambda e: f"{e.get('player')} killed {e.get('mob', 'a mob')}",

@@ -67,7 +67,9 @@ class Recorder:
             blocks = await self.server.control.request("scan", **{"from": [x0, GROUND_Y, z0], "to": [x1, y1, z1]})
             palette: dict[str, int] = {}
             rows = [[x, y, z, palette.setdefault(name, len(palette))] for x, y, z, name, *_ in blocks]
-            self._write({"type": "blocks", "box": [[x0, GROUND_Y, z0], [x1, y1, z1]], "palette": list(palette), "blocks": rows})
+            self._write(
+                {"type": "blocks", "box": [[x0, GROUND_Y, z0], [x1, y1, z1]], "palette": list(palette), "blocks": rows}
+            )
         self._events = self.server.control.subscribe()
         self._start = time.monotonic()
         self._last_flush = self._start
