@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import cast
 
 import matplotlib
 
@@ -113,7 +114,7 @@ def teams(view: pd.DataFrame, table: pd.DataFrame, scenario: str, path: Path) ->
     names = list(td["team"])
     height = 1.4 + 0.38 * max(len(names), 2)
     fig = plt.figure(figsize=(17, max(3.6, height)), layout="constrained")
-    sub = fig.subfigures(1, 2, width_ratios=[3, 1.3])
+    sub = cast(np.ndarray, fig.subfigures(1, 2, width_ratios=[3, 1.3]))
     bars = sub[0].subplots(1, 4, sharey=True)
     y = np.arange(len(names))
     colours = [plt.get_cmap("tab10")(i % 10) for i in range(len(names))]
