@@ -270,6 +270,13 @@ class Match:
         (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
         return events
 
+    def _watch(self, **state: Any) -> None:
+        """Tell the live view (`watch=PORT`) the scoreboard, without waiting: it never holds the game up."""
+        if not getattr(self.server, "watch_url", None):
+            return
+        task = asyncio.ensure_future(self.server.request("watch", **state))
+        task.add_done_callback(lambda t: t.cancelled() or t.exception())  # a view that fails changes nothing
+
     def _recorder(self, rec: EpisodeRecord, out: Path) -> Recorder:
         """The replay recording of this episode's game (docs/replays.md)."""
         sc = self.scenario
@@ -308,11 +315,21 @@ class Match:
                 scores = await gm.scores()
                 timeline.append({"t": second, **scores})
                 recorder.score(second, scores)
+                self._watch(t=second, scores=scores)
                 self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
 
         world = self.server.control.subscribe()  # what happened in the world, as the server saw it
         recorder = self.recorder = self._recorder(rec, out)
         await recorder.start()
+        sides = self.scenario.sides
+        self._watch(
+            center=[sum(s.center[i] for s in sides) / len(sides) for i in range(3)],
+            title=self.scenario.title,
+            episode=rec.episode,
+            length=length,
+            t=0,
+            sides={s.key: self.teams[s.key].name for s in sides},
+        )
         first_tick = (await self.server.request("status"))["tick"]
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
@@ -334,6 +351,7 @@ class Match:
         await gm.step()
         final = await gm.scores()
         recorder.score(length, final)
+        self._watch(t=length, scores=final)
         self.recorder = None
         await recorder.stop(final)
         self.server.control.unsubscribe(world)

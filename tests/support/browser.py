@@ -66,8 +66,13 @@ def dump_dom(
 
 
 def console_errors(log: str) -> list[str]:
-    """Console messages of level error (uncaught exceptions included) from Chromium's log."""
-    return [line for line in log.splitlines() if ":CONSOLE" in line and ("Uncaught" in line or "ERROR:CONSOLE" in line)]
+    """Console messages that report errors (uncaught exceptions, console.error, errors logged) from
+    Chromium's log."""
+    return [
+        line
+        for line in log.splitlines()
+        if ":CONSOLE" in line and ("Uncaught" in line or "ERROR:CONSOLE" in line or "Error" in line)
+    ]
 
 
 def run_test_script(page: Path, script: str, **kw) -> dict:
@@ -82,3 +87,23 @@ def run_test_script(page: Path, script: str, **kw) -> dict:
     result = json.loads(html.unescape(m.group(1)))
     result["console_errors"] = console_errors(log)
     return result
+
+
+WEBGL = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]  # software WebGL, no GPU needed
+
+
+def screenshot(url: str, path: Path, *, budget_ms: int = 10000, timeout: float = 120) -> str:
+    """A PNG of the page after `budget_ms` of (virtual) time, with software WebGL; returns Chromium's log."""
+    with tempfile.TemporaryDirectory(prefix="pb-chromium-") as profile:
+        cmd = [
+            chromium(),
+            *flags(profile),
+            *WEBGL,
+            "--enable-logging=stderr",
+            "--v=0",
+            f"--virtual-time-budget={budget_ms}",
+            f"--screenshot={path}",
+            url,
+        ]
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    return done.stderr

@@ -10,21 +10,31 @@ const ANGLE = 360 / 256 // flying-squid keeps yaw and pitch as protocol bytes
 module.exports.server = function (serv) {
   const reg = serv.registry
   let changes = null // Map "x,y,z" -> [x, y, z, name] while recording, else null
+  const listeners = new Set() // (x, y, z, stateId) for every block written (replays, the live view)
   let wrapped = null
 
-  function watchWorld () {
+  // Call `fn(x, y, z, stateId)` after every block write to the overworld; returns a function that stops it.
+  serv.pb.listenBlocks = (fn) => {
     const world = serv.overworld
-    if (wrapped === world) return
-    const set = world.setBlockStateId.bind(world)
-    world.setBlockStateId = async (pos, stateId) => {
-      const result = await set(pos, stateId)
-      if (changes) {
+    if (wrapped !== world) {
+      const set = world.setBlockStateId.bind(world)
+      world.setBlockStateId = async (pos, stateId) => {
+        const result = await set(pos, stateId)
         const x = Math.floor(pos.x); const y = Math.floor(pos.y); const z = Math.floor(pos.z)
-        changes.set(`${x},${y},${z}`, [x, y, z, reg.blocksByStateId[stateId]?.name ?? 'air'])
+        for (const f of listeners) { try { f(x, y, z, stateId) } catch (err) { serv.emit('pluginError', err, 'block listener') } }
+        return result
       }
-      return result
+      wrapped = world
     }
-    wrapped = world
+    listeners.add(fn)
+    return () => listeners.delete(fn)
+  }
+  function record (x, y, z, stateId) {
+    if (changes) changes.set(`${x},${y},${z}`, [x, y, z, reg.blocksByStateId[stateId]?.name ?? 'air'])
+  }
+  let recording = false
+  function watchWorld () {
+    if (!recording) { serv.pb.listenBlocks(record); recording = true }
   }
 
   function held (p) {
