@@ -20,6 +20,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "pillagerbench.league.cli:main",
         "a league: add entrants, play scheduled matches, write the leaderboard",
     ),
+    "replay": ("pillagerbench.replay.page:main", "write an episode's replay page (replay.html) from its recording"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": (
         "pillagerbench.report.symmetry:main",

@@ -5,6 +5,7 @@ and what is valid. Groups (scenario, teams) are checked against their registries
 
 from __future__ import annotations
 
+import socket
 from typing import Any, Literal
 
 from omegaconf import OmegaConf
@@ -75,6 +76,7 @@ class RunConfig(BaseModel):
     display: Literal["auto", "live", "plain"]
     scoring: Literal["clean", "upstream"] = "clean"  # runs from before these keys: the defaults
     protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
+    watch: int | None = Field(None, ge=0, le=65535)
     parallel: int | None = Field(ge=1)
     launcher: Literal["local", "ray"]
     ray_address: str | None
@@ -112,6 +114,30 @@ def top_level_problems(cfg: Any) -> list[str]:
     if data.get("llm_cache", {}).get("mode") in (None, False):  # YAML 1.1 reads a bare `off` as false
         data["llm_cache"]["mode"] = "off"
     return problems(RunConfig, data)
+
+
+def watch_problems(cfg: Any) -> list[str]:
+    """`watch=PORT`: a port number, free on the server's host (0 = any free port)."""
+    data = to_dict(cfg)
+    watch = data.get("watch")
+    if watch is None:
+        return []
+    if isinstance(watch, bool) or not isinstance(watch, int) or not 0 <= watch <= 65535:
+        return [f"watch={watch!r}: a port number 0..65535 (0 = a free port), or null for no live view"]
+    host = str((data.get("server") or {}).get("host", "127.0.0.1"))
+    if watch and not port_is_free(host, watch):
+        return [f"watch={watch}: port {host}:{watch} is already in use (choose another, or watch=0 for a free port)"]
+    return []
+
+
+def port_is_free(host: str, port: int) -> bool:
+    with socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            s.bind((host, port))
+        except OSError:
+            return False
+    return True
 
 
 def check(lines: list[str]) -> None:

@@ -27,6 +27,7 @@ from typing import Any
 
 from pillagerbench.load import lag_verdict
 from pillagerbench.players import Player
+from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team, TeamContext
 
@@ -78,23 +79,41 @@ def count_refusals(events: list[dict]) -> dict[str, int]:
 
 
 class RecordedPlayer:
-    """A player handle that also appends every event of its runs to the episode's log."""
+    """A player handle that also appends every event of its runs to the episode's log, and tells
+    the replay recording (when one is on) when each program starts, fails and ends."""
 
-    def __init__(self, player: Player, sink: Callable[[str, list], None], runs: dict[str, int] | None = None):
-        self._player, self._sink = player, sink
+    def __init__(
+        self,
+        player: Player,
+        sink: Callable[[str, list], None],
+        runs: dict[str, int] | None = None,
+        match: Match | None = None,
+    ):
+        self._player, self._sink, self._match = player, sink, match
         self._runs = {} if runs is None else runs  # code runs started per player this episode
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._player, name)
 
+    def _program(self, what: str, message: str | None = None) -> None:
+        recorder = self._match.recorder if self._match else None
+        if recorder is not None:
+            recorder.program(self._player.name, what, message)
+
     async def run(self, code: str, *, timeout: float | None = None, on_event=None) -> list:
         def both(event):
             self._sink(self._player.name, event)
+            if isinstance(event, list) and event and event[0] == "onError":
+                self._program("error", str((event[1] or {}).get("onError", "")) if len(event) > 1 else "")
             if on_event:
                 on_event(event)
 
         self._runs[self._player.name] = self._runs.get(self._player.name, 0) + 1
-        return await self._player.run(code, timeout=timeout, on_event=both)
+        self._program("start")
+        try:
+            return await self._player.run(code, timeout=timeout, on_event=both)
+        finally:
+            self._program("end")
 
 
 def winner_of(red: float, blue: float) -> str:
@@ -125,6 +144,7 @@ class Match:
         self.on_tick = on_tick or (lambda status: None)
         self.players: dict[str, Player] = {}
         self.last_records: dict[str, dict] = {}
+        self.recorder: Recorder | None = None  # the replay recording of the game being played
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -196,6 +216,12 @@ class Match:
         except Exception as exc:  # noqa: BLE001 - one failed episode never ends the series
             rec.status, rec.error = "failed", f"{type(exc).__name__}: {exc}"
         finally:
+            if self.recorder is not None:  # the game failed: the recording ends where it stopped
+                recorder, self.recorder = self.recorder, None
+                try:
+                    await recorder.stop()
+                except Exception:  # noqa: BLE001 - the server is gone; the file is closed by stop()
+                    pass
             for f in files.values():
                 f.close()
             rec.duration_s = round(time.monotonic() - t_start, 3)
@@ -234,7 +260,7 @@ class Match:
                 side=side,
                 episode=rec.episode,
                 out_dir=team_dir,
-                players={n: RecordedPlayer(self.players[n], sink, rec.runs) for n in side.player_names},
+                players={n: RecordedPlayer(self.players[n], sink, rec.runs, self) for n in side.player_names},
                 observations={n: observations[n] for n in side.player_names},
                 episode_length=self.episode_length,
                 seed=rec.seed,
@@ -296,6 +322,29 @@ class Match:
         (out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
         return events
 
+    def _watch(self, **state: Any) -> None:
+        """Tell the live view (`watch=PORT`) the scoreboard, without waiting: it never holds the game up."""
+        if not getattr(self.server, "watch_url", None):
+            return
+        task = asyncio.ensure_future(self.server.request("watch", **state))
+        task.add_done_callback(lambda t: t.cancelled() or t.exception())  # a view that fails changes nothing
+
+    def _recorder(self, rec: EpisodeRecord, out: Path) -> Recorder:
+        """The replay recording of this episode's game (docs/replays.md)."""
+        sc = self.scenario
+        header = {
+            "scenario": sc.key,
+            "title": sc.title,
+            "episode": rec.episode,
+            "length": self.episode_length,
+            "seed": rec.seed,
+            "sides": {
+                s.key: {"team": self.teams[s.key].name, "color": s.color, "players": s.player_names} for s in sc.sides
+            },
+            "extra_players": [p.name for p in sc.extra_players],
+        }
+        return Recorder(self.server, out / RECORDING, header, box=sc.arena.box)
+
     async def _game(
         self, rec: EpisodeRecord, contexts: dict, rng: random.Random, out: Path
     ) -> tuple[list[dict], list[dict]]:
@@ -331,10 +380,23 @@ class Match:
                 await asyncio.sleep(max(0.0, start + second - time.monotonic()))
                 scores = await gm.scores()
                 timeline.append({"t": second, **scores})
+                recorder.score(second, scores)
+                self._watch(t=second, scores=scores)
                 self.on_tick({"episode": rec.episode, "t": second, "length": length, **scores})
 
         world = self.server.control.subscribe()  # what happened in the world, as the server saw it
         await self._bot_lag(reset=True)
+        recorder = self.recorder = self._recorder(rec, out)
+        await recorder.start()
+        sides = self.scenario.sides
+        self._watch(
+            center=[sum(s.center[i] for s in sides) / len(sides) for i in range(3)],
+            title=self.scenario.title,
+            episode=rec.episode,
+            length=length,
+            t=0,
+            sides={s.key: self.teams[s.key].name for s in sides},
+        )
         first_tick = (await self.server.request("status"))["tick"]
         plays = [asyncio.create_task(self.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
         background = [asyncio.create_task(rules(), name="game-master"), asyncio.create_task(sample(), name="scores")]
@@ -367,6 +429,10 @@ class Match:
         if final is None:
             await gm.step()
             final = await gm.scores()
+        recorder.score(length, final)
+        self._watch(t=length, scores=final)
+        self.recorder = None
+        await recorder.stop(final)
         self.server.control.unsubscribe(world)
         rec.refusals = count_refusals(self._write_world_events(world, out))
         timeline.append({"t": length, **final})

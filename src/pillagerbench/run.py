@@ -39,8 +39,10 @@ async def play(cfg, run_dir: Path) -> list:
     records = []
     title = f"{scenario.title}: red {cfg.red.name} vs blue {cfg.blue.name}"
     with MatchDisplay(title, cfg.display) as display:
-        server = ArenaServer.from_config(cfg.server, log_path=run_dir / "server.log")
+        server = ArenaServer.from_config(cfg.server, log_path=run_dir / "server.log", watch=cfg.get("watch"))
         await server.start()
+        if server.watch_url:
+            print(f"live view: {server.watch_url}", flush=True)
         from pillagerbench.llm.presets import make_llms
 
         llms = make_llms(cfg, teams, run_dir)

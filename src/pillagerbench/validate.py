@@ -15,7 +15,7 @@ from omegaconf import OmegaConf
 from pydantic import ConfigDict, create_model
 
 from pillagerbench.config import ConfigError, to_dict
-from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems
+from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems, watch_problems
 from pillagerbench.scenarios import SCENARIOS
 from pillagerbench.teams import TEAMS, declared_options, find_team
 
@@ -85,4 +85,8 @@ def check_run_config(cfg: Any, *, teams: bool = True) -> None:
     """Raise one ConfigError listing every problem of the config (one line each). With
     teams=False (experiments choose teams themselves, see experiments/runner.check_series) only
     the top-level keys are checked."""
-    check(top_level_problems(cfg) + (team_problems(cfg) if teams else []))
+    top = top_level_problems(cfg)
+    watch = [] if any(line.startswith("watch=") for line in top) else watch_problems(cfg)
+    if not teams and cfg.get("watch") is not None:  # an experiment: many servers at once
+        watch = [f"watch={cfg.get('watch')}: the live view shows one match; experiments play many series at once"]
+    check(top + watch + (team_problems(cfg) if teams else []))

@@ -124,10 +124,11 @@ def test_report_writes_every_file(killed_and_resumed, tmp_path, capsys):
     run = killed_and_resumed[0]
     assert report_main([str(run), "--out", str(tmp_path / "report")]) == 0
     names = {p.name for p in (tmp_path / "report").iterdir()}
-    tables = ["summary", "per_scenario", "pairings", "groups", "learning_curve", "calibration", "skipped"]
+    tables = ["summary", "per_scenario", "per_team", "pairings", "groups", "learning_curve", "calibration", "skipped"]
     expected = {f"{t}.{ext}" for t in tables for ext in ("md", "csv")} | {
         "heatmaps_mushroom_war.png",
         "timeline_mushroom_war.png",
+        "teams_mushroom_war.png",
         "learning_curve.png",
         "groups.png",
         "series_scores.png",
@@ -139,7 +140,8 @@ def test_report_writes_every_file(killed_and_resumed, tmp_path, capsys):
     summary = (tmp_path / "report" / "summary.md").read_text()
     assert "| do_nothing | 3 |" in summary and "| passive | 3 |" in summary
     html = (tmp_path / "report" / "report.html").read_text()
-    assert html.count("data:image/png;base64,") == 5 and "Points difference per episode" in html
+    assert html.count("data:image/png;base64,") == 6 and "Points difference per episode" in html
+    assert html.count("<figcaption>") == 6
     # σ_blue of balanced comes from the do_nothing-red series of the same run
     calibration = (tmp_path / "report" / "calibration.csv").read_text()
     assert "mushroom_war,balanced," in calibration

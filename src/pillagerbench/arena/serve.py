@@ -1,6 +1,7 @@
 """`pillagerbench server`: start an arena server for people to watch with a real 1.16.5 client.
 
     pillagerbench server server.port=25565 server.operators=[Steve]
+    pillagerbench server watch=8080          # and a live 3D view in the browser at http://127.0.0.1:8080/
 
 Runs until Ctrl-C. Players named in `server.operators` may use chat commands such as /fill and /tp;
 everyone else (every agent) is refused.
@@ -12,7 +13,7 @@ import asyncio
 
 from pillagerbench.arena.server import MC_VERSION, ArenaServer
 from pillagerbench.config import load_config
-from pillagerbench.config_schema import ServerConfig, check, problems
+from pillagerbench.config_schema import ServerConfig, check, problems, watch_problems
 
 
 async def _serve(server: ArenaServer) -> None:
@@ -20,6 +21,8 @@ async def _serve(server: ArenaServer) -> None:
     print(f"arena server (Minecraft {MC_VERSION}, offline mode) ready in {server.ready_seconds:.2f} s")
     print(f"connect a Minecraft {MC_VERSION} client to {server.host}:{server.port}")
     print(f"server log: {server.log_path}")
+    if server.watch_url:
+        print(f"live view: {server.watch_url} (a browser; the view is not a player)")
     print("Ctrl-C stops it.", flush=True)
     try:
         while server.alive:
@@ -31,8 +34,8 @@ async def _serve(server: ArenaServer) -> None:
 
 def main(argv: list[str]) -> int:
     cfg = load_config(argv)
-    check(problems(ServerConfig, cfg.server, "server"))
-    server = ArenaServer.from_config(cfg.server)
+    check(problems(ServerConfig, cfg.server, "server") + watch_problems(cfg))
+    server = ArenaServer.from_config(cfg.server, watch=cfg.get("watch"))
     try:
         asyncio.run(_serve(server))
     except KeyboardInterrupt:

@@ -35,8 +35,8 @@ class ArenaServerError(RuntimeError):
 
 class ArenaServer:
     @classmethod
-    def from_config(cls, server_cfg, log_path: str | Path | None = None) -> ArenaServer:
-        """Build from the `server` section of the Hydra config."""
+    def from_config(cls, server_cfg, log_path: str | Path | None = None, watch: int | None = None) -> ArenaServer:
+        """Build from the `server` section of the Hydra config (and the top-level `watch` port)."""
         log_dir = server_cfg.get("log_dir")
         return cls(
             host=server_cfg.host,
@@ -46,6 +46,7 @@ class ArenaServer:
             crop_growth_chance=float(server_cfg.crop_growth_chance),
             tps=int(server_cfg.tps),
             operators=list(server_cfg.operators),
+            watch=watch,
         )
 
     def __init__(
@@ -57,6 +58,7 @@ class ArenaServer:
         crop_growth_chance: float = 0.2,
         tps: int = 20,
         operators: list[str] | None = None,
+        watch: int | None = None,
     ):
         self.host = host
         self.requested_port = port
@@ -72,6 +74,9 @@ class ArenaServer:
             "tps": tps,
             "operators": list(operators or []),
         }
+        if watch is not None:  # the live view (js/server/plugins/watch.js) on this port, 0 = a free one
+            self.settings["watch"] = {"host": host, "port": int(watch)}
+        self.watch_url: str | None = None
         self.process: asyncio.subprocess.Process | None = None
         self.control: ControlChannel | None = None
         self.ready_seconds: float | None = None
@@ -109,6 +114,7 @@ class ArenaServer:
             await self.stop()
             raise ArenaServerError(f"arena server failed to start: {exc}") from None
         self.port = int(ready["port"])
+        self.watch_url = ready.get("watch")
         self.ready_seconds = time.perf_counter() - t0
         return self
 

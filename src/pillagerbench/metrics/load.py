@@ -187,6 +187,7 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
         rows.append(
             {
                 "run": str(s.run),
+                "dir": str(ep),
                 "series": s.id,
                 "scenario": s.scenario,
                 "version": s.version,

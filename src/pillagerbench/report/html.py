@@ -19,6 +19,8 @@ th, td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: right; }
 th { background: #f2f2f2; } td:first-child, th:first-child { text-align: left; }
 img { max-width: 100%; border: 1px solid #eee; margin: 0.5em 0 1.5em; }
 .note { color: #555; font-size: 0.9em; } code { background: #f6f6f6; }
+figure { margin: 0.5em 0 1.5em; } figure img { margin: 0; }
+figcaption { color: #444; font-size: 0.9em; margin-top: 0.2em; }
 """
 
 
@@ -28,13 +30,16 @@ def table_html(df: pd.DataFrame) -> str:
     return display_frame(df).to_html(index=False, escape=True, border=0)
 
 
-def image_html(path: Path, alt: str) -> str:
+def image_html(path: Path, alt: str, caption: str | None = None) -> str:
     data = base64.b64encode(Path(path).read_bytes()).decode()
-    return f"<img alt='{html.escape(alt)}' src='data:image/png;base64,{data}'>"
+    img = f"<img alt='{html.escape(alt)}' src='data:image/png;base64,{data}'>"
+    if caption is None:
+        return img
+    return f"<figure>{img}<figcaption>{html.escape(caption)}</figcaption></figure>"
 
 
 def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[str, str, Any]]) -> str:
-    """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path) or "text"."""
+    """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path), "text" or "html" (markup as is)."""
     parts = [
         f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>",
         f"<style>{STYLE}</style></head><body><h1>{html.escape(title)}</h1>",
@@ -46,8 +51,11 @@ def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[st
         parts.append(f"<h2>{html.escape(heading)}</h2>")
         if kind == "table":
             parts.append(table_html(content))
-        elif kind == "image":
-            parts.append(image_html(content, heading))
+        elif kind == "image":  # a path, or (path, one-line caption)
+            path, caption = content if isinstance(content, tuple) else (content, None)
+            parts.append(image_html(path, heading, caption))
+        elif kind == "html":
+            parts.append(str(content))
         else:
             parts.append(f"<p>{html.escape(str(content))}</p>")
     parts.append("</body></html>")

@@ -1,6 +1,7 @@
 """The report's figures (matplotlib, Agg backend, PNG), each with 95 % confidence intervals:
 
 - heatmaps_<scenario>.png   P, S, W, D per red team (rows) and opponent (columns, plus "all")
+- teams_<scenario>.png      each team's P, S, D, W and points over time, whichever side it played
 - timeline_<scenario>.png   mean red score over the episode per red team, shaded CI band
 - learning_curve.png        D per episode index (experience) per red team, CI error bars
 - groups.png                P/D per group (adaptation same/different, self-play "after k")
@@ -11,6 +12,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import cast
 
 import matplotlib
 
@@ -45,13 +47,24 @@ def _empty(path: Path, text: str) -> Path:
     return path
 
 
+def heatmap_size(n_rows: int, n_cols: int, label_len: int = 12) -> tuple[float, float]:
+    """(width, height) in inches of one heatmap panel: cells of a fixed size, plus room for the row
+    labels, the rotated column labels and the title, so 1 row or 12 stay legible."""
+    cell_w, cell_h = 0.85, 0.5
+    label_w = 0.2 + 0.075 * label_len
+    return label_w + 1.2 + cell_w * max(n_cols, 2), 1.9 + cell_h * max(n_rows, 1.6)
+
+
 def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
     sd = pairs[pairs["scenario"] == scenario]
     if not len(sd):
         return _empty(path, f"{_title(scenario)}: no episodes")
     rows = red_order(sd)
     cols = [*opponent_order(sd[sd["blue"] != ALL], scenario), ALL]
-    fig, axes = plt.subplots(1, 4, figsize=(4.2 * 4, 1.2 + 0.65 * len(rows) + 0.2 * max(0, len(cols) - 5)))
+    w, h = heatmap_size(len(rows), len(cols), max(len(r) for r in rows))
+    fig, grid_axes = plt.subplots(2, 2, figsize=(2 * w, 2 * h + 0.4), layout="constrained")
+    axes = grid_axes.ravel()
+    font = 7 if len(cols) > 6 else 8
     for ax, metric in zip(axes, ("P", "S", "W", "D")):
         grid = np.full((len(rows), len(cols)), np.nan)
         ci = np.full_like(grid, np.nan)
@@ -69,17 +82,72 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
                 if np.isfinite(grid[i, j]):
                     text = f"{grid[i, j]:.2f}" + (f"\n±{ci[i, j]:.2f}" if np.isfinite(ci[i, j]) else "")
                     ax.text(
-                        j, i, text, ha="center", va="center", fontsize=7, color="white" if metric in "PS" else "black"
+                        j,
+                        i,
+                        text,
+                        ha="center",
+                        va="center",
+                        fontsize=font,
+                        color="white" if metric in "PS" else "black",
                     )
-        ax.set_xticks(range(len(cols)), cols, rotation=45, ha="right", fontsize=8)
+                else:
+                    ax.text(j, i, "–", ha="center", va="center", fontsize=font, color="grey")
+        ax.set_xticks(range(len(cols)), cols, rotation=35, ha="right", fontsize=8)
         ax.set_yticks(range(len(rows)), rows, fontsize=8)
         ax.set_title(TITLES[metric], fontsize=10)
-        ax.set_xlabel("blue team (opponent)")
-        fig.colorbar(im, ax=ax, fraction=0.046, pad=0.04)
-    axes[0].set_ylabel("red team")
+        ax.set_xlabel("blue team (opponent)", fontsize=8)
+        ax.set_ylabel("red team", fontsize=8)
+        fig.colorbar(im, ax=ax, fraction=0.05, pad=0.02, shrink=0.9 if len(rows) > 2 else 1.0)
     fig.suptitle(f"{_title(scenario)} (mean ± 95 % CI)")
-    fig.tight_layout()
     fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def teams(view: pd.DataFrame, table: pd.DataFrame, scenario: str, path: Path) -> Path:
+    """Each team from its own side, whichever side it played: P, S, D, W (bars with 95 % CI) and its
+    mean points over time (shaded 95 % CI)."""
+    sd = view[view["scenario"] == scenario] if len(view) else view
+    td = table[table["scenario"] == scenario] if len(table) else table
+    if not len(sd):
+        return _empty(path, f"{_title(scenario)}: no episodes")
+    names = list(td["team"])
+    height = 1.4 + 0.38 * max(len(names), 2)
+    fig = plt.figure(figsize=(17, max(3.6, height)), layout="constrained")
+    sub = cast(np.ndarray, fig.subfigures(1, 2, width_ratios=[3, 1.3]))
+    bars = sub[0].subplots(1, 4, sharey=True)
+    y = np.arange(len(names))
+    colours = [plt.get_cmap("tab10")(i % 10) for i in range(len(names))]
+    for ax, metric in zip(bars, ("P", "S", "D", "W")):
+        values, cis = td[metric].to_numpy(dtype=float), td[f"{metric}_ci"].to_numpy(dtype=float)
+        ax.barh(y, np.nan_to_num(values), xerr=np.where(np.isfinite(cis), cis, 0), color=colours, capsize=3)
+        for i, v in enumerate(values):
+            ax.text(0, i, " –" if not np.isfinite(v) else "", va="center", fontsize=8, color="grey")
+        ax.axvline(0, color="grey", lw=0.8)
+        ax.set_title(
+            {"P": "Points", "S": "Sabotage", "D": "Points difference (own − opp.)", "W": "Win rate"}[metric], fontsize=9
+        )
+        ax.tick_params(labelsize=8)
+    bars[0].set_yticks(y, [f"{n} ({r}+{b})" for n, r, b in zip(names, td["as_red"], td["as_blue"])], fontsize=8)
+    bars[0].invert_yaxis()
+    bars[0].set_ylabel("team (episodes as red + as blue)", fontsize=8)
+    ax = sub[1].subplots()
+    for name, colour in zip(names, colours):
+        g = sd[sd["team"] == name]
+        n_t = min(len(t) for t in g["t"])
+        t = np.asarray(g["t"].iloc[0][:n_t])
+        ys = np.stack([np.asarray(v[:n_t]) for v in g["own_t"]])
+        mean = ys.mean(axis=0)
+        ax.plot(t, mean, color=colour, label=f"{name} (n={len(ys)})")
+        if len(ys) > 1:
+            half = t_critical(len(ys) - 1) * ys.std(axis=0, ddof=1) / math.sqrt(len(ys))
+            ax.fill_between(t, mean - half, mean + half, color=colour, alpha=0.15)
+    ax.set_xlabel("time (s)", fontsize=8)
+    ax.set_ylabel("own points" + (" ×0.1" if scenario == "dash_and_dine" else ""), fontsize=8)
+    ax.set_title("Points over time (either side)", fontsize=9)
+    ax.legend(fontsize=7)
+    fig.suptitle(f"{_title(scenario)}: every team from its own side (mean, 95 % CI)")
+    fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
 

@@ -126,6 +126,66 @@ def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool
     return pd.DataFrame(rows, columns=cols)
 
 
+def team_view(df: pd.DataFrame) -> pd.DataFrame:
+    """Every episode twice, once from each side: scenario, team (label), opponent, side played,
+    own and opponent's final points and own points over time (`t`, `own_t`)."""
+    cols = ["scenario", "team", "team_name", "opponent", "opponent_team", "side", "own", "opp", "t", "own_t"]
+    if not len(df):
+        return pd.DataFrame(columns=cols)
+    parts = []
+    for side, other in (("red", "blue"), ("blue", "red")):
+        parts.append(
+            pd.DataFrame(
+                {
+                    "scenario": df["scenario"].to_numpy(),
+                    "team": df[side].to_numpy(),
+                    "team_name": df[f"{side}_team"].to_numpy(),
+                    "opponent": df[other].to_numpy(),
+                    "opponent_team": df[f"{other}_team"].to_numpy(),
+                    "side": side,
+                    "own": df[f"{side}_score"].to_numpy(),
+                    "opp": df[f"{other}_score"].to_numpy(),
+                    "t": list(df["t"]),
+                    "own_t": list(df[f"{side}_t"]),
+                }
+            )
+        )
+    return pd.concat(parts, ignore_index=True)[cols]
+
+
+def team_order(view: pd.DataFrame) -> list[str]:
+    return list(dict.fromkeys(view["team"])) if len(view) else []
+
+
+def per_team(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
+    """P, S, D, W of each team from its own side of the board, whichever side it played (a
+    calibration run shows the opponents' points, not only do_nothing's zeros). S uses the
+    opponent's σ (its mean points against do_nothing)."""
+    view = team_view(df)
+    rows = []
+    for scenario in scenario_order(df):
+        sd = view[view["scenario"] == scenario]
+        for team in team_order(sd):
+            td = sd[sd["team"] == team]
+            groups_ = []
+            for _, g in td.groupby("opponent_team", sort=False):
+                s = sigma.get((scenario, g["opponent_team"].iloc[0]))
+                groups_.append((g["own"].to_numpy(), g["opp"].to_numpy(), s.mean if s else None, s))
+            rows.append(
+                {
+                    "scenario": scenario,
+                    "team": team,
+                    "as_red": int((td["side"] == "red").sum()),
+                    "as_blue": int((td["side"] == "blue").sum()),
+                    **_row(over_opponents(groups_), len(td)),
+                }
+            )
+    return pd.DataFrame(
+        rows,
+        columns=["scenario", "team", "episodes", "as_red", "as_blue"] + [c for m in METRICS for c in (m, f"{m}_ci")],
+    )
+
+
 def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     gd = df[df["group"].notna() & (df["group"] != "training")] if len(df) else df
     rows = []

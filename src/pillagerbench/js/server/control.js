@@ -145,6 +145,10 @@ const OPS = {
     serv.pb.chests.reset(); serv.pb.furnaces.reset(); serv.pb.crops.reset(); serv.pb.mobs.clearEggFarms(); serv.pb.mobs.removeAll()
     return true
   },
+  // A replay frame (plugins/replay.js): players, items, mobs and the blocks changed since the last frame.
+  replay_frame: async (serv, { start = false, stop = false }) => serv.pb.replay.frame({ start: start === true, stop: stop === true }),
+  // The live view's scoreboard and centre (plugins/watch.js): {center, title, episode, t, length, scores, sides}.
+  watch: async (serv, args) => serv.pb.watch.update(args),
   seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
   // The order in which the server visits its players (packets, block updates, anything that loops
   // over serv.players): the online players named in `names` first, in that order, then the rest as

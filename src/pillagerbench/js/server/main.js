@@ -13,7 +13,7 @@ const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
 const PLUGINS = ['batching', 'guard', 'refusals', 'interact', 'player_list', 'teleport', 'movement', 'inventory', 'windows', 'blocks', 'crafting', 'furnace',
-  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events']
+  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch']
 
 function main () {
   const mc = require('flying-squid')
@@ -58,7 +58,16 @@ function main () {
   serv.once('listening', async (port) => {
     await serv.waitForReady?.(10000).catch(() => {})
     if (settings.tps && settings.tps !== 20) { serv.setTickInterval(settings.tps); serv.pb.tps = settings.tps }
-    protocolOut(JSON.stringify({ event: 'ready', port, version: '1.16.5' }) + '\n')
+    let watch = null
+    if (settings.watch) { // the live view (plugins/watch.js): its port must be free, or the server does not start
+      try {
+        watch = await serv.pb.watch.start(settings.watch)
+      } catch (err) {
+        protocolOut(JSON.stringify({ event: 'failed', error: err.message }) + '\n', () => process.exit(2))
+        return
+      }
+    }
+    protocolOut(JSON.stringify({ event: 'ready', port, version: '1.16.5', watch }) + '\n')
   })
 }
 
@@ -67,6 +76,7 @@ function shutdown (serv) {
   if (stopping) return
   stopping = true
   for (const p of serv.players) { try { p.kick('Server stopping') } catch (_) {} }
+  serv.pb.watch?.stop()
   Promise.race([serv.destroy?.(), new Promise(resolve => setTimeout(resolve, 1000))])
     .finally(() => process.exit(0))
 }

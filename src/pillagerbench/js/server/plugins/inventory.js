@@ -74,7 +74,7 @@ module.exports.player = function (player, serv) {
     player._client.write('collect', { collectedEntityId: entity.id, collectorEntityId: player.id, pickupItemCount: taken })
     serv.emit('control_event', {
       event: 'item_picked_up', player: player.username, item: serv.registry.items[entity.itemId].name,
-      count: taken, thrower: entity.thrower || null
+      count: taken, thrower: entity.thrower || null, entity: entity.id
     })
     if (left > 0) { entity.itemCount = left; return }
     entity.collected = true

@@ -1,0 +1,60 @@
+"""The report's replays: every episode of the runs gets its replay page (`replay.html` in the
+episode's directory, written from its recording) and a row in the report linking to it; an
+episode without a recording (played before replays existed) or with a cut-short one says so."""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+from pathlib import Path
+
+from pillagerbench.replay.load import ReplayError
+from pillagerbench.replay.page import write_replay
+
+
+def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
+    """Write every episode's replay page; rows for the report's table and the pages written."""
+    rows, pages = [], []
+    for s in series:
+        if not Path(s.dir).exists():
+            continue
+        for ep in sorted(Path(s.dir).glob("episode_[0-9]*")):
+            if not ep.is_dir():
+                continue
+            row = {"series": s.id, "episode": ep.name, "red": s.red, "blue": s.blue, "score": "", "replay": None}
+            try:
+                rec = json.loads((ep / "episode.json").read_text())
+                if rec.get("red_score") is not None:
+                    row["score"] = f"{rec['red_score']:g} – {rec['blue_score']:g}"
+                elif rec.get("status") == "failed":
+                    row["score"] = "failed"
+            except (OSError, ValueError):
+                row["score"] = "unfinished"
+            try:
+                page, replay = write_replay(ep)
+            except ReplayError as exc:
+                row["note"] = str(exc).split(": ", 1)[-1] if "no replay recording" in str(exc) else str(exc)
+            else:
+                pages.append(page)
+                row["replay"] = os.path.relpath(page, out)
+                row["note"] = replay.problem or ""
+            rows.append(row)
+    return rows, pages
+
+
+def table_html(rows: list[dict]) -> str:
+    if not rows:
+        return "<p class='note'>(no episodes)</p>"
+    head = "".join(f"<th>{h}</th>" for h in ("series", "episode", "red", "blue", "points (red – blue)", "replay"))
+    body = []
+    for r in rows:
+        link = (
+            f"<a href='{html.escape(r['replay'])}'>replay</a>"
+            + (f" <span class='note'>({html.escape(r['note'])})</span>" if r.get("note") else "")
+            if r["replay"]
+            else f"<span class='note'>{html.escape(r.get('note', ''))}</span>"
+        )
+        cells = [html.escape(str(r[k])) for k in ("series", "episode", "red", "blue", "score")] + [link]
+        body.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
