@@ -90,7 +90,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
                         "within_25pct": "–" if math.isnan(ratio) else "✓" if abs(ratio - 1) <= TOLERANCE else "✗",
                     }
                 )
-                if e.n < MIN_EPISODES and f"{scenario} {team} ({side})" not in few:
+                if e.n < MIN_EPISODES and f"{scenario} {team} ({side}): {e.n}" not in few:  # once, not per scoring
                     few.append(f"{scenario} {team} ({side}): {e.n}")
     if not rows:
         notes.append(
