@@ -291,19 +291,27 @@ async def test_no_fail_counter_where_upstream_had_none(server, area, make_player
     assert said.count("No cow nearby, please explore first") == 12
 
 
+async def dug_while(server, area, player, code: str) -> tuple[list, list[int]]:
+    """Run `code` on `player`; its events and the x (relative to the area) of each block dug, in order."""
+    q = server.control.subscribe()
+    try:
+        events = await player.run(code)
+        await asyncio.sleep(0.3)
+        dug = [e["pos"][0] - area.x0 for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "block_dug"]
+    finally:
+        server.control.unsubscribe(q)
+    return events, dug
+
+
 async def test_mine_block_goes_to_the_target_nearest_to_the_bot_each_time(server, area, make_player):
     # searched around a point near the far end, the three blocks are found far-first; upstream's
     # collectblock (and ours) digs the one nearest to the bot each time: near, middle, far
     xs = (2, 6, 10)
     await area.blocks(*[(x, 4, 0, "slime_block") for x in xs])
     p = await make_player(area, 0, 0)
-    q = server.control.subscribe()
-    try:
-        events = await p.run(f"await mineBlock(bot, 'slime_block', 3, new Vec3({area.x0 + 9}, 4, 0), 12)")
-        await asyncio.sleep(0.3)
-        dug = [e["pos"][0] - area.x0 for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "block_dug"]
-    finally:
-        server.control.unsubscribe(q)
+    events, dug = await dug_while(
+        server, area, p, f"await mineBlock(bot, 'slime_block', 3, new Vec3({area.x0 + 9}, 4, 0), 12)"
+    )
     assert errors(events) == []
     assert dug == list(xs)
 
@@ -312,13 +320,7 @@ async def test_harvest_goes_to_the_crop_nearest_to_the_bot_each_time(server, are
     xs = (2, 6, 10)
     await area.blocks(*[(x, 3, 0, "farmland") for x in xs], *[(x, 4, 0, "wheat", {"age": 7}) for x in xs])
     p = await make_player(area, 0, 0)
-    q = server.control.subscribe()
-    try:
-        events = await p.run(f"await harvestWheat(bot, new Vec3({area.x0 + 10}, 4, 0))")
-        await asyncio.sleep(0.3)
-        dug = [e["pos"][0] - area.x0 for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "block_dug"]
-    finally:
-        server.control.unsubscribe(q)
+    events, dug = await dug_while(server, area, p, f"await harvestWheat(bot, new Vec3({area.x0 + 10}, 4, 0))")
     assert errors(events) == []
     assert dug == list(xs)
 

@@ -50,15 +50,19 @@ def dump_dom(
     url: str, *, budget_ms: int = 5000, timeout: float = 90, extra: list[str] | None = None
 ) -> tuple[str, str]:
     """The DOM after the page ran (virtual time `budget_ms`), and Chromium's log (console lines)."""
+    return headless(url, [*(extra or []), "--dump-dom"], budget_ms, timeout)
+
+
+def headless(url: str, args: list[str], budget_ms: int, timeout: float) -> tuple[str, str]:
+    """Run headless Chromium on `url` with `args` for `budget_ms` of virtual time; its stdout and log."""
     with tempfile.TemporaryDirectory(prefix="pb-chromium-") as profile:
         cmd = [
             chromium(),
             *flags(profile),
-            *(extra or []),
             "--enable-logging=stderr",
             "--v=0",
             f"--virtual-time-budget={budget_ms}",
-            "--dump-dom",
+            *args,
             url,
         ]
         done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
@@ -94,16 +98,4 @@ WEBGL = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]  # software W
 
 def screenshot(url: str, path: Path, *, budget_ms: int = 10000, timeout: float = 120) -> str:
     """A PNG of the page after `budget_ms` of (virtual) time, with software WebGL; returns Chromium's log."""
-    with tempfile.TemporaryDirectory(prefix="pb-chromium-") as profile:
-        cmd = [
-            chromium(),
-            *flags(profile),
-            *WEBGL,
-            "--enable-logging=stderr",
-            "--v=0",
-            f"--virtual-time-budget={budget_ms}",
-            f"--screenshot={path}",
-            url,
-        ]
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    return done.stderr
+    return headless(url, [*WEBGL, f"--screenshot={path}"], budget_ms, timeout)[1]
