@@ -2,6 +2,7 @@
 // Farming (reference §5.9): tillLand, plantCrop and its wrappers, harvest and its wrappers,
 // equipBucket, milkCow, destroyCrop.
 const { helpers, checkString } = require('./util')
+const { collector } = require('./collect')
 
 const UP = [0, 1, 0]
 const SIDES = [[1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1]]
@@ -12,6 +13,7 @@ module.exports = {
   make (ctx) {
     const { bot, run, mcData, goals, Vec3 } = ctx
     const h = helpers(ctx)
+    const { collect } = collector(ctx, h)
     const TOO_MANY = 'Farming failed too many times, check chat log to see what happened'
     const blockId = (name) => {
       const b = mcData.blocksByName[name]
@@ -93,27 +95,11 @@ module.exports = {
         return
       }
       ctx.chat(`Harvesting ${crop}`)
-      let n = 0
-      for (const p of h.nearestFirst(targets)) {
-        const b = bot.blockAt(p)
-        if (!b || b.type !== id || !matching(b)) continue
-        if (goalNear) {
-          if (!await walkTo(p)) continue
-        } else if (bot.entity.position.distanceTo(p.offset(0.5, 0.5, 0.5)) > 4) {
-          await h.goto(new goals.GoalLookAtBlock(p, bot.world, { reach: 4 }))
-        }
-        const now = bot.blockAt(p)
-        if (!now || now.type !== id) continue
-        try {
-          if (activateBlock) await run.race(bot.activateBlock(now))
-          else await run.race(bot.dig(now, true))
-        } catch (err) {
-          if (h.isStop(err) || !run.active) throw err
-          continue
-        }
-        n++
-        await h.collectDrops(p.offset(0.5, 0.5, 0.5))
-      }
+      const n = await collect(targets, {
+        goalNear,
+        isTarget: (b) => b && b.type === id && matching(b),
+        act: (b) => run.race(activateBlock ? bot.activateBlock(b) : bot.dig(b, true))
+      })
       ctx.chat(`Harvested ${n} ${crop}`)
     }
 

@@ -77,19 +77,7 @@ function helpers (ctx) {
     return out.sort((a, b) => a.distanceSquared(c) - b.distanceSquared(c))
   }
 
-  // Positions in the order a collector visits them: each time the one nearest to where the bot is then
-  // (upstream's collectblock), not the order they were found in.
-  function * nearestFirst (positions) {
-    const left = [...positions]
-    while (left.length) {
-      const at = bot.entity.position
-      let best = 0
-      for (let i = 1; i < left.length; i++) if (left[i].offset(0.5, 0.5, 0.5).distanceSquared(at) < left[best].offset(0.5, 0.5, 0.5).distanceSquared(at)) best = i
-      yield left.splice(best, 1)[0]
-    }
-  }
-
-  return { toVec3, items, itemCount, findItem, waitTicks, goto, near, collectDrops, equipItem, isStop, scanBlocks, nearestFirst }
+  return { toVec3, items, itemCount, findItem, waitTicks, goto, near, collectDrops, equipItem, isStop, scanBlocks }
 }
 
 function checkString (value, what) {
