@@ -1,9 +1,15 @@
 """How many episodes the league's scheduler needs to rank teams correctly, against a full round robin.
 
-A SIMULATION, not a measurement on the server: each episode's winner is drawn from fixed
-Bradley–Terry strengths (P(a beats b) = s_a / (s_a + s_b)); the scheduler, openskill ratings
-and stop rule are the league's own (pillagerbench.league.simulate). There is no recorded round
-robin of the built-in teams yet; the real comparison on the server is left to do.
+Two sources of episodes; the scheduler, openskill ratings and stop rule are the league's own
+(pillagerbench.league.simulate):
+
+- synthetic (default): each episode's winner is drawn from fixed Bradley–Terry strengths
+  (P(a beats b) = s_a / (s_a + s_b));
+- `--recorded RUN_DIR...`: a full round robin played on the server (e.g.
+  `experiment=round_robin_mushroom_war` and `…_dash_and_dine`): the true order of each scenario's
+  board is the one its whole round robin gives, and each episode the scheduler asks for is drawn
+  (with replacement) from the recorded episodes of that pairing, so the scheduler meets the real
+  teams' score distributions. The round robin's cost is its episode count.
 
 - scheduler: rounds of `--matches` matches of `--episodes` episodes until every adjacent pair is
   separated at `--confidence` (or the budget); is its final order the true one?
@@ -12,16 +18,21 @@ robin of the built-in teams yet; the real comparison on the server is left to do
   robins ever meet the scheduler's stop rule within them.
 
     python benchmarks/league_scheduler.py --seeds 20
+    python benchmarks/league_scheduler.py --recorded runs/rr_mw runs/rr_dd --seeds 20
 """
 
 from __future__ import annotations
 
 import argparse
+import random
 import statistics
+from collections import defaultdict
+from itertools import combinations
 
-from pillagerbench.league.ratings import rate
-from pillagerbench.league.schedule import settled
-from pillagerbench.league.simulate import SCENARIO, order, round_robin, scheduled
+from pillagerbench.league.ratings import Outcome, p_above, ranked, rate
+from pillagerbench.league.schedule import Pairing, settled
+from pillagerbench.league.simulate import SCENARIO, order, play_scheduled, round_robin, scheduled
+from pillagerbench.metrics.load import load_runs
 
 # Mushroom War's five (do_nothing + the four built-ins), strengths doubling down the ladder;
 # and nine teams (the built-ins of both scenarios as one board) the same way.
@@ -50,6 +61,72 @@ def rr_cycles(strengths: dict[str, float], seed: int, confidence: float, max_cyc
     return stays, stopped
 
 
+def recorded_pools(run_dirs: list[str]) -> dict[str, dict[tuple[str, str], list[tuple[float, float]]]]:
+    """scenario -> (red, blue) -> the recorded (red points, blue points) of that pairing's episodes."""
+    pools: dict = defaultdict(lambda: defaultdict(list))
+    for r in load_runs(list(run_dirs)).episodes.itertuples():
+        if r.red != r.blue:
+            pools[r.scenario][(r.red, r.blue)].append((float(r.red_score), float(r.blue_score)))
+    return pools
+
+
+def recorded(args: argparse.Namespace) -> None:
+    pools = recorded_pools(args.recorded)
+    entrants = {sc: sorted({t for pair in pool for t in pair}) for sc, pool in pools.items()}
+    full = [
+        Outcome(sc, red, blue, a, b, (sc, red, blue, i))
+        for sc, pool in pools.items()
+        for (red, blue), scores in pool.items()
+        for i, (a, b) in enumerate(scores)
+    ]
+    truth_boards = {sc: rate([o for o in full if o.scenario == sc], names) for sc, names in entrants.items()}
+    truth_order = {sc: ranked(board) for sc, board in truth_boards.items()}
+    missing = [
+        f"{sc}: {r} vs {b}"
+        for sc, names in entrants.items()
+        for r, b in combinations(names, 2)
+        if (r, b) not in pools[sc] and (b, r) not in pools[sc]
+    ]
+    if missing:
+        raise SystemExit(f"not a full round robin, no episode of {', '.join(missing)}")
+
+    def draw(p: Pairing, rng: random.Random, key: tuple) -> Outcome:
+        pool = pools[p.scenario]
+        if (p.red, p.blue) in pool:
+            a, b = rng.choice(pool[(p.red, p.blue)])
+        else:  # a pairing recorded with the sides the other way round only
+            b, a = rng.choice(pool[(p.blue, p.red)])
+        return Outcome(p.scenario, p.red, p.blue, a, b, key)
+
+    print(f"recorded round robin: {len(full)} episodes (mirror matches left out)")
+    for sc, names in truth_order.items():
+        board = truth_boards[sc]
+        seps = [f"{p_above(board[u], board[d]):.2f}" for u, d in zip(names, names[1:])]
+        print(f"- {sc}: true order {' > '.join(names)}; P(upper above lower) of adjacent pairs {', '.join(seps)}")
+    used, correct, done = [], 0, 0
+    for seed in range(args.seeds):
+        outs, ok = play_scheduled(
+            entrants,
+            draw,
+            seed=seed,
+            confidence=args.confidence,
+            matches=args.matches,
+            episodes=args.episodes,
+            budget=args.budget,
+        )
+        used.append(len(outs))
+        done += ok
+        got = {sc: ranked(rate([o for o in outs if o.scenario == sc], names)) for sc, names in entrants.items()}
+        correct += got == truth_order
+    print()
+    print("| episodes | scheduler (median, range) | stopped by itself | every board in the true order |")
+    print("|---|---|---|---|")
+    print(
+        f"| full round robin: {len(full)} | {statistics.median(used):.0f} ({min(used)}–{max(used)}) | "
+        f"{done}/{args.seeds} | {correct}/{args.seeds} |"
+    )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=20)
@@ -57,7 +134,12 @@ def main() -> None:
     ap.add_argument("--matches", type=int, default=2)
     ap.add_argument("--episodes", type=int, default=2)
     ap.add_argument("--max-cycles", type=int, default=40)
+    ap.add_argument("--recorded", nargs="+", metavar="RUN_DIR", help="draw episodes from a recorded round robin")
+    ap.add_argument("--budget", type=int, default=400, help="with --recorded: episodes at most (the league's default)")
     args = ap.parse_args()
+    if args.recorded:
+        recorded(args)
+        return
     print(
         "| league | scheduler: episodes to stop (median, range) | scheduler: order correct | round robin: episodes "
         "until the order stays correct (median, range) | round robin: never stays correct | round robin: ever meets "

@@ -5,6 +5,7 @@ are the real ones. Used by the tests and benchmarks/league_scheduler.py."""
 from __future__ import annotations
 
 import random
+from collections.abc import Callable
 from itertools import permutations
 
 from pillagerbench.league.ratings import Outcome, Rating, ranked, rate
@@ -19,8 +20,12 @@ def episode(p: Pairing, strengths: dict[str, float], rng: random.Random, order: 
     return Outcome(p.scenario, p.red, p.blue, float(red_wins), float(not red_wins), order)
 
 
-def scheduled(
-    strengths: dict[str, float],
+Draw = Callable[[Pairing, random.Random, tuple], Outcome]
+
+
+def play_scheduled(
+    entrants: dict[str, list[str]],
+    draw: Draw,
     *,
     seed: int = 0,
     confidence: float = 0.95,
@@ -29,19 +34,28 @@ def scheduled(
     budget: int = 2000,
     outcomes: list[Outcome] | None = None,
 ) -> tuple[list[Outcome], bool]:
-    """Rounds of scheduled matches until settled or `budget` episodes; (all outcomes, settled)."""
+    """Rounds of scheduled matches on every scenario's board (`entrants`: scenario -> names), each
+    episode's outcome from `draw`, until settled or `budget` episodes; (all outcomes, settled)."""
     rng = random.Random(seed)
     outs = list(outcomes or [])
     start = len(outs)
+
+    def boards() -> dict[str, dict[str, Rating]]:
+        return {sc: rate([o for o in outs if o.scenario == sc], names) for sc, names in entrants.items()}
+
     while len(outs) - start < budget:
-        board = {SCENARIO: rate(outs, strengths)}
-        pairings = next_round(board, outs, confidence, matches)
+        pairings = next_round(boards(), outs, confidence, matches)
         if not pairings:
             return outs, True
         for p in pairings:
             for _ in range(episodes):
-                outs.append(episode(p, strengths, rng, (len(outs),)))
-    return outs, settled({SCENARIO: rate(outs, strengths)}, confidence)
+                outs.append(draw(p, rng, (len(outs),)))
+    return outs, settled(boards(), confidence)
+
+
+def scheduled(strengths: dict[str, float], **kwargs) -> tuple[list[Outcome], bool]:
+    """play_scheduled on one board of Bradley-Terry teams."""
+    return play_scheduled({SCENARIO: list(strengths)}, lambda p, rng, o: episode(p, strengths, rng, o), **kwargs)
 
 
 def round_robin(strengths: dict[str, float], cycles: int, seed: int = 0) -> list[Outcome]:
