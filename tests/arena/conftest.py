@@ -45,6 +45,16 @@ class Area:
     def at(self, dx: float, dy: float, dz: float) -> list[float]:
         return [self.x0 + dx, dy, dz]
 
+    async def set_block(self, pos: list[float], block: str, seen_by: TestBot):
+        """Set a block and wait until `seen_by` sees it: mineflayer plans a dig (how long it takes) from
+        the block it sees, and the block update reaches it a tick or more after the server changed it."""
+        await self.arena.request("set_block", pos=pos, block=block)
+        await seen_by.eval(
+            "const at = new Vec3(%d, %d, %d)\n"
+            "for (let i = 0; bot.blockAt(at)?.name !== '%s'; i++) {"
+            " if (i > 100) throw new Error('the bot never saw the block'); await sleep(50) }" % (*pos, block)
+        )
+
     async def put(self, bot: TestBot, dx: float, dz: float, items: dict[str, int] | None = None):
         """Teleport a bot onto the ground at (dx, dz), give it exactly `items`, wait until it sees the chunk."""
         await self.arena.request("set_inventory", player=bot.username, items=items or {})

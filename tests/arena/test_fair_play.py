@@ -72,7 +72,7 @@ async def test_honest_digging_passes(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0, {"wooden_shovel": 1})
     near = area.at(2, 4, 1)
-    await arena.request("set_block", pos=near, block="dirt")
+    await area.set_block(near, "dirt", seen_by=alice)
     async with refusals(arena) as got:
         await alice.eval(
             "await bot.equip(mcData.itemsByName.wooden_shovel.id, 'hand')\n"
@@ -251,7 +251,7 @@ async def test_placing_against_a_block_dug_a_moment_ago_is_a_silent_race(arena, 
     alice, _ = bots
     await area.put(alice, 0, 0, {"dirt": 2})
     x = area.x0
-    await arena.request("set_block", pos=[x + 2, 4, 0], block="oak_leaves")  # breaks in 0.3 s by hand
+    await area.set_block([x + 2, 4, 0], "oak_leaves", seen_by=alice)  # breaks in 0.3 s by hand
     async with refusals(arena) as got:
         await alice.eval(
             "await bot.equip(mcData.itemsByName.dirt.id, 'hand')\nawait bot.dig(bot.blockAt(new Vec3(%d, 4, 0)), true)\n"
