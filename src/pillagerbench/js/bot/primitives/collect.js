@@ -1,9 +1,10 @@
 'use strict'
 // How upstream's primitives collect (reference §5.12, its modified mineflayer-collectblock), shared by
 // mineBlock and the harvest primitives: each time the remaining target nearest to the bot, blocks and
-// the drops they spawned alike; walk within 3 of a block (goalNear) or until it is in sight; dig it (or
-// right-click it); wait 10 ticks for its drops; a drop that appears within 0.5 of the block's centre
-// becomes a target, picked up by walking onto it (skipped after 10 s).
+// the drops they spawned alike; walk within 3 of a block (goalNear) or until it is in sight; dig it or
+// right-click it, turning to it first at mineflayer's head speed (3 rad/s: mineflayer's default, which
+// collectblock's bot.dig(block) uses); wait 10 ticks for its drops; a drop that appears within 0.5 of
+// the block's centre becomes a target, picked up by walking onto it (skipped after 10 s).
 const AFTER_DIG_TICKS = 10
 const DROP_RADIUS = 0.5
 const PICKUP_TIMEOUT_MS = 10000

@@ -98,7 +98,7 @@ module.exports = {
       const n = await collect(targets, {
         goalNear,
         isTarget: (b) => b && b.type === id && matching(b),
-        act: (b) => run.race(activateBlock ? bot.activateBlock(b) : bot.dig(b, true))
+        act: (b) => run.race(activateBlock ? bot.activateBlock(b) : bot.dig(b)) // both turn to the block first, as collectblock
       })
       ctx.chat(`Harvested ${n} ${crop}`)
     }
@@ -128,7 +128,7 @@ module.exports = {
       if (bot.entity.position.distanceTo(cow.position) > 3) await h.goto(new goals.GoalFollow(cow, 2))
       if (!await equipBucket(_bot)) return false
       const before = h.itemCount('milk_bucket')
-      await run.race(bot.lookAt(cow.position.offset(0, 1, 0), true))
+      await run.race(bot.lookAt(cow.position.offset(0, 1, 0)))
       bot.useOn(cow)
       for (let i = 0; i < 20 && h.itemCount('milk_bucket') <= before; i++) await h.waitTicks(1)
       if (h.itemCount('milk_bucket') <= before) { ctx.chat('Failed to milk cow'); return false }
@@ -146,7 +146,7 @@ module.exports = {
         const b = bot.blockAt(p)
         if (!b || b.type !== id) continue
         if (!await walkTo(p)) continue
-        try { await run.race(bot.dig(bot.blockAt(p), true)); n++ } catch (err) { if (h.isStop(err) || !run.active) throw err }
+        try { await run.race(bot.dig(bot.blockAt(p))); n++ } catch (err) { if (h.isStop(err) || !run.active) throw err }
       }
       return n
     }

@@ -42,7 +42,7 @@ module.exports = {
         return false
       }
       await goToPlayer(_bot, username, 2)
-      await run.race(bot.lookAt(entity.position.offset(0, 1.0, 0), true))
+      await run.race(bot.lookAt(entity.position.offset(0, 1.0, 0)))
       await h.waitTicks(5)
       const n = await tossCount(itemName, count)
       ctx.chat(`Gave ${n} ${itemName} to ${username}`)

@@ -36,7 +36,7 @@ module.exports = {
             ctx.chat(`I need at least a ${Object.keys(target.harvestTools).map(id => mcData.items[id].name)[0]} to mine ${name}!  Skip it!`)
             return false
           }
-          await run.race(bot.dig(target, true))
+          await run.race(bot.dig(target)) // mineflayer's default: turn to the block at its head speed first, as collectblock
         }
       })
       ctx.chat(`Mined ${mined} ${name}`)
