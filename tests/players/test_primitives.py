@@ -335,3 +335,24 @@ async def test_wait_signal_calls_its_task_with_bot_and_chats_when_it_happens(ser
     assert errors(events) == []
     # the timeout is announced when it happens, before the longer task ends
     assert chats_by(events, p.name) == ["[waiting signal]", "[signal timeout]", "task done", "task had bot"]
+
+
+async def test_mine_block_turns_to_the_block_at_head_speed_before_digging(server, area, make_player):
+    # upstream's collectblock digs with mineflayer's default look: the head turns at 3 rad/s (about
+    # 20 ticks for half a turn), so the server sees the yaw pass through the quarter turns; a forced
+    # look jumps from facing north (180°) to facing the block south of the bot (0°) in one packet
+    await area.blocks((0, 4, 2, "slime_block"))
+    p = await make_player(area, 0, 0)
+    await p.run(f"await bot.lookAt(new Vec3({area.x0 + 0.5}, 5.6, -20), true)\nawait bot.waitForTicks(5)")
+    await server.request("replay_frame", start=True)
+    mining = asyncio.create_task(p.run("await mineBlock(bot, 'slime_block', 1)"))
+    yaws = []
+    while not mining.done():
+        frame = await server.request("replay_frame")
+        yaws += [pl[4] % 360 for pl in frame["players"] if pl[0] == p.name]
+        await asyncio.sleep(0.01)
+    await server.request("replay_frame", stop=True)
+    assert errors(await mining) == []
+    assert await count(server, p.name, "slime_block") == 1
+    assert abs(yaws[0] - 180) < 10, yaws[:5]
+    assert any(30 < y < 150 or 210 < y < 330 for y in yaws), sorted(set(yaws))
