@@ -356,3 +356,16 @@ async def test_mine_block_turns_to_the_block_at_head_speed_before_digging(server
     assert await count(server, p.name, "slime_block") == 1
     assert abs(yaws[0] - 180) < 10, yaws[:5]
     assert any(30 < y < 150 or 210 < y < 330 for y in yaws), sorted(set(yaws))
+
+
+async def test_an_unreachable_drop_is_given_up_once(server, area, make_player):
+    # a slime block on a 3 × 3 roof 3 blocks up drops onto the roof, out of reach and out of pickup
+    # range; collectblock tries it once (10 s) however often mineflayer reports the item
+    roof = [(x, 6, z, "mushroom_stem") for x in (7, 8, 9) for z in (3, 4, 5)]
+    await area.blocks(*roof, (8, 7, 4, "slime_block"))
+    p = await make_player(area, 6, 4)
+    events = await p.run("await mineBlock(bot, 'slime_block', 1)")
+    assert errors(events) == []
+    said = chats_by(events, p.name)
+    assert said.count("Failed to pickup item! Skip it!") == 1, said
+    assert "Mined 1 slime_block" in said

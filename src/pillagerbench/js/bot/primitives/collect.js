@@ -31,7 +31,9 @@ function collector (ctx, h) {
     const blocks = [...positions]
     const drops = []
     let digging = null
-    const onDrop = (e) => { if (digging && e.position.distanceTo(digging) <= DROP_RADIUS) drops.push(e) }
+    // mineflayer emits itemDrop again on every metadata update of the item: a drop is a target once
+    // (collectblock's Targets.appendTarget ignores one it holds), or an unreachable one costs 10 s each time
+    const onDrop = (e) => { if (digging && !drops.includes(e) && e.position.distanceTo(digging) <= DROP_RADIUS) drops.push(e) }
     bot.on('itemDrop', onDrop)
     let taken = 0
     try {
