@@ -134,6 +134,20 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     assert left == await slime_left() > 0
 
 
+async def test_a_dig_still_turning_the_head_at_stop_breaks_nothing(server, area, make_player):
+    # mineflayer turns the head (3 rad/s: half a turn takes about a second) before it sends the dig;
+    # a stop during the turn must keep the block, though mineflayer finishes the turn and digs
+    await area.blocks((0, 4, 2, "slime_block"))
+    p = await make_player(area, 0, 0)
+    await p.run(f"await bot.lookAt(new Vec3({area.x0 + 0.5}, 5.6, -20), true)\nawait bot.waitForTicks(5)")
+    run = asyncio.create_task(p.run("await mineBlock(bot, 'slime_block', 1)"))
+    await asyncio.sleep(0.15)
+    await p.stop()
+    await asyncio.wait_for(run, 2)
+    await asyncio.sleep(1.5)
+    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
+
+
 async def test_run_timeout(area, make_player):
     p = await make_player(area)
     t0 = time.perf_counter()

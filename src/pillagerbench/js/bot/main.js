@@ -25,6 +25,7 @@ const { plugin: collectBlock } = require('mineflayer-collectblock')
 const { plugin: pvp } = require('mineflayer-pvp')
 const { Vec3 } = require('vec3')
 const { Run, isStop } = require('./run')
+const { gate } = require('./gate')
 const { waitTicks } = require('./ticks')
 const { Observer } = require('./observe')
 const { LagMeter } = require('./lag')
@@ -51,6 +52,7 @@ bot.loadPlugin(pathfinder)
 bot.loadPlugin(tool)
 bot.loadPlugin(collectBlock)
 bot.loadPlugin(pvp)
+gate(bot, () => Boolean(current && current.active)) // a stopped run's leftovers cannot act (gate.js)
 // The bots' writes are not batched (batch.js): a dig's finish and the next packet would then reach the
 // server in one read, and flying-squid's asynchronous dig handler lets the next packet (a place against
 // the block just dug) see the block before the dig has changed it (tests/arena/test_fair_play.py).
