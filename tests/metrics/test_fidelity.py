@@ -3,11 +3,15 @@ scores, each of the paper's claims (holding and failing), and the one-line notes
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
+from pillagerbench.metrics.calibration import resolve
 from pillagerbench.metrics.fidelity import CLAIMS, claims_table, fidelity_table
 from pillagerbench.metrics.formulas import Estimate
 from pillagerbench.metrics.load import load_runs
+from pillagerbench.metrics.reference import REFERENCE_SCORES
 from pillagerbench.report.build import build_report
 from pillagerbench.report.fidelity import main as fidelity_main
 from tests.metrics.fake_runs import write_run
@@ -188,3 +192,35 @@ def test_the_command_line_says_what_it_cannot_check_in_one_line_each(tmp_path):
         assert sum(line.startswith("claims: no round robin") for line in lines) == 1
     proc = run_cli(tmp_path, "fidelity", str(tmp_path / "nothing-here"))
     assert proc.returncode == 2 and proc.stderr.strip().count("\n") == 0 and "not a run directory" in proc.stderr
+
+
+def test_do_nothing_sabotage_against_upstreams_reference_scores(tmp_path, capsys):
+    # σ_blue from the round robin's own do_nothing-red episodes makes do_nothing's S exactly 0 (so
+    # the claim cannot hold); `--calibration reference` uses upstream's hard-coded scores instead:
+    # the four opponents here score 1 above them against do_nothing (−1 each) and the mirror match
+    # keeps its own σ (0), so do_nothing's S is −4/5
+    points = {"do_nothing": 2} | {t: v + 1 for t, v in REFERENCE_SCORES["mushroom_war"].items()}
+    runs = round_robin(tmp_path, "mushroom_war", points, {t: 0 for t in points})
+    claim = CLAIMS[3].text
+    own_note = "claims: σ_blue comes from these runs' own do_nothing-red episodes"
+
+    assert fidelity_main([str(r) for r in runs]) == 0
+    out = capsys.readouterr().out
+    assert "S: do_nothing 0.00" in next(line for line in out.splitlines() if claim in line)
+    assert sum(line.startswith(own_note) for line in out.splitlines()) == 1
+
+    sigma, notes = resolve(load_runs(runs), Path("reference"))
+    assert sigma[("mushroom_war", "passive")].mean == pytest.approx(25.23)
+    assert any(n.startswith("σ_blue for mushroom_war from reference") for n in notes)
+    assert fidelity_main([*map(str, runs), "--calibration", "reference"]) == 0
+    out = capsys.readouterr().out
+    line = next(line for line in out.splitlines() if claim in line)
+    assert "S: do_nothing -0.80" in line and line.endswith("| ✓ |")
+    assert own_note not in out
+
+
+def test_reference_calibration_scales_dash_and_dine_like_every_reported_score(tmp_path):
+    run = write_run(tmp_path / "dd", "dash_and_dine", "do_nothing", "berries", [(0, 300)] * 3)
+    sigma, _ = resolve(load_runs([run]), Path("reference"))
+    assert sigma[("dash_and_dine", "berries")].mean == pytest.approx(34.73)
+    assert ("mushroom_war", "passive") not in sigma  # only the runs' scenarios

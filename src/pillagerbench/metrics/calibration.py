@@ -23,8 +23,10 @@ import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.load import ReportError, Runs, load_runs
+from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
 
 CALIBRATION = "calibration.json"
+FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
 
 
 def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
@@ -79,10 +81,35 @@ def read_calibration(path: Path) -> dict:
     return data
 
 
-def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
-    """σ_blue per (scenario, opponent team) as scaled Estimates, and notes on where each came from.
+def reference_calibration(want: dict[str, tuple[str, float]]) -> dict:
+    """upstream's reference scores as a calibration (unscaled) for the runs' scenario versions."""
+    return {
+        "scenarios": {
+            sc: {
+                "version": version,
+                "episode_length": length,
+                "opponents": {
+                    team: {"sigma_blue": v / SCORE_SCALE.get(sc, 1.0), "ci": None, "n": 0}
+                    for team, v in REFERENCE_SCORES[sc].items()
+                },
+            }
+            for sc, (version, length) in want.items()
+            if sc in REFERENCE_SCORES
+        }
+    }
 
-    Order: an explicit file (must match the runs' scenario versions and episode lengths), then
+
+def explicit_calibration(explicit: Path, want: dict[str, tuple[str, float]]) -> dict:
+    """--calibration: a calibration.json, or `reference` for upstream's reference scores."""
+    return reference_calibration(want) if str(explicit) == REFERENCE_CALIBRATION else read_calibration(explicit)
+
+
+def resolve(runs: Runs, explicit: Path | None = None, origin: dict | None = None) -> tuple[dict, list[str]]:
+    """σ_blue per (scenario, opponent team) as scaled Estimates, and notes on where each came from
+    (`origin`, if given, gets (scenario, team) -> where).
+
+    Order: an explicit file (must match the runs' scenario versions and episode lengths; `reference`:
+    upstream's reference scores, as its analysis used them), then
     calibration.json files stored in the runs, then do_nothing-red episodes among the runs."""
     df = runs.episodes
     want = (
@@ -91,9 +118,9 @@ def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
         else {sc: (str(g["version"].iloc[0]), float(g["episode_length"].iloc[0])) for sc, g in df.groupby("scenario")}
     )
     sources = (
-        ([(explicit, read_calibration(explicit), True)] if explicit else [])
+        ([(explicit, explicit_calibration(explicit, want), True)] if explicit else [])
         + [(p, read_calibration(p), False) for p in runs.calibration_files]
-        + [("the do_nothing-red episodes of these runs", calibration_from_runs(runs), False)]
+        + [(FROM_RUNS, calibration_from_runs(runs), False)]
     )
     table: dict[tuple[str, str], Estimate] = {}
     notes: list[str] = []
@@ -123,6 +150,8 @@ def resolve(runs: Runs, explicit: Path | None = None) -> tuple[dict, list[str]]:
                     int(o.get("n", 0)),
                 )
                 used.append(f"{team} (n={o.get('n')})")
+                if origin is not None:
+                    origin[(scenario, team)] = where
             if used:
                 notes.append(f"σ_blue for {scenario} from {where}: {', '.join(used)}")
     return table, notes

@@ -29,14 +29,8 @@ from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
 from pillagerbench.metrics.formulas import Estimate, mean_ci, over_opponents, welch_half_width
 from pillagerbench.metrics.load import SCORINGS
+from pillagerbench.metrics.reference import REFERENCE_SCORES
 
-# upstream's mean score of each built-in opponent (blue) against a do_nothing red team, hard-coded
-# in its analysis script (issue 11; Dash & Dine ×0.1). Upstream measured blue only; the red side
-# is compared with the same values.
-REFERENCE_SCORES: dict[str, dict[str, float]] = {
-    "mushroom_war": {"aggressive": 20.27, "balanced": 16.75, "passive": 25.23, "slimy": 22.18},
-    "dash_and_dine": {"berries": 34.73, "cake_beetroot": 7.83, "melon_pumpkin": 15.82, "potato_cookie": 13.12},
-}
 TOLERANCE = 0.25  # ✓ when mean / reference is within 1 ± TOLERANCE
 MIN_EPISODES = 10  # per opponent and side (the fidelity check's default)
 MIN_PAIRING_EPISODES = 3  # per round-robin pairing for the claims

@@ -1,7 +1,7 @@
-"""`pillagerbench report RUN_DIR... [--out DIR] [--calibration FILE]`: the paper's tables and
+"""`pillagerbench report RUN_DIR... [--out DIR] [--calibration FILE|reference]`: the paper's tables and
 figures from run directories (experiments or plain runs), as Markdown, CSV, PNG and one HTML page.
 
-Dash & Dine scores are scaled ×0.1 as in the paper. σ_blue (for S) comes from --calibration, else
+Dash & Dine scores are scaled ×0.1 as in the paper. σ_blue (for S) comes from --calibration (`reference`: upstream's reference scores), else
 from calibration.json files stored in the runs, else from do_nothing-red episodes among the runs;
 where none exists, S is left empty. Skipped episodes are listed with the reason in skipped.md and
 on the page; runs of different scenario versions are refused.
@@ -173,7 +173,11 @@ def main(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="pillagerbench report", description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs)")
     p.add_argument("--out", default=None, help="output directory (default: FIRST_RUN/report)")
-    p.add_argument("--calibration", default=None, help="a calibration.json (pillagerbench calibrate)")
+    p.add_argument(
+        "--calibration",
+        default=None,
+        help="a calibration.json (pillagerbench calibrate), or `reference`: upstream's reference scores",
+    )
     p.add_argument("--no-replays", action="store_true", help="do not write each episode's replay.html")
     a = p.parse_args(argv)
     out = Path(a.out) if a.out else Path(a.runs[0]) / "report"

@@ -1,4 +1,4 @@
-"""`pillagerbench fidelity RUN_DIR... [--calibration FILE]`: the built-in opponents against
+"""`pillagerbench fidelity RUN_DIR... [--calibration FILE|reference]`: the built-in opponents against
 do_nothing beside upstream's reference scores (±25 %), and the paper's Benchmark Analysis claims
 checked on a round robin (metrics/fidelity.py has the maths and the data)."""
 
@@ -31,15 +31,25 @@ def tally(frame: pd.DataFrame, column: str) -> str:
 def main(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="pillagerbench fidelity", description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="run directories (experiment=fidelity, calibration, round robins)")
-    p.add_argument("--calibration", default=None, help="a calibration.json for σ_blue (sabotage claims)")
+    p.add_argument(
+        "--calibration",
+        default=None,
+        help="a calibration.json for σ_blue (sabotage claims), or `reference`: upstream's reference scores",
+    )
     a = p.parse_args(argv)
     try:
         runs = load_runs([Path(r) for r in a.runs])
-        sigma, _ = calib.resolve(runs, Path(a.calibration) if a.calibration else None)
+        origin: dict = {}
+        sigma, _ = calib.resolve(runs, Path(a.calibration) if a.calibration else None, origin)
     except ReportError as exc:
         print(f"pillagerbench fidelity: {exc}", file=sys.stderr)
         return 2
     table, claims, notes = fidelity_sections(runs, sigma)
+    if len(claims) and any(where == calib.FROM_RUNS and team != "do_nothing" for (_, team), where in origin.items()):
+        notes.append(
+            "claims: σ_blue comes from these runs' own do_nothing-red episodes, so do_nothing's sabotage is 0 by "
+            "construction; --calibration reference uses upstream's reference scores, as its analysis did"
+        )
     for note in notes:
         print(note)
     if len(table):
