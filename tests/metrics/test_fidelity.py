@@ -202,7 +202,7 @@ def test_do_nothing_sabotage_against_upstreams_reference_scores(tmp_path, capsys
     points = {"do_nothing": 2} | {t: v + 1 for t, v in REFERENCE_SCORES["mushroom_war"].items()}
     runs = round_robin(tmp_path, "mushroom_war", points, {t: 0 for t in points})
     claim = CLAIMS[3].text
-    own_note = "claims: σ_blue comes from these runs' own do_nothing-red episodes"
+    own_note = "claims: σ_blue comes from do_nothing-red episodes among these runs"
 
     assert fidelity_main([str(r) for r in runs]) == 0
     out = capsys.readouterr().out

@@ -47,8 +47,9 @@ def main(argv: list[str]) -> int:
     table, claims, notes = fidelity_sections(runs, sigma)
     if len(claims) and any(where == calib.FROM_RUNS and team != "do_nothing" for (_, team), where in origin.items()):
         notes.append(
-            "claims: σ_blue comes from these runs' own do_nothing-red episodes, so do_nothing's sabotage is 0 by "
-            "construction; --calibration reference uses upstream's reference scores, as its analysis did"
+            "claims: σ_blue comes from do_nothing-red episodes among these runs, which makes do_nothing's sabotage 0 "
+            "(exactly, when they are the round robin's own); --calibration reference uses upstream's reference "
+            "scores, as its analysis did"
         )
     for note in notes:
         print(note)
