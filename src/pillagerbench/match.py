@@ -362,12 +362,14 @@ class Match:
         upstream: list[dict] = []
         runs = rec.runs
         lock = asyncio.Lock()  # one game-master step at a time (the whistle's and the rules' own)
+        over = asyncio.Event()  # the whistle, besides cancel(): Python 3.11's wait_for can swallow a cancel
 
         async def rules():
-            while True:
+            while not over.is_set():
                 await asyncio.sleep(gm.period_s)
                 async with lock:
-                    await gm.step()
+                    if not over.is_set():
+                        await gm.step()
 
         async def sample_upstream():
             for line in range(int(length) + 1):
@@ -417,6 +419,7 @@ class Match:
                 _raise_first(done)
         finally:
             # the whistle: stop every player's code, then nothing a player does counts any more
+            over.set()
             await asyncio.gather(*(p.stop() for p in self.players.values()), return_exceptions=True)
             tasks = plays + background + ([late] if late else [])
             for task in tasks:

@@ -25,6 +25,7 @@ FORMAT = "pillagerbench-replay"
 VERSION = 1
 FRAME_HZ = 5
 FLUSH_S = 2.0
+STOP_WAIT_S = 2.0  # stop() waits at most this long for the frame loop to end
 GROUND_Y = 3  # the flat world's grass layer: the lowest layer a top-down map needs
 
 
@@ -43,6 +44,7 @@ class Recorder:
         self._runs: dict[str, int] = {}
         self.frames = 0
         self.error: str | None = None
+        self._stopping = False
 
     # ---- writing ----
     def _write(self, record: dict) -> None:
@@ -79,8 +81,10 @@ class Recorder:
     async def _loop(self) -> None:
         period = 1.0 / FRAME_HZ
         k = 1
+        # A flag as well as cancel(): on Python 3.11 asyncio.wait_for (under every control request)
+        # swallows a cancel that lands as its reply does (CPython gh-86296), and the loop would run on.
         try:
-            while True:
+            while not self._stopping:
                 due = self._start + k * period
                 await asyncio.sleep(max(0.0, due - time.monotonic()))
                 await self._frame()
@@ -137,9 +141,10 @@ class Recorder:
         self._write(rec)
 
     async def stop(self, final: dict[str, float] | None = None) -> None:
+        self._stopping = True
         if self._task:
             self._task.cancel()
-            await asyncio.gather(self._task, return_exceptions=True)
+            await asyncio.wait({self._task}, timeout=STOP_WAIT_S)
         if self.error is None:
             try:
                 await self._frame(stop=True)
