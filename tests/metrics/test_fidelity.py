@@ -217,6 +217,11 @@ def test_do_nothing_sabotage_against_upstreams_reference_scores(tmp_path, capsys
     line = next(line for line in out.splitlines() if claim in line)
     assert "S: do_nothing -0.80" in line and line.endswith("| ✓ |")
     assert own_note not in out
+    # the report's fidelity section says the same as the command
+    notes = build_report(runs, tmp_path / "own", with_replays=False)["notes"]
+    assert sum(n.startswith(own_note) for n in notes) == 1
+    notes = build_report(runs, tmp_path / "ref", calibration=Path("reference"), with_replays=False)["notes"]
+    assert not any(n.startswith(own_note) for n in notes)
 
 
 def test_reference_calibration_scales_dash_and_dine_like_every_reported_score(tmp_path):

@@ -24,14 +24,15 @@ def build_report(
     run_dirs: list[str | Path], out: Path, calibration: Path | None = None, with_replays: bool = True
 ) -> dict:
     runs = load_runs(run_dirs)
-    sigma, notes = calib.resolve(runs, calibration)
+    origin: dict = {}
+    sigma, notes = calib.resolve(runs, calibration, origin)
     if not sigma:
         notes.append("no σ_blue for these runs (pillagerbench calibrate): S is left empty")
     df = runs.episodes
     out.mkdir(parents=True, exist_ok=True)
     main = tables.main_episodes(df)
     symmetry, one_order = side_symmetry(main)
-    fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma)
+    fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma, origin)
     t = {
         "summary": (tables.summary(main, sigma, runs.ledger), "Summary per red team (all scenarios and opponents)"),
         "per_scenario": (tables.summary(main, sigma, runs.ledger, by_scenario=True), "Per red team and scenario"),

@@ -15,12 +15,26 @@ from pillagerbench.metrics.fidelity import claims_table, fidelity_table
 from pillagerbench.metrics.load import ReportError, Runs, load_runs
 from pillagerbench.report.tables import to_markdown
 
+SIGMA_FROM_RUNS_NOTE = (
+    "claims: σ_blue comes from do_nothing-red episodes among these runs, which makes do_nothing's sabotage 0 "
+    "(exactly, when they are the round robin's own); --calibration reference uses upstream's reference "
+    "scores, as its analysis did"
+)
 
-def fidelity_sections(runs: Runs, sigma: dict) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
-    """The fidelity table, the claims table and one note per thing that could not be checked."""
+
+def fidelity_sections(
+    runs: Runs, sigma: dict, origin: dict | None = None
+) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
+    """The fidelity table, the claims table and one note per thing that could not be checked or that
+    a reader needs to weigh them (`origin`: where each σ came from, as calibration.resolve fills it)."""
     table, notes = fidelity_table(runs.episodes)
     claims, more = claims_table(runs.episodes, sigma)
-    return table, claims, notes + more
+    notes += more
+    if len(claims) and any(
+        where == calib.FROM_RUNS and team != "do_nothing" for (_, team), where in (origin or {}).items()
+    ):
+        notes.append(SIGMA_FROM_RUNS_NOTE)
+    return table, claims, notes
 
 
 def tally(frame: pd.DataFrame, column: str) -> str:
@@ -44,13 +58,7 @@ def main(argv: list[str]) -> int:
     except ReportError as exc:
         print(f"pillagerbench fidelity: {exc}", file=sys.stderr)
         return 2
-    table, claims, notes = fidelity_sections(runs, sigma)
-    if len(claims) and any(where == calib.FROM_RUNS and team != "do_nothing" for (_, team), where in origin.items()):
-        notes.append(
-            "claims: σ_blue comes from do_nothing-red episodes among these runs, which makes do_nothing's sabotage 0 "
-            "(exactly, when they are the round robin's own); --calibration reference uses upstream's reference "
-            "scores, as its analysis did"
-        )
+    table, claims, notes = fidelity_sections(runs, sigma, origin)
     for note in notes:
         print(note)
     if len(table):
