@@ -325,6 +325,31 @@ async def test_harvest_goes_to_the_crop_nearest_to_the_bot_each_time(server, are
     assert dug == list(xs)
 
 
+async def test_a_target_replanted_before_the_bot_gets_there_is_still_broken(server, area, make_player):
+    # ripeness picks the targets; on arrival upstream's collectblock checks only the block's type, so a
+    # crop someone harvested and replanted meanwhile is broken too (and a picked bush right-clicked)
+    await area.blocks(*[(x, 3, 0, "farmland") for x in (2, 10)], *[(x, 4, 0, "wheat", {"age": 7}) for x in (2, 10)])
+    p = await make_player(area, 0, 0)
+    q = server.control.subscribe()
+    try:
+        run = asyncio.ensure_future(p.run(f"await harvestWheat(bot, new Vec3({area.x0 + 2}, 4, 0))"))
+        dug: list[int] = []
+        while not dug:  # the near one first; then the far one is replanted before the bot gets there
+            e = await asyncio.wait_for(q.get(), 20)
+            if e["event"] == "block_dug":
+                dug.append(e["pos"][0] - area.x0)
+        await area.blocks((10, 4, 0, "wheat", {"age": 0}))
+        events = await run
+        await asyncio.sleep(0.3)
+        dug += [e["pos"][0] - area.x0 for e in (q.get_nowait() for _ in range(q.qsize())) if e["event"] == "block_dug"]
+    finally:
+        server.control.unsubscribe(q)
+    assert errors(events) == []
+    assert dug == [2, 10]
+    assert "Harvested 2 wheat" in chats_by(events, p.name)  # the targets found, as upstream's chat
+    assert (await server.request("get_block", pos=area.at(10, 4, 0)))["name"] == "air"
+
+
 async def test_wait_signal_calls_its_task_with_bot_and_chats_when_it_happens(server, area, make_player):
     p = await make_player(area, 0, 0)
     events = await p.run(

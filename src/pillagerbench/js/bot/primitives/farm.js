@@ -95,12 +95,15 @@ module.exports = {
         return
       }
       ctx.chat(`Harvesting ${crop}`)
-      const n = await collect(targets, {
+      // `matching` (ripeness) picks the targets; on arrival only the block's type is checked, as
+      // collectblock does: a bush someone picked meanwhile is still right-clicked, a crop replanted
+      // meanwhile is still broken. The chat counts the targets found, as upstream's.
+      await collect(targets, {
         goalNear,
-        isTarget: (b) => b && b.type === id && matching(b),
+        isTarget: (b) => b && b.type === id,
         act: (b) => run.race(activateBlock ? bot.activateBlock(b) : bot.dig(b)) // both turn to the block first, as collectblock
       })
-      ctx.chat(`Harvested ${n} ${crop}`)
+      ctx.chat(`Harvested ${targets.length} ${crop}`)
     }
 
     const ripe = (min) => (b) => ageOf(b) >= min
@@ -110,8 +113,8 @@ module.exports = {
     const harvestCarrots = (_bot, pos) => harvest(_bot, pos, 'carrots', true, false, ripe(7))
     const harvestBeetroot = (_bot, pos) => harvest(_bot, pos, 'beetroots', true, false, ripe(3))
     const harvestCocoa = (_bot, pos) => harvest(_bot, pos, 'cocoa', false, false, ripe(2))
-    const harvestMelons = (_bot, pos) => harvest(_bot, pos, 'melon', true, false)
-    const harvestPumpkins = (_bot, pos) => harvest(_bot, pos, 'pumpkin', true, false)
+    const harvestMelons = (_bot, pos) => harvest(_bot, pos, 'melon', false, false) // look-at, as upstream's
+    const harvestPumpkins = (_bot, pos) => harvest(_bot, pos, 'pumpkin', false, false)
     const harvestSugarCane = (_bot, groundY) => harvest(_bot, null, 'sugar_cane', true, false, (b) => b.position.y === groundY + 2)
 
     async function equipBucket (_bot) {
@@ -136,19 +139,15 @@ module.exports = {
       return true
     }
 
+    // As upstream's: every block of the crop within 32 through collectblock (nearest first, walk
+    // within 3, dig, wait for and pick up the drops); silent when there is none.
     async function destroyCrop (_bot, crop) {
       checkString(crop, 'crop for destroyCrop')
       const id = blockId(crop)
-      ctx.chat(`Destroying all ${crop} nearby`)
       const targets = bot.findBlocks({ matching: id, maxDistance: 32, count: 1000 })
-      let n = 0
-      for (const p of targets) {
-        const b = bot.blockAt(p)
-        if (!b || b.type !== id) continue
-        if (!await walkTo(p)) continue
-        try { await run.race(bot.dig(bot.blockAt(p))); n++ } catch (err) { if (h.isStop(err) || !run.active) throw err }
-      }
-      return n
+      if (targets.length === 0) return 0
+      ctx.chat(`Destroying all ${crop} nearby`)
+      return collect(targets, { isTarget: (b) => b && b.type === id, act: (b) => run.race(bot.dig(b)) })
     }
 
     return {

@@ -27,7 +27,7 @@ module.exports = {
         run.fail('mineBlock', 'mineBlock failed too many times, make sure you explore before calling mineBlock')
         return
       }
-      const mined = await collect(targets, {
+      await collect(targets, {
         isTarget: (b) => b && b.type === block.id,
         act: async (target) => {
           const tool = bot.pathfinder.bestHarvestTool(target)
@@ -39,7 +39,7 @@ module.exports = {
           await run.race(bot.dig(target)) // mineflayer's default: turn to the block at its head speed first, as collectblock
         }
       })
-      ctx.chat(`Mined ${mined} ${name}`)
+      ctx.chat(`Mined ${targets.length} ${name}`) // the blocks found, as upstream's chat
       ctx.save(`${name}_mined`)
     }
 
