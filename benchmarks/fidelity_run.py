@@ -17,9 +17,13 @@ from pathlib import Path
 
 
 def summary(run: Path) -> dict:
-    created = datetime.strptime(json.loads((run / "experiment.json").read_text())["created"], "%Y-%m-%dT%H:%M:%S%z")
+    """An experiment's run directory (experiment.json, series/*/) or a single match's (manifest.json)."""
+    head = next((run / name for name in ("experiment.json", "manifest.json") if (run / name).is_file()), None)
+    if head is None:
+        sys.exit(f"{run}: not a run directory (no experiment.json or manifest.json)")
+    created = datetime.strptime(json.loads(head.read_text())["created"], "%Y-%m-%dT%H:%M:%S%z")
     episodes, last = [], created.timestamp()
-    for path in sorted(run.glob("series/*/episode_*/episode.json")):
+    for path in sorted([*run.glob("series/*/episode_*/episode.json"), *run.glob("episode_*/episode.json")]):
         episodes.append(json.loads(path.read_text()))
         last = max(last, path.stat().st_mtime)
     ok = [e for e in episodes if e.get("status") == "ok"]
