@@ -25,10 +25,13 @@ function collector (ctx, h) {
     if (!gone(entity)) ctx.chat('Failed to pickup item! Skip it!')
   }
 
-  // positions: blocks to take; isTarget(block): still worth taking; act(block): dig or right-click.
-  // Returns how many blocks were taken.
-  async function collect (positions, { goalNear = true, isTarget, act }) {
+  // positions: blocks to take; act(block): dig or right-click. Returns how many blocks were taken.
+  async function collect (positions, { goalNear = true, act }) {
     const blocks = [...positions]
+    // as collectblock: a target is still taken if its block has the type it had when found (a crop
+    // replanted meanwhile is broken, a bush picked meanwhile right-clicked)
+    const kind = new Map(blocks.map(p => [p, bot.blockAt(p)?.type]))
+    const isTarget = (p, b) => Boolean(b) && b.type === kind.get(p)
     const drops = []
     let digging = null
     // mineflayer emits itemDrop again on every metadata update of the item: a drop is a target once
@@ -48,10 +51,10 @@ function collector (ctx, h) {
           continue
         }
         blocks.splice(blocks.indexOf(next), 1)
-        if (!isTarget(bot.blockAt(next))) continue
+        if (!isTarget(next, bot.blockAt(next))) continue
         await h.goto(goalNear ? h.near(next, 3) : new goals.GoalLookAtBlock(next, bot.world))
         const block = bot.blockAt(next)
-        if (!isTarget(block)) continue
+        if (!isTarget(next, block)) continue
         // out of reach (the server refuses digs more than 6 blocks from the eyes, vanilla's reach): skip it
         if (bot.entity.position.offset(0, 1.5, 0).distanceTo(next.offset(0.5, 0.5, 0.5)) > 5.9) continue
         digging = next.offset(0.5, 0.5, 0.5)

@@ -95,12 +95,10 @@ module.exports = {
         return
       }
       ctx.chat(`Harvesting ${crop}`)
-      // `matching` (ripeness) picks the targets; on arrival only the block's type is checked, as
-      // collectblock does: a bush someone picked meanwhile is still right-clicked, a crop replanted
-      // meanwhile is still broken. The chat counts the targets found, as upstream's.
+      // `matching` (ripeness) picks the targets; on arrival collect checks only the type, as
+      // collectblock. The chat counts the targets found, as upstream's.
       await collect(targets, {
         goalNear,
-        isTarget: (b) => b && b.type === id,
         act: (b) => run.race(activateBlock ? bot.activateBlock(b) : bot.dig(b)) // both turn to the block first, as collectblock
       })
       ctx.chat(`Harvested ${targets.length} ${crop}`)
@@ -147,7 +145,7 @@ module.exports = {
       const targets = bot.findBlocks({ matching: id, maxDistance: 32, count: 1000 })
       if (targets.length === 0) return 0
       ctx.chat(`Destroying all ${crop} nearby`)
-      return collect(targets, { isTarget: (b) => b && b.type === id, act: (b) => run.race(bot.dig(b)) })
+      return collect(targets, { act: (b) => run.race(bot.dig(b)) })
     }
 
     return {

@@ -28,7 +28,6 @@ module.exports = {
         return
       }
       await collect(targets, {
-        isTarget: (b) => b && b.type === block.id,
         act: async (target) => {
           const tool = bot.pathfinder.bestHarvestTool(target)
           if (tool) await run.race(bot.equip(tool, 'hand'))
