@@ -251,6 +251,20 @@ async def test_berries_are_planted_on_farmland_and_dirt_never_on_grass(server, a
     assert len(bushes) == 2
 
 
+async def test_planting_walks_on_to_every_free_block_after_the_seeds_run_out(server, area, make_player):
+    # upstream's plantCrop visits every candidate block, clicking with an empty hand once the seeds
+    # are gone; it does not stop at the last seed
+    await area.blocks((3, 3, 0, "farmland"), (9, 3, 0, "farmland"), (14, 3, 0, "farmland"))
+    p = await make_player(area, 0, 0, {"sweet_berries": 1})
+    events = await p.run("await plantSweetBerryBushes(bot)")
+    assert errors(events) == []
+    assert "All available land has been planted with sweet_berries." in chats_by(events, p.name)
+    names = [(await server.request("get_block", pos=area.at(x, 4, 0)))["name"] for x in (3, 9, 14)]
+    assert names == ["sweet_berry_bush", "air", "air"]
+    x = last_observation(await p.observe())["status"]["position"]["x"] - area.x0
+    assert x > 10, x  # went on to the farthest block
+
+
 async def test_sugar_cane_is_planted_on_sand_beside_water_not_on_grass(server, area, make_player):
     await area.blocks((3, 3, 0, "sand"), (3, 3, -1, "water"), (6, 3, 0, "sand"))
     p = await make_player(area, 0, 2, {"sugar_cane": 10})

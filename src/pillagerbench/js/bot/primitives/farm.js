@@ -6,7 +6,6 @@ const { collector } = require('./collect')
 
 const UP = [0, 1, 0]
 const SIDES = [[1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1]]
-const MAX_BLOCKS = 64
 
 module.exports = {
   name: 'farm',
@@ -28,46 +27,44 @@ module.exports = {
       return bot.entity.position.distanceTo(pos.offset(0.5, 0.5, 0.5)) <= 5
     }
 
+    // As upstream's: every matching block within 32 with air above (no cap), the hoe equipped once;
+    // the chat only when something was tilled.
     async function tillLand (_bot, lands = ['dirt']) {
       const hoe = h.items().find(i => i.name.endsWith('_hoe'))
       if (!hoe) { ctx.chat('No hoe in inventory.'); return }
+      await run.race(bot.equip(hoe, 'hand'))
       const ids = lands.map(blockId) // ids, not a function: findBlocks can then skip whole chunk sections
-      const targets = h.scanBlocks(bot.entity.position, ids)
-        .filter(p => isAir(bot.blockAt(p.offset(0, 1, 0)))).slice(0, MAX_BLOCKS)
-      for (const pos of targets) {
+      let tilled = 0
+      for (const pos of h.scanBlocks(bot.entity.position, ids)) {
+        if (!isAir(bot.blockAt(pos.offset(0, 1, 0)))) continue
         if (!await walkTo(pos)) continue
-        const hoeNow = h.items().find(i => i.name.endsWith('_hoe'))
-        if (!hoeNow) break
-        await run.race(bot.equip(hoeNow, 'hand'))
         await run.race(bot.activateBlock(bot.blockAt(pos), new Vec3(0, 1, 0)))
-        await h.waitTicks(1)
+        tilled++
       }
-      ctx.chat('All available land has been tilled.')
+      if (tilled > 0) ctx.chat('All available land has been tilled.')
     }
 
+    // As upstream's: every block of the lands within 32 (no cap), each side in `directions` that is air
+    // when the bot gets there, right-clicked with the seed in hand. It does not stop when the seeds run
+    // out: it walks on to the remaining blocks and clicks them with an empty hand, as upstream's did.
     async function plantCrop (_bot, crop, lands, directions = [UP]) {
       checkString(crop, 'crop for plantCrop')
       if (!mcData.itemsByName[crop]) throw new Error(`No item named ${crop}`)
       if (h.itemCount(crop) === 0) { ctx.chat(`No ${crop} in inventory.`); run.fail('farm', TOO_MANY); return }
       const ids = lands.map(blockId)
       const dirs = directions.map(d => h.toVec3(d, 'direction'))
-      const spots = []
+      let clicked = 0
       for (const pos of h.scanBlocks(bot.entity.position, ids)) {
-        for (const d of dirs) if (isAir(bot.blockAt(pos.plus(d)))) { spots.push([pos, d]); break }
-        if (spots.length >= MAX_BLOCKS) break
-      }
-      for (const [pos, d] of spots) {
-        if (h.itemCount(crop) === 0) break
-        if (!isAir(bot.blockAt(pos.plus(d)))) continue
-        if (!await walkTo(pos)) continue
-        await run.race(bot.equip(h.findItem(crop), 'hand'))
-        try {
-          await run.race(bot.placeBlock(bot.blockAt(pos), d))
-        } catch (err) {
-          if (h.isStop(err) || !run.active) throw err
+        for (const d of dirs) {
+          if (!isAir(bot.blockAt(pos.plus(d)))) continue
+          if (!await walkTo(pos)) continue
+          const seed = h.findItem(crop)
+          if (seed) await run.race(bot.equip(seed, 'hand'))
+          await run.race(bot.activateBlock(bot.blockAt(pos), d))
+          clicked++
         }
       }
-      ctx.chat(`All available land has been planted with ${crop}.`)
+      if (clicked > 0) ctx.chat(`All available land has been planted with ${crop}.`)
     }
 
     const plant = (crop, lands, dirs) => (_bot) => plantCrop(_bot, crop, lands, dirs)
