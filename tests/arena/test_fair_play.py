@@ -247,6 +247,25 @@ async def test_refusals_reach_the_player_as_chat(arena, bots, area):
     assert any(line.startswith("[refused] dig: too far to dig dirt") for line in said), said
 
 
+async def test_clicks_arriving_together_place_no_more_than_the_stack_holds(arena, bots, area):
+    # flying-squid took the item off only after placing, so clicks sent together each placed one and
+    # the stack went below zero (and went on placing); now each placement reserves its item at once
+    alice, _ = bots
+    await area.put(alice, 0, 0, {"dirt": 2})
+    x = area.x0
+    click = (
+        "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, 3, %d), direction: 1, cursorX: 0.5,"
+        " cursorY: 0.5, cursorZ: 0.5, insideBlock: false})\n"
+    )
+    spots = [(x + 1, 1), (x + 2, 1), (x + 1, -1), (x + 2, -1), (x + 2, 0)]
+    await alice.eval(
+        "await bot.equip(mcData.itemsByName.dirt.id, 'hand')\n" + "".join(click % s for s in spots) + "await sleep(500)"
+    )
+    placed = [await block(arena, [sx, 4, sz]) for sx, sz in spots]
+    assert placed.count("dirt") == 2, placed
+    assert await count(arena, "alice", "dirt") == 0
+
+
 async def test_placing_against_a_block_dug_a_moment_ago_is_a_silent_race(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0, {"dirt": 2})

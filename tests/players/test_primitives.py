@@ -237,13 +237,20 @@ async def test_harvest_berries_and_destroy_crop(server, area, make_player):
         assert (await server.request("get_block", pos=area.at(x, 4, 3)))["name"] == "air"
 
 
+async def planted(area, make_player, blocks, item, count_, call):
+    """Put `blocks`, give a player `count_` of `item`, run `call`; the player, once it said it planted."""
+    await area.blocks(*blocks)
+    p = await make_player(area, 0, 0, {item: count_})
+    events = await p.run(f"await {call}(bot)")
+    assert errors(events) == []
+    assert f"All available land has been planted with {item}." in chats_by(events, p.name)
+    return p
+
+
 async def test_berries_are_planted_on_farmland_and_dirt_never_on_grass(server, area, make_player):
     # upstream's plantSweetBerryBushes searches farmland and dirt: the lawn around stays a lawn
-    await area.blocks((3, 3, 0, "dirt"), (5, 3, 0, "farmland"))
-    p = await make_player(area, 0, 0, {"sweet_berries": 10})
-    events = await p.run("await plantSweetBerryBushes(bot)")
-    assert errors(events) == []
-    assert "All available land has been planted with sweet_berries." in chats_by(events, p.name)
+    blocks = [(3, 3, 0, "dirt"), (5, 3, 0, "farmland")]
+    p = await planted(area, make_player, blocks, "sweet_berries", 10, "plantSweetBerryBushes")
     assert await count(server, p.name, "sweet_berries") == 8
     for x in (3, 5):
         assert (await server.request("get_block", pos=area.at(x, 4, 0)))["name"] == "sweet_berry_bush"
@@ -254,15 +261,20 @@ async def test_berries_are_planted_on_farmland_and_dirt_never_on_grass(server, a
 async def test_planting_walks_on_to_every_free_block_after_the_seeds_run_out(server, area, make_player):
     # upstream's plantCrop visits every candidate block, clicking with an empty hand once the seeds
     # are gone; it does not stop at the last seed
-    await area.blocks((3, 3, 0, "farmland"), (9, 3, 0, "farmland"), (14, 3, 0, "farmland"))
-    p = await make_player(area, 0, 0, {"sweet_berries": 1})
-    events = await p.run("await plantSweetBerryBushes(bot)")
-    assert errors(events) == []
-    assert "All available land has been planted with sweet_berries." in chats_by(events, p.name)
+    blocks = [(x, 3, 0, "farmland") for x in (3, 9, 14)]
+    p = await planted(area, make_player, blocks, "sweet_berries", 1, "plantSweetBerryBushes")
     names = [(await server.request("get_block", pos=area.at(x, 4, 0)))["name"] for x in (3, 9, 14)]
     assert names == ["sweet_berry_bush", "air", "air"]
     x = last_observation(await p.observe())["status"]["position"]["x"] - area.x0
     assert x > 10, x  # went on to the farthest block
+
+
+async def test_cocoa_planting_clicks_the_logs_top_as_upstreams_and_keeps_the_beans(server, area, make_player):
+    # upstream's plantCrop right-clicks every candidate on its top face (activateBlock's default);
+    # vanilla puts no cocoa pod on top of a log, so upstream's plantCocoaBeans planted nothing
+    p = await planted(area, make_player, [(4, y, 0, "jungle_log") for y in (4, 5)], "cocoa_beans", 3, "plantCocoaBeans")
+    pods = await server.request("find_blocks", names=["cocoa"], center=area.at(4, 4, 0), radius=8)
+    assert pods == [] and await count(server, p.name, "cocoa_beans") == 3
 
 
 async def test_sugar_cane_is_planted_on_sand_beside_water_not_on_grass(server, area, make_player):

@@ -44,9 +44,12 @@ module.exports = {
       if (tilled > 0) ctx.chat('All available land has been tilled.')
     }
 
-    // As upstream's: every block of the lands within 32 (no cap), each side in `directions` that is air
-    // when the bot gets there, right-clicked with the seed in hand. It does not stop when the seeds run
-    // out: it walks on to the remaining blocks and clicks them with an empty hand, as upstream's did.
+    // As upstream's: every block of the lands within 32 (no cap), once for each side in `directions`
+    // that is air when the bot gets there, right-clicked on its top face (mineflayer's activateBlock
+    // default, as upstream's called it) with the seed in hand. For cocoa that is the log's top, where
+    // vanilla places no pod (CocoaBlock needs a jungle log beside the space above): upstream's
+    // plantCocoaBeans walked to the logs and kept its beans. It does not stop when the seeds run out:
+    // it walks on to the remaining blocks and clicks them with an empty hand, as upstream's did.
     async function plantCrop (_bot, crop, lands, directions = [UP]) {
       checkString(crop, 'crop for plantCrop')
       if (!mcData.itemsByName[crop]) throw new Error(`No item named ${crop}`)
@@ -60,7 +63,7 @@ module.exports = {
           if (!await walkTo(pos)) continue
           const seed = h.findItem(crop)
           if (seed) await run.race(bot.equip(seed, 'hand'))
-          await run.race(bot.activateBlock(bot.blockAt(pos), d))
+          await run.race(bot.activateBlock(bot.blockAt(pos)))
           clicked++
         }
       }

@@ -42,9 +42,32 @@ module.exports.server = function (serv) {
     if (changed.size > 1000) for (const [k, t] of changed) if (Date.now() - t > RACE_MS) changed.delete(k)
   })
 
+  // A survival player's held stack pays for each placement only after it is done (flying-squid
+  // takes one off once placeItem returns), so two clicks arriving together both found one item and
+  // placed two, and the stack went below zero and on placing. Each placement under way reserves one
+  // item of the stack at once; a click that finds nothing left unreserved places nothing, as vanilla
+  // (one packet at a time) would. The reservation ends after flying-squid has taken its item off.
+  const reserved = new WeakMap() // held stack -> placements under way
+  function reserve (player, item) {
+    if (!item || !player || player.gameMode !== 0) return () => {}
+    const n = reserved.get(item) ?? 0
+    if (item.count - n <= 0 || player.inventory.slots[36 + player.heldItemSlot] !== item) return null
+    reserved.set(item, n + 1)
+    return () => setImmediate(() => reserved.set(item, (reserved.get(item) ?? 1) - 1))
+  }
+
   serv.once('asap', () => {
     const placeItem = serv.placeItem
     serv.placeItem = async (data) => {
+      const release = reserve(data.player, data.item)
+      if (!release) return none
+      try {
+        return await checkedPlace(data)
+      } finally {
+        release()
+      }
+    }
+    async function checkedPlace (data) {
       const { player, placedPosition, referencePosition, item } = data
       // (seeds and other crops: farming.js plants them only onto free soil, silently as vanilla — two
       // players planting the same farmland at once is a race, not a cheat)
