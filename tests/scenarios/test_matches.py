@@ -17,9 +17,8 @@ from pillagerbench.teams import TEAMS, make_team
 
 OPPONENTS = {name: cls.scenarios[0] for name, cls in TEAMS.items() if cls.scenarios}
 EPISODE_S = 60
-# potato_cookie serves its first food after 80-90 s (vanilla growth at randomTickSpeed 200: its
-# replanted wheat and potatoes ripen in about 43 s; it plants every potato it harvests, as upstream's
-# plantCrop does, and bakes them 10 s each): it plays the paper's 120 s. cake_beetroot serves its
+# potato_cookie serves its first food, a batch of cookies, at 57-63 s (its beans are kept: upstream's
+# plantCocoaBeans placed no pod; docs/fidelity.md): it plays the paper's 120 s. cake_beetroot serves its
 # first beetroot soup after 51-63 s (collecting as collectblock: head turns and 10 ticks after each
 # crop; docs/fidelity.md): 90 s
 LENGTH = {"potato_cookie": 120, "cake_beetroot": 90}
