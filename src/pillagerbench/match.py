@@ -36,6 +36,9 @@ STOP_GRACE_S = 3.0
 # after that (the first one 1 s in), so line k (from 1) was written at 4 + k s; its analysis read
 # line index L (k = L + 1): about L + 5 s after the clock started
 UPSTREAM_WAIT_S = 4.0
+# upstream's /step waited 80 ticks before each player's code and 80 after it (reference §1.4): with
+# protocol=upstream every run of every team pays them (a restart costs 8 s; the first code starts 4 s in)
+UPSTREAM_STEP_WAIT_S = 80 / 20
 SCORINGS = ("clean", "upstream")
 
 
@@ -108,12 +111,18 @@ class RecordedPlayer:
             if on_event:
                 on_event(event)
 
+        wait = self._match.step_wait_s if self._match else 0.0
+        if wait:
+            await asyncio.sleep(wait)  # upstream's step: the wait before the code (cancelled at the whistle)
         self._runs[self._player.name] = self._runs.get(self._player.name, 0) + 1
         self._program("start")
         try:
-            return await self._player.run(code, timeout=timeout, on_event=both)
+            events = await self._player.run(code, timeout=timeout, on_event=both)
         finally:
             self._program("end")
+        if wait:
+            await asyncio.sleep(wait)  # and the wait after it, before the step returns
+        return events
 
 
 def winner_of(red: float, blue: float) -> str:
@@ -134,10 +143,15 @@ class Match:
         llms: dict[str, Any] | None = None,
         scoring: str = "clean",
         protocol: str = "pillagerbench",
+        step_wait_s: float | None = None,
     ):
         if scoring not in SCORINGS:
             raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
         self.scoring, self.protocol = scoring, protocol
+        # seconds of waiting before and after every run (None: upstream's with protocol=upstream, else 0)
+        self.step_wait_s = (
+            (UPSTREAM_STEP_WAIT_S if protocol == "upstream" else 0.0) if step_wait_s is None else step_wait_s
+        )
         self.server, self.scenario, self.teams = server, scenario, teams
         self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed

@@ -81,6 +81,10 @@ async def test_smelt_potato(server, area, make_player):
     events = await p.run("await smeltItem(bot, 'potato', 'coal', 1)")
     assert errors(events) == []
     assert "Smelted 1 potato." in chats_by(events, p.name)
+    # upstream's waits a fixed 240 ticks per item before taking the output (the furnace needs 200)
+    tick = {d["onChat"]: d["status"]["elapsedTime"] for kind, d in events if kind == "onChat"}
+    started, smelted = tick[f"<{p.name}> Smelting 1 potato with coal"], tick[f"<{p.name}> Smelted 1 potato."]
+    assert smelted - started >= 235, (started, smelted)
     assert await count(server, p.name, "baked_potato") == 1
     assert await count(server, p.name, "potato") == 0
 

@@ -242,12 +242,32 @@ async def test_upstream_protocol_asks_once(tmp_path, fake_llm, llm_client):
 
 
 async def test_upstream_protocol_runs_a_program_at_most_10_times(tmp_path, fake_llm, llm_client):
-    """Programs that end at once: upstream's loop starts them 10 times, ours until the whistle."""
+    """Programs that end at once: upstream's loop starts them 10 times, ours until the whistle (the
+    cap alone: with upstream's 8 s of step waits, ten runs would need an 80 s episode; next test)."""
+    fake_llm.add(Rule(role="cot", reply=answer(ONCE.format(name="Ryn"), ONCE.format(name="Raze"))))
+    team = make_team("cot", "mushroom_war", restart_pause_s=0.2)
+    (rec,) = await play_series(
+        "mushroom_war",
+        team,
+        "do_nothing",
+        tmp_path,
+        length=12,
+        llms={"red": llm_client("red")},
+        protocol="upstream",
+        step_wait_s=0.0,
+    )
+    assert rec.status == "ok", rec.error
+    assert rec.protocol == "upstream" and rec.iterations["red"] == [10, 10]
+    assert rec.runs == {"Ryn": 10, "Raze": 10}
+
+
+async def test_upstream_protocol_waits_4_s_before_and_after_every_run(tmp_path, fake_llm, llm_client):
+    """Upstream's /step waited 80 ticks before the code and 80 after: a program that ends at once
+    starts at 4 s and again only at about 12.2 s, after a 12 s whistle (ours: dozens of runs)."""
     fake_llm.add(Rule(role="cot", reply=answer(ONCE.format(name="Ryn"), ONCE.format(name="Raze"))))
     team = make_team("cot", "mushroom_war", restart_pause_s=0.2)
     (rec,) = await play_series(
         "mushroom_war", team, "do_nothing", tmp_path, length=12, llms={"red": llm_client("red")}, protocol="upstream"
     )
     assert rec.status == "ok", rec.error
-    assert rec.protocol == "upstream" and rec.iterations["red"] == [10, 10]
-    assert rec.runs == {"Ryn": 10, "Raze": 10}
+    assert rec.runs == {"Ryn": 1, "Raze": 1}
