@@ -13,7 +13,7 @@ const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
 const PLUGINS = ['batching', 'guard', 'refusals', 'interact', 'player_list', 'teleport', 'movement', 'inventory', 'windows', 'blocks', 'crafting', 'furnace',
-  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch']
+  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'player_health', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch']
 
 function main () {
   const mc = require('flying-squid')

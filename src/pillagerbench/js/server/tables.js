@@ -205,7 +205,22 @@ const ATTACK_SPEED = {
   trident: 1.1
 }
 
+// Player health (vanilla 1.16/1.19, peaceful difficulty as both scenarios; plugins/player_health.js):
+// - regeneration: a living player below full health heals `amount` every `everyTicks` game ticks
+//   (Player.aiStep, peaceful with naturalRegeneration);
+// - hurt immunity: a player hurt at full damage is immune for `immuneTicks` ticks, when a further hit
+//   does only what it exceeds the last one by (LivingEntity.hurt: invulnerableTime 20, checked > 10);
+// - thorny blocks: a living player whose box overlaps the block (age > minAge) and that moved at least
+//   `minMove` horizontally since the last tick takes `damage` (SweetBerryBushBlock.entityInside; the
+//   slow-down it also applies is the client's, which vanilla does not check and mineflayer does not do).
+const HEALTH = {
+  max: 20,
+  regeneration: { everyTicks: 20, amount: 1 },
+  immuneTicks: 10,
+  thorny: { sweet_berry_bush: { minAge: 0, damage: 1, minMove: 0.003 } }
+}
+
 module.exports = {
-  PICKUP, BLOCK_DROPS, GROWTH, SECTION_BLOCKS, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
+  HEALTH, PICKUP, BLOCK_DROPS, GROWTH, SECTION_BLOCKS, PLANTING, FRUIT_SOIL, TILLABLE, HOES, SMELTING, SMELT_TICKS, FUEL_TICKS,
   FUEL_LEFTOVER, CRAFT_LEFTOVER, MOBS, ATTACK_DAMAGE, REACH, DIG, MOVEMENT, SUPPORTING, REPLACEABLE, ATTACK_SPEED
 }
