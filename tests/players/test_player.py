@@ -251,3 +251,27 @@ await bot.waitForTicks(2)
     assert "red_mushroom_block" in obs["voxels"] and "oak_fence" in obs["voxels"] and "stone" not in obs["voxels"]
     assert sorted(obs["nearbyChests"]) == sorted(reference["chests"])
     assert f"({x0 + 17}, 4, 0)" not in obs["nearbyChests"] and f"({x0 - 5}, 4, 9)" in obs["nearbyChests"]
+
+
+async def test_a_pathfinder_standing_with_its_goal_unreached_is_set_going_again(server, area, make_player):
+    """mineflayer-pathfinder searches once per goal: a path that ends short of the goal leaves the bot
+    standing, and the goto() waiting for it, for the rest of the episode (seen in Dash & Dine: a
+    player still for 100 s beside its server). Upstream's /step set the goal again after 5 s of that
+    (reference §1.4); so does ours. Here the goal moves where the pathfinder does not look."""
+    p = await make_player(area, 0, 0)
+    x = area.x0
+    events = await p.run(
+        f"const g = new GoalNear({x + 4}, 4, 0, 0)\n"
+        "const going = bot.pathfinder.goto(g)\n"
+        "await bot.waitForTicks(3)\n"
+        "g.x += 4\n"
+        "const t0 = Date.now()\n"
+        "await going\n"
+        "bot.chat(`arrived at ${Math.floor(bot.entity.position.x)} after ${Date.now() - t0} ms`)",
+        timeout=25,
+    )
+    said = [c for c in chats_by(events, p.name) if c.startswith("arrived")]
+    assert errors(events) == [] and len(said) == 1, (errors(events), chats_by(events, p.name))
+    _, _, at, _, after, _ = said[0].split()  # "arrived at X after T ms"
+    assert int(at) == x + 8
+    assert 4000 <= int(after) <= 12000, after  # the old path's end, then 5 looks 20 ticks apart

@@ -29,6 +29,7 @@ const { gate } = require('./gate')
 const { waitTicks } = require('./ticks')
 const { Observer } = require('./observe')
 const { LagMeter } = require('./lag')
+const watchdog = require('./watchdog')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
 
@@ -139,6 +140,7 @@ async function doRun (msg) {
   observer.runStartTick = observer.ticks
   current = run
   for (const ev of buffered.splice(0)) out({ ev, run: run.id })
+  run.listen(bot, 'physicsTick', watchdog.watchdog(bot, () => log('[watchdog] the pathfinder stood with its goal unreached and no path for 5 s: goal set again')))
   let timer = null
   if (msg.timeout) {
     timer = setTimeout(() => {
@@ -270,6 +272,7 @@ bot.once('spawn', async () => {
   observer = new Observer(bot)
   lag = new LagMeter(bot)
   bot.pathfinder.setMovements(sandbox.defaultMovements(bot))
+  watchdog.remember(bot)
   // collectblock and pvp set their own Movements on every call (stock ones dig and build towers):
   // give them ours, so the pathfinder's rules stay the same whoever asks
   // (collectblock skips blocks its Movements may not break, so its own may dig, as upstream's did)
