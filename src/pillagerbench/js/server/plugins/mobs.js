@@ -102,16 +102,16 @@ module.exports.player = function (player, serv) {
     data.attacker = player.username
     data.velocity = new Vec3(0, 0, 0)
   })
-  // Right-click a cow with a bucket: milk.
-  player._client.on('use_entity', serv.guarded('milking', ({ target, mouse }) => {
-    if (mouse !== 0 && mouse !== 2) return
+  // Right-click a cow with a bucket in the main hand: milk. As vanilla's, only the "interact" packet
+  // milks (ServerGamePacketListenerImpl.handleInteract: "interact at" goes to Entity.interactAt, which a
+  // cow passes), once per click, and only for the main hand (the off hand holds nothing here).
+  player._client.on('use_entity', serv.guarded('milking', ({ target, mouse, hand }) => {
+    if (mouse !== 0 || (hand ?? 0) !== 0) return
     const cow = serv.entities[target]
     const slot = 36 + player.heldItemSlot
     const held = player.inventory.slots[slot]
     if (!cow || cow.name !== 'cow' || cow.dead || held?.name !== 'bucket') return
     if (cow.position.distanceTo(player.position) > 6) return
-    if (player.pbMilkedAt && Date.now() - player.pbMilkedAt < 200) return // main hand and off hand packets
-    player.pbMilkedAt = Date.now()
     serv.pb.removeItem(player.inventory, held.type, 1, [slot])
     const left = serv.pb.addItem(player.inventory, reg.itemsByName.milk_bucket.id, 1)
     if (left) serv.pb.dropItem(player, reg.itemsByName.milk_bucket.id, 1)
