@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.scenarios.dash_and_dine import EGG_CHEST, REWARDS, upstream_round
+from pillagerbench.scenarios.dash_and_dine import EGG_CHEST, REWARDS, Y, upstream_round
 from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime, upstream_multiplier
 from tests.scenarios.conftest import Always
 from tests.support.bots import TestBot
@@ -157,3 +157,19 @@ async def test_dash_and_dine_world_as_the_reference(server):
     ):
         assert fact in text
     assert "whoever" not in text and "empties" not in text
+
+
+async def test_dash_and_dine_stems_as_the_builders_seeds_each_free_on_four_sides(server):
+    """2 melon and 4 pumpkin stems (the builder's statistics), each with its fruit and three free
+    sides over soil, so no stem's fruit can take another stem's side but where the farm shares it."""
+    sc = make_scenario("dash_and_dine")
+    await sc.arena.build(server)
+    centre = (-15, Y, -1)
+    for fruit, n in (("melon", 2), ("pumpkin", 4)):
+        stems = await blocks_named(server, f"attached_{fruit}_stem", centre)
+        assert len(stems) == n
+        for x, y, z in stems:
+            sides = [await server.request("get_block", pos=[x + dx, y, z + dz]) for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))]
+            assert sorted(b["name"] for b in sides) == sorted([fruit, "air", "air", "air"])
+            soils = [await server.request("get_block", pos=[x + dx, y - 1, z + dz]) for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))]
+            assert {b["name"] for b in soils} <= {"farmland", "grass_block", "dirt"}

@@ -121,8 +121,11 @@ SUGAR_CANE = rect(-12, -10, -8, -8)  # 3 columns: 11.0 cane/min (stated ~11)
 BERRIES = rect(-12, -10, 5, 7)  # 9 bushes: 158 berries/min (stated ~160)
 COCOA_LOGS = [(x, y, z) for x in range(-16, -13) for z in (-9, -8) for y in (Y, Y + 1)]  # 12 jungle logs
 COCOA_PODS = [(x, Y, -7) for x in range(-16, -13)]  # 3 ripe pods: 52.7 beans/min (stated ~54)
-MELONS = [(-16, z) for z in range(-3, 2)]  # 5 melon stems and 5 pumpkin stems, a fruit column between
-PUMPKINS = [(-14, z) for z in range(-3, 2)]  # them and one outside each: 98 fruit/min (stated ~125)
+# Melon and pumpkin stems: 2 and 4, as many seeds as the world's builder used (upstream's stats file:
+# melon_seeds 2, pumpkin_seeds 4), no two side by side, so each can grow its fruit on all four sides;
+# each has grown one already: (stem x, z, fruit side dx, dz, facing). 107 fruit/min (stated ~125).
+MELON_STEMS = [(-16, -2, -1, 0, "west"), (-16, 0, -1, 0, "west")]
+PUMPKIN_STEMS = [(-14, -2, 1, 0, "east"), (-14, 0, 1, 0, "east"), (-15, -3, 0, -1, "north"), (-15, 1, 0, 1, "south")]
 BEETROOTS = rect(-16, -14, 5, 7)  # 3 x 3: 15.4 beetroot/min (stated ~13)
 CARROTS = rect(-20, -18, -9, -7)  # 3 x 3: 36.8 carrots/min (stated ~35)
 WHEAT = rect(-20, -18, -3, 1)  # 3 x 5: 17.5 wheat/min (stated ~17)
@@ -156,13 +159,11 @@ def build_arena() -> Arena:
     # cocoa: jungle logs 2 high with ripe pods on their south side
     blocks += [(*p, "jungle_log") for p in COCOA_LOGS]
     blocks += [(*p, "cocoa", {"age": 2, "facing": "north"}) for p in COCOA_PODS]
-    # melons and pumpkins: moist farmland 5 x 5; each stem has grown its fruit on the outer side
+    # melons and pumpkins: moist farmland 5 x 5, each stem with its grown fruit
     blocks += [(x, GROUND_Y, z, "farmland", MOIST) for x, z in rect(-17, -13, -3, 1)]
-    for cells, fruit, stem, dx, facing in (
-        (MELONS, "melon", "attached_melon_stem", -1, "west"),
-        (PUMPKINS, "pumpkin", "attached_pumpkin_stem", 1, "east"),
-    ):
-        blocks += [(x, Y, z, stem, {"facing": facing}) for x, z in cells] + [(x + dx, Y, z, fruit) for x, z in cells]
+    for stems, fruit in ((MELON_STEMS, "melon"), (PUMPKIN_STEMS, "pumpkin")):
+        for x, z, dx, dz, facing in stems:
+            blocks += [(x, Y, z, f"attached_{fruit}_stem", {"facing": facing}), (x + dx, Y, z + dz, fruit)]
     blocks += crop_field(BEETROOTS, "beetroots", 3)
     blocks += crop_field(CARROTS, "carrots", 7)
     blocks += crop_field(WHEAT, "wheat", 7)
