@@ -169,7 +169,13 @@ async def test_dash_and_dine_stems_as_the_builders_seeds_each_free_on_four_sides
         stems = await blocks_named(server, f"attached_{fruit}_stem", centre)
         assert len(stems) == n
         for x, y, z in stems:
-            sides = [await server.request("get_block", pos=[x + dx, y, z + dz]) for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))]
+            sides = [
+                await server.request("get_block", pos=[x + dx, y, z + dz])
+                for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))
+            ]
             assert sorted(b["name"] for b in sides) == sorted([fruit, "air", "air", "air"])
-            soils = [await server.request("get_block", pos=[x + dx, y - 1, z + dz]) for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))]
+            soils = [
+                await server.request("get_block", pos=[x + dx, y - 1, z + dz])
+                for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))
+            ]
             assert {b["name"] for b in soils} <= {"farmland", "grass_block", "dirt"}
