@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.scenarios.dash_and_dine import EGG_CHEST, REWARDS, Y, upstream_round
+from pillagerbench.scenarios.dash_and_dine import EGG_CHEST, REWARDS, SIDES, Y, upstream_round
 from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime, upstream_multiplier
 from tests.scenarios.conftest import Always
 from tests.support.bots import TestBot
@@ -169,13 +169,7 @@ async def test_dash_and_dine_stems_as_the_builders_seeds_each_free_on_four_sides
         stems = await blocks_named(server, f"attached_{fruit}_stem", centre)
         assert len(stems) == n
         for x, y, z in stems:
-            sides = [
-                await server.request("get_block", pos=[x + dx, y, z + dz])
-                for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))
-            ]
+            sides = [await server.request("get_block", pos=[x + dx, y, z + dz]) for dx, dz in SIDES.values()]
             assert sorted(b["name"] for b in sides) == sorted([fruit, "air", "air", "air"])
-            soils = [
-                await server.request("get_block", pos=[x + dx, y - 1, z + dz])
-                for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1))
-            ]
+            soils = [await server.request("get_block", pos=[x + dx, y - 1, z + dz]) for dx, dz in SIDES.values()]
             assert {b["name"] for b in soils} <= {"farmland", "grass_block", "dirt"}

@@ -123,9 +123,10 @@ COCOA_LOGS = [(x, y, z) for x in range(-16, -13) for z in (-9, -8) for y in (Y, 
 COCOA_PODS = [(x, Y, -7) for x in range(-16, -13)]  # 3 ripe pods: 52.7 beans/min (stated ~54)
 # Melon and pumpkin stems: 2 and 4, as many seeds as the world's builder used (upstream's stats file:
 # melon_seeds 2, pumpkin_seeds 4), no two side by side, so each can grow its fruit on all four sides;
-# each has grown one already: (stem x, z, fruit side dx, dz, facing). 107 fruit/min (stated ~125).
-MELON_STEMS = [(-16, -2, -1, 0, "west"), (-16, 0, -1, 0, "west")]
-PUMPKIN_STEMS = [(-14, -2, 1, 0, "east"), (-14, 0, 1, 0, "east"), (-15, -3, 0, -1, "north"), (-15, 1, 0, 1, "south")]
+# each has grown one already, on the side it faces: (stem x, z, facing). 107 fruit/min (stated ~125).
+MELON_STEMS = [(-16, -2, "west"), (-16, 0, "west")]
+PUMPKIN_STEMS = [(-14, -2, "east"), (-14, 0, "east"), (-15, -3, "north"), (-15, 1, "south")]
+SIDES = {"east": (1, 0), "west": (-1, 0), "south": (0, 1), "north": (0, -1)}  # facing: (dx, dz)
 BEETROOTS = rect(-16, -14, 5, 7)  # 3 x 3: 15.4 beetroot/min (stated ~13)
 CARROTS = rect(-20, -18, -9, -7)  # 3 x 3: 36.8 carrots/min (stated ~35)
 WHEAT = rect(-20, -18, -3, 1)  # 3 x 5: 17.5 wheat/min (stated ~17)
@@ -162,7 +163,8 @@ def build_arena() -> Arena:
     # melons and pumpkins: moist farmland 5 x 5, each stem with its grown fruit
     blocks += [(x, GROUND_Y, z, "farmland", MOIST) for x, z in rect(-17, -13, -3, 1)]
     for stems, fruit in ((MELON_STEMS, "melon"), (PUMPKIN_STEMS, "pumpkin")):
-        for x, z, dx, dz, facing in stems:
+        for x, z, facing in stems:
+            dx, dz = SIDES[facing]
             blocks += [(x, Y, z, f"attached_{fruit}_stem", {"facing": facing}), (x + dx, Y, z + dz, fruit)]
     blocks += crop_field(BEETROOTS, "beetroots", 3)
     blocks += crop_field(CARROTS, "carrots", 7)
