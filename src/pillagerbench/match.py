@@ -42,6 +42,22 @@ UPSTREAM_STEP_WAIT_S = 80 / 20
 SCORINGS = ("clean", "upstream")
 
 
+def last_episode_seen(record: dict, out: Path, timeline: list | None = None) -> dict:
+    """What a team sees of a finished episode (`TeamContext.last_episode`): its record, its events
+    directory, its score timeline and the world chat, read from the episode directory `out` where not
+    given. The match builds it after each episode; a resumed series rebuilds it from the directory."""
+    if timeline is None:
+        path = out / "timeline.json"
+        timeline = json.loads(path.read_text()) if path.exists() else []
+    chat = out / "chat.txt"
+    return {
+        "record": record,
+        "events_dir": str(out / "events"),
+        "timeline": timeline,
+        "chat": chat.read_text().splitlines() if chat.exists() else [],
+    }
+
+
 @dataclass
 class EpisodeRecord:
     scenario: str
@@ -298,12 +314,7 @@ class Match:
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
         for key, ctx in contexts.items():
-            self.last_records[key] = {
-                "record": asdict(rec),
-                "events_dir": str(out / "events"),
-                "timeline": timeline,
-                "chat": (out / "chat.txt").read_text().splitlines(),
-            }
+            self.last_records[key] = last_episode_seen(asdict(rec), out, timeline)
             ctx.last_episode = self.last_records[key]
         await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
         for key, llm in self.llms.items():

@@ -33,6 +33,10 @@ from pillagerbench.experiments.layout import EPISODES, LEDGER, checkpoint_dir, e
 from pillagerbench.experiments.spec import SeriesSpec
 
 
+class ResumeError(RuntimeError):
+    """A series directory that cannot be resumed as it was played."""
+
+
 def read_finished(series_dir: Path) -> tuple[dict[int, dict], int, int]:
     """Finished episodes by index from episodes.jsonl, the byte length of its good lines, and its size."""
     path = Path(series_dir) / EPISODES
@@ -169,8 +173,12 @@ async def run_series(
         if finished:
             last = state_dir(series_dir, max(finished))
             for side, team in teams.items():
-                if (last / side / "team.json").exists():
-                    team.load_checkpoint(last / side)
+                if not (last / side / "team.json").exists():  # a learning team would start from scratch
+                    raise ResumeError(
+                        f"cannot resume: {side}'s state after episode {max(finished)} is missing "
+                        f"({last / side / 'team.json'}); the team would forget what it learned"
+                    )
+                team.load_checkpoint(last / side)
             say(f"[{spec.id}] resume after {len(finished)} finished episode(s)")
         else:
             for side, ref in (spec.checkpoint or {}).items():
@@ -230,14 +238,10 @@ async def _play(
     )
     ok = [i for i in sorted(finished) if finished[i].get("status") == "ok"]
     if ok:  # what the teams saw of the last episode before the kill
-        last = episode_dir(series_dir, ok[-1])
-        timeline = json.loads((last / "timeline.json").read_text()) if (last / "timeline.json").exists() else []
+        from pillagerbench.match import last_episode_seen
+
         for side in teams:
-            match.last_records[side] = {
-                "record": finished[ok[-1]],
-                "events_dir": str(last / "events"),
-                "timeline": timeline,
-            }
+            match.last_records[side] = last_episode_seen(finished[ok[-1]], episode_dir(series_dir, ok[-1]))
     try:
         await match.setup()
 
