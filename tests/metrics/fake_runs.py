@@ -18,9 +18,11 @@ def write_run(
     iterations: list[int] | None = None,
     first_points: list[int] | None = None,
     upstream: list[tuple[float, float]] | None = None,
+    lagged: dict[int, str] | None = None,
 ) -> Path:
     """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
-    it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream)."""
+    it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream);
+    `lagged[i]`: episode i was played under lag, for that reason."""
     run.mkdir(parents=True)
     config = {
         "scenario": {"name": scenario},
@@ -53,6 +55,8 @@ def write_run(
                 "status": "ok",
                 "iterations": {"red": iterations or [1, 1], "blue": [1, 1]},
             }
+            if lagged and i in lagged:
+                rec.update(lagged=True, lag_reason=lagged[i], server_tps=12.5)
             if upstream:
                 rec["scoring"] = "upstream"
                 rec["red_score"], rec["blue_score"] = upstream[i]
