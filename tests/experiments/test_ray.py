@@ -1,14 +1,11 @@
-"""launcher=ray on a local Ray instance: a series runs as a Ray task and writes the same run directory."""
+"""launcher=ray on a local Ray instance: a series runs as a Ray task and writes the same run directory.
+Ray is in the test extra (pyproject.toml), so this runs in every suite, CI's included."""
 
 from __future__ import annotations
 
 import json
 import subprocess
 import sys
-
-import pytest
-
-pytest.importorskip("ray", reason="Ray is an optional extra: pip install -e '.[ray]'")
 
 
 def test_an_experiment_runs_on_a_local_ray_instance(tmp_path):
