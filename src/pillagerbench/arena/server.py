@@ -84,7 +84,7 @@ class ArenaServer:
     async def start(self, timeout: float = 30) -> ArenaServer:
         self.log_path.parent.mkdir(parents=True, exist_ok=True)
         parent_sock, child_sock = socket.socketpair()
-        env = node_env()
+        env = node_env(watch="watch" in self.settings)
         settings = dict(self.settings, controlFd=child_sock.fileno())
         t0 = time.perf_counter()
         with open(self.log_path, "ab") as log:

@@ -1,0 +1,39 @@
+"""The lighter install: the live view's package (prismarine-viewer) is the lock's one optional
+dependency, left out of the base install and added on the first use of watch=. What the server and
+the bots require must never be one of the packages only the viewer brings."""
+
+from __future__ import annotations
+
+import json
+import re
+
+from pillagerbench.cli import main as cli_main
+from pillagerbench.node import JS_DIR
+
+REQUIRE = re.compile(r"require\('([^'./][^']*)'\)")
+
+
+def optional_packages() -> set[str]:
+    packages = json.loads((JS_DIR / "package-lock.json").read_text())["packages"]
+    return {path.rsplit("node_modules/", 1)[1] for path, p in packages.items() if path and p.get("optional")}
+
+
+def test_the_viewer_is_the_one_optional_dependency_and_only_the_live_view_requires_its_packages():
+    package = json.loads((JS_DIR / "package.json").read_text())
+    assert list(package["optionalDependencies"]) == ["prismarine-viewer"]
+    optional = optional_packages()
+    assert {"prismarine-viewer", "express", "socket.io", "three"} <= optional
+    assert not optional & set(package["dependencies"])
+    for path in JS_DIR.rglob("*.js"):
+        if "node_modules" in path.parts or path.parent.name == "watch":
+            continue
+        wrong = optional & set(REQUIRE.findall(path.read_text()))
+        assert not wrong, f"{path.relative_to(JS_DIR)} requires {wrong}, which the base install leaves out"
+
+
+def test_setup_refuses_an_unknown_argument_in_one_line(capsys):
+    assert cli_main(["setup", "--viewer"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [
+        "pillagerbench setup: unknown argument '--viewer'; setup takes only --watch (the live view's packages too)"
+    ]
