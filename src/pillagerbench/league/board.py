@@ -1,10 +1,11 @@
 """`pillagerbench league LEAGUE_DIR board`: leaderboard.md, .csv and .html in the league directory,
 rebuilt only from the rounds' episodes.jsonl (and their ledgers), so the same files give the same board.
 
-The main table (also the CSV): rank by overall rating, entrant, team, rating ± interval (at the
-league's confidence), conservative rating (mu − 3σ), episodes; per scenario its rating and the
-entrant's P, S, W over all its episodes on either side (S against each opponent with that
-opponent's mean score against do_nothing in the league as σ, where it has played do_nothing);
+The main table (also the CSV): rank by overall rating (equal ratings share a rank: 1, 1, 3),
+entrant, team, rating ± interval (at the league's confidence), conservative rating (mu − 3σ),
+episodes; per scenario its rating and the entrant's P, S, W over all its episodes on either side
+(S against each opponent with that opponent's mean score against do_nothing in the league as σ,
+where it has played do_nothing);
 LLM tokens and cost per episode when the ledgers have any. Then a head-to-head matrix per scenario.
 """
 
@@ -17,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.league import results
-from pillagerbench.league.ratings import ANCHOR, Rating, ranked
+from pillagerbench.league.ratings import ANCHOR, Rating, ranked, ranks
 from pillagerbench.league.spec import League
 from pillagerbench.league.standings import boards, overall
 from pillagerbench.metrics.formulas import Estimate, mean_ci, mean_of_estimates, sabotage, win_rate
@@ -68,12 +69,12 @@ def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
     per, total = boards(league, outs), overall(league, outs)
     df, spend = _episodes(runs), results.ledger(runs)
     z_conf = league.confidence
-    rows = []
-    for rank, name in enumerate(ranked(total), 1):
+    rows, place = [], ranks(total)
+    for name in ranked(total):
         entrant = league.entrant(name)
         r: Rating = total[name]
         row = {
-            "rank": rank,
+            "rank": place[name],
             "entrant": name,
             "team": entrant.team if entrant else "",
             "rating": r.mu,
@@ -136,5 +137,5 @@ def write_board(league_dir: Path, league: League) -> list[Path]:
     sections = [("Leaderboard", "table", main)] + [
         (f"Head to head, {sc} (row's win rate against column, episodes)", "table", t) for sc, t in h2h.items()
     ]
-    (out / "leaderboard.html").write_text(page(f"League {out.name}", runs.runs, notes, sections))
+    (out / "leaderboard.html").write_text(page(f"League {out.name}", runs.runs, notes, sections, runs_label="Rounds"))
     return [out / f for f in FILES]

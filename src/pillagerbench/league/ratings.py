@@ -72,3 +72,8 @@ def p_above(a: Rating, b: Rating) -> float:
 def ranked(ratings: dict[str, Rating]) -> list[str]:
     """Names from the highest rating down (ties by name)."""
     return sorted(ratings, key=lambda n: (-ratings[n].mu, n))
+
+
+def ranks(ratings: dict[str, Rating]) -> dict[str, int]:
+    """Each name's place on the board: equal ratings share one (1, 1, 3), as before any episode."""
+    return {n: 1 + sum(r.mu > ratings[n].mu + 1e-9 for r in ratings.values()) for n in ratings}

@@ -38,17 +38,29 @@ def image_html(path: Path, alt: str, caption: str | None = None) -> str:
     return f"<figure>{img}<figcaption>{html.escape(caption)}</figcaption></figure>"
 
 
-def page(title: str, runs: list[Path], notes: list[str], sections: list[tuple[str, str, Any]]) -> str:
-    """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path), "text" or "html" (markup as is)."""
+def page(
+    title: str,
+    runs: list[Path],
+    notes: list[str],
+    sections: list[tuple[str, str, Any]],
+    toc: bool = False,
+    runs_label: str = "Runs",
+) -> str:
+    """sections: (heading, kind, content) with kind "table" (DataFrame), "image" (Path), "text" or "html"
+    (markup as is); `toc`: a table of contents linking every section's heading (`#section-N`)."""
+    listed = ", ".join(f"<code>{html.escape(str(r))}</code>" for r in runs) or "none yet"
     parts = [
         f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>",
         f"<style>{STYLE}</style></head><body><h1>{html.escape(title)}</h1>",
-        "<p class='note'>Runs: " + ", ".join(f"<code>{html.escape(str(r))}</code>" for r in runs) + "</p>",
+        f"<p class='note'>{html.escape(runs_label)}: {listed}</p>",
     ]
     if notes:
         parts.append("<ul class='note'>" + "".join(f"<li>{html.escape(n)}</li>" for n in notes) + "</ul>")
-    for heading, kind, content in sections:
-        parts.append(f"<h2>{html.escape(heading)}</h2>")
+    if toc:
+        links = "".join(f"<li><a href='#section-{i}'>{html.escape(h)}</a></li>" for i, (h, _, _) in enumerate(sections))
+        parts.append(f"<nav id='contents'><h2>Contents</h2><ol>{links}</ol></nav>")
+    for i, (heading, kind, content) in enumerate(sections):
+        parts.append(f"<h2 id='section-{i}'>{html.escape(heading)}</h2>")
         if kind == "table":
             parts.append(table_html(content))
         elif kind == "image":  # a path, or (path, one-line caption)
