@@ -127,7 +127,26 @@ def load_config(overrides: list[str] | None = None, config_name: str = "config")
     except HydraException as exc:  # unknown group option, bad override syntax, ...
         raise ConfigError(one_line(str(exc), list(overrides or []))) from None
     OmegaConf.set_readonly(cfg, False)
+    _apply_paper(cfg, list(overrides or []))
     return cfg
+
+
+# paper=true: the settings the paper's tables were measured with, upstream's scoring and upstream's
+# step protocol (docs/faithful.md says what each reproduces). A run that asks for it and sets one of
+# them otherwise is refused rather than half comparable.
+PAPER = {"scoring": "upstream", "protocol": "upstream"}
+
+
+def _apply_paper(cfg: DictConfig, overrides: list[str]) -> None:
+    if cfg.get("paper") is not True:
+        return
+    for key, value in PAPER.items():
+        given = [v for k, sep, v in (o.partition("=") for o in overrides) if sep and k.lstrip("+~") == key]
+        if given and given[-1] != value:
+            raise ConfigError(
+                f"paper=true plays with {key}={value} (as the paper's tables); drop {key}={given[-1]} or paper=true"
+            )
+        cfg[key] = value
 
 
 def to_dict(cfg: Any) -> dict[str, Any]:

@@ -57,7 +57,7 @@ class LLMConfig(_Strict):
     preflight: bool
     extra_headers: dict[str, str]
     extra_body: dict[str, Any]
-    price: dict[Literal["input_per_1m", "output_per_1m"], float]
+    price: dict[Literal["input_per_1m", "output_per_1m"], float | None]
     budget: dict[Literal["max_calls", "max_input_tokens", "max_output_tokens", "max_cost_usd"], float | None]
 
 

@@ -9,13 +9,15 @@ valid; `check_run_config` raises one `ConfigError` holding all of them.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 from omegaconf import OmegaConf
 from pydantic import ConfigDict, create_model
 
 from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems, watch_problems
+from pillagerbench.llm.prices import price_problem
+from pillagerbench.llm.settings import LLMSettings
 from pillagerbench.scenarios import SCENARIOS
 from pillagerbench.teams import TEAMS, declared_options, find_team
 
@@ -64,7 +66,11 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
             out.append(f"{side}.llm.{key}: team {name} uses no LLM (teams that do: {', '.join(llm_teams)})")
     elif cls.uses_llm:
         merged = OmegaConf.to_container(OmegaConf.merge(cfg.llm, own_llm), resolve=True)
-        out += problems(LLMConfig, merged, f"{side}.llm" if own_llm else "llm")
+        where = f"{side}.llm" if own_llm else "llm"
+        found_llm = problems(LLMConfig, merged, where)
+        out += found_llm
+        if not found_llm:  # a dollar budget needs a known price (llm/prices.py)
+            out += [p for p in [price_problem(LLMSettings.from_config(cast(dict, merged)), where)] if p]
     return out
 
 

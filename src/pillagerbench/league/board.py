@@ -98,7 +98,8 @@ def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
         calls = spend[spend["entrant"] == name]
         known = r.episodes and len(calls)
         row["LLM tokens/episode"] = calls["tokens"].sum() / r.episodes if known else math.nan
-        row["LLM cost/episode"] = calls["cost"].astype(float).sum() / r.episodes if known else math.nan
+        priced = known and not calls["cost"].isna().any()  # a call without a price: the cost is unknown, not 0
+        row["LLM cost/episode"] = calls["cost"].astype(float).sum() / r.episodes if priced else math.nan
         rows.append(row)
     return pd.DataFrame(rows)
 
@@ -128,6 +129,9 @@ def write_board(league_dir: Path, league: League) -> list[Path]:
         f"(openskill Plackett–Luce, do_nothing = 0); conservative = mu − 3σ",
         f"{len(runs.skipped)} items skipped (unfinished or failed episodes)",
     ]
+    unpriced = int(results.ledger(runs)["cost"].isna().sum())
+    if unpriced:
+        notes.append(f"LLM cost unknown (left blank) where {unpriced} calls had no price for their model (docs/llm.md)")
     out = Path(league_dir)
     main.to_csv(out / "leaderboard.csv", index=False)
     md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", "## Leaderboard", "", to_markdown(main)]

@@ -21,7 +21,8 @@ class Spent:
     episodes: int = 0  # finished episode lines, failed ones included
     hours: float = 0.0  # wall time of those episodes
     llm_tokens: int = 0
-    llm_cost_usd: float = 0.0
+    llm_cost_usd: float = 0.0  # of the calls whose cost is known: a lower bound when llm_unpriced_calls > 0
+    llm_unpriced_calls: int = 0  # calls whose cost is unknown (no price for the model; llm/prices.py)
 
     def over(self, budget: dict[str, float | None]) -> str | None:
         """The first budget item used up ("episodes 4/4"), or None."""
@@ -69,5 +70,8 @@ def spent(league_dir: Path) -> Spent:
             if (series / LEDGER).exists():
                 for r in read_ledger(series / LEDGER):
                     out.llm_tokens += int(r.get("input_tokens") or 0) + int(r.get("output_tokens") or 0)
-                    out.llm_cost_usd += float(r.get("cost_usd") or 0.0)
+                    if "cost_usd" in r and r["cost_usd"] is None:
+                        out.llm_unpriced_calls += 1
+                    else:
+                        out.llm_cost_usd += float(r.get("cost_usd") or 0.0)
     return out

@@ -30,6 +30,7 @@ from .budget import Budget
 from .cache import LLMCache, normalize_mode
 from .ledger import Ledger
 from .parsing import parse_json, strip_think
+from .prices import Price, price_of, price_problem
 from .protocol import ROLE_HEADER, TEAM_HEADER
 from .settings import LLMSettings
 
@@ -65,10 +66,12 @@ class LLMClient:
         ledger: Ledger | None = None,
         cache: LLMCache | None = None,
         budget: Budget | None = None,
+        price: Price | None = None,
         _sdk: openai.AsyncOpenAI | None = None,
     ):
         self.settings = settings
         self.team = team
+        self.price = price if price is not None else price_of(settings)  # llm/prices.py
         self.ledger = ledger
         self.cache = cache if cache is not None else LLMCache(None, "off")
         self.budget = budget if budget is not None else self._default_budget()
@@ -106,11 +109,21 @@ class LLMClient:
 
     def for_team(self, team: str, budget: Budget | None = None) -> LLMClient:
         """A client for one team: same provider connection, ledger and cache; its own budget."""
-        return LLMClient(self.settings, team=team, ledger=self.ledger, cache=self.cache, budget=budget, _sdk=self._sdk)
+        return LLMClient(
+            self.settings,
+            team=team,
+            ledger=self.ledger,
+            cache=self.cache,
+            budget=budget,
+            price=self.price,
+            _sdk=self._sdk,
+        )
 
     def _default_budget(self) -> Budget:
-        s = self.settings
-        return Budget.from_limits(s.budget, s.price_input_per_1m, s.price_output_per_1m)
+        problem = price_problem(self.settings)
+        if problem:  # a dollar budget that could never trip
+            raise E.LLMConfigError(problem)
+        return Budget.from_limits(self.settings.budget, self.price.input_per_1m, self.price.output_per_1m)
 
     def reset_episode(self) -> None:
         """Start a new episode: the per-episode budget counters go back to zero."""
@@ -214,7 +227,7 @@ class LLMClient:
         raw = response.get("raw_text") or ""
         text = strip_think(raw) if self.settings.strip_think else raw
         tin, tout = response.get("input_tokens"), response.get("output_tokens")
-        cost = self.budget.charge(tin or 0, tout or 0)
+        cost = self.budget.charge(tin, tout, self.price.cost(tin, tout))
         latency = time.perf_counter() - start
         extra = {"orig_latency_s": response.get("latency_s")} if cache_hit else {}
         self._log(
@@ -247,7 +260,7 @@ class LLMClient:
         err: E.LLMError | None,
         *,
         latency: float | None = None,
-        cost: float = 0.0,
+        cost: float | None = 0.0,
         **extra: Any,
     ) -> None:
         if self.ledger is None:
@@ -268,7 +281,8 @@ class LLMClient:
             cache_hit=cache_hit,
             cache_key=key or None,
             sample=sample,
-            cost_usd=cost,
+            cost_usd=cost,  # None: unknown (no price for the model, or no usage reported)
+            price=self.price.to_dict(),
             error_type=type(err).__name__ if err else None,
             error=str(err) if err else None,
             **extra,

@@ -2,7 +2,9 @@
 
 Fields of a record: ts (UTC, ISO 8601), team, role, provider, model, latency_s (this call,
 retries and waits included), input_tokens, output_tokens, retries, finish_reason, cache_hit,
-cache_key, sample, cost_usd, error_type and error (null on success), and either request and
+cache_key, sample, cost_usd (null when unknown: no price for the model, or no usage reported; 0 for
+a failed call), price (input_per_1m, output_per_1m and source: where the price came from, see
+prices.py), error_type and error (null on success), and either request and
 response in full (content="full") or request_sha256 and response_sha256 (content="hash").
 A cache hit also carries orig_latency_s, the latency of the call that produced the answer.
 
@@ -93,10 +95,17 @@ class LedgerStats:
     retries: int
     input_tokens: int
     output_tokens: int
-    cost_usd: float
+    cost_usd: float  # of the calls whose cost is known (see `unpriced`)
     t_resp: float | None  # mean latency (s) of successful calls
     n_out: float | None  # mean output tokens of successful calls
     r_tps: float | None  # sum output tokens / sum latency (tokens per second)
+    unpriced: int = 0  # calls whose cost is unknown (cost_usd null): cost_usd is then a lower bound
+
+    def cost_text(self) -> str:
+        """The cost as it is known: "$0.0123", "≥ $0.0123 (4 calls unpriced)" or "unknown (4 calls unpriced)"."""
+        from .prices import format_cost
+
+        return format_cost(self.cost_usd, self.unpriced)
 
 
 def summarize(
@@ -108,14 +117,17 @@ def summarize(
     produced its answer, so a replayed run reports the same T_resp and R_tps as the original.
     Calls with unknown usage count as 0 tokens.
     """
-    calls = ok = errors = hits = retries = tin = tout = 0
+    calls = ok = errors = hits = retries = tin = tout = unpriced = 0
     cost = latency = ok_out = 0.0
     for r in records:
         if (team is not None and r.get("team") != team) or (role is not None and r.get("role") != role):
             continue
         calls += 1
         retries += int(r.get("retries") or 0)
-        cost += float(r.get("cost_usd") or 0.0)
+        if "cost_usd" in r and r["cost_usd"] is None:
+            unpriced += 1
+        else:
+            cost += float(r.get("cost_usd") or 0.0)
         if r.get("error_type"):
             errors += 1
             continue
@@ -137,4 +149,5 @@ def summarize(
         t_resp=latency / ok if ok else None,
         n_out=ok_out / ok if ok else None,
         r_tps=tout / latency if latency > 0 else None,
+        unpriced=unpriced,
     )

@@ -35,8 +35,8 @@ class LLMSettings:
     strip_think: bool = True
     extra_headers: dict[str, str] = field(default_factory=dict)
     extra_body: dict[str, Any] = field(default_factory=dict)
-    price_input_per_1m: float = 0.0  # USD per million input tokens
-    price_output_per_1m: float = 0.0
+    price_input_per_1m: float | None = None  # USD per million input tokens; None = the price table's (prices.py)
+    price_output_per_1m: float | None = None
     budget: dict[str, float | None] = field(default_factory=dict)  # per team and episode
     preflight: bool = True  # one short request before episode 0 (llm/preflight.py)
 
@@ -51,8 +51,8 @@ class LLMSettings:
             raw = dict(cfg)
         data: dict[str, Any] = dict(cast(Mapping[str, Any], raw))
         price = data.pop("price", None) or {}
-        data.setdefault("price_input_per_1m", price.get("input_per_1m", 0.0))
-        data.setdefault("price_output_per_1m", price.get("output_per_1m", 0.0))
+        data.setdefault("price_input_per_1m", price.get("input_per_1m"))
+        data.setdefault("price_output_per_1m", price.get("output_per_1m"))
         known = {f.name for f in fields(cls)}
         unknown = sorted(set(data) - known)
         if unknown:
