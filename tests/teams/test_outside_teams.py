@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import threading
 import time
+from contextlib import contextmanager
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 
@@ -13,8 +14,10 @@ import pytest
 
 from pillagerbench.config import ConfigError
 from pillagerbench.teams import find_team
+from pillagerbench.teams.remote import RemoteTeam
 from pillagerbench.teams.remote.protocol import schemas
 from tests.support.cli import run_cli
+from tests.teams.conftest import play_series
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -77,11 +80,15 @@ def test_teams_lists_entry_points_with_options(outside, tmp_path):
     ],
 )
 def test_bad_outside_teams_are_one_line_before_anything_starts(outside, tmp_path, args, expected):
-    proc = pb(tmp_path, outside, "run", *args)
+    assert_refused_in_one_line(pb(tmp_path, outside, "run", *args), expected, tmp_path)
+
+
+def assert_refused_in_one_line(proc, expected: str, cwd: Path) -> None:
+    """Exit 2, one line on stderr saying `expected`, no traceback, no run directory."""
     assert proc.returncode == 2, proc.stdout + proc.stderr
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and expected in lines[0], proc.stderr
-    assert "Traceback" not in proc.stderr and not (tmp_path / "runs").exists()
+    assert "Traceback" not in proc.stderr and not (cwd / "runs").exists()
 
 
 def test_an_import_path_and_an_entry_point_reach_the_same_class(outside, monkeypatch):
@@ -100,11 +107,11 @@ def test_the_documented_schemas_are_the_protocol_models():
         assert f"### `{name}`\n\n```json\n{json.dumps(schema, indent=1)}\n```" in doc, name
 
 
-class Misbehaving(BaseHTTPRequestHandler):
-    """Pre-game: a program for a stranger and one for a real player; then, in turn, a malformed
-    answer, an oversized one, a late one, a refused player, and finally a good new program."""
+class TeamServer(BaseHTTPRequestHandler):
+    """A remote team server for tests: answers `reply(path, body)`; GET / says protocol 1."""
 
-    calls: list[str] = []
+    protocol = 1
+    calls: list[str]
 
     def answer(self, raw: bytes, status: int = 200) -> None:
         self.send_response(status)
@@ -113,47 +120,72 @@ class Misbehaving(BaseHTTPRequestHandler):
         self.wfile.write(raw)
 
     def do_GET(self):
-        self.answer(b'{"protocol": 1}')
+        self.answer(json.dumps({"protocol": self.protocol}).encode())
 
     def do_POST(self):
         body = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
-        Misbehaving.calls.append(self.path)
+        self.calls.append(self.path)
         if self.path == "/pregame":
             me = body["side"]["players"][0]["name"]
             return self.answer(
-                json.dumps(
-                    {
-                        "programs": {
-                            "Stranger": "bot.chat('x')",
-                            me: "bot.chat('first program'); while (true) { await bot.waitForTicks(10); bot.chat('tick') }",
-                        }
-                    }
-                ).encode()
+                json.dumps({"programs": {"Stranger": "bot.chat('x')", me: program("first program")}}).encode()
             )
         if self.path == "/postgame":
             return self.answer(b"{}")
-        n = Misbehaving.calls.count("/events")
-        if n == 1:
-            return self.answer(b"this is not json")
-        if n == 2:
-            return self.answer(b'{"programs": {"x": "' + b"a" * 3000 + b'"}}')
-        if n == 3:
-            time.sleep(1.5)
-            return self.answer(b"{}")
-        if n == 4:
-            return self.answer(b"{}", status=500)
-        return self.answer(b"{}")
+        self.on_events(self.calls.count("/events"), body)
+
+    def on_events(self, n: int, body: dict) -> None:
+        self.answer(b"{}")
 
     def log_message(self, *args):
         pass
 
 
-def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
-    Misbehaving.calls = []
-    server = ThreadingHTTPServer(("127.0.0.1", 0), Misbehaving)
+def program(label: str) -> str:
+    """Chat `label`, then chat forever (so the player always has new events to send)."""
+    return f"bot.chat('{label}'); while (true) {{ await bot.waitForTicks(10); bot.chat('tick') }}"
+
+
+def programs_for_the_player(body: dict, label: str) -> bytes:
+    return json.dumps({"programs": {name: program(label) for name in body["events"]}}).encode()
+
+
+@contextmanager
+def team_server(handler: type[TeamServer]):
+    """Serve `handler` on a free loopback port; yields its url."""
+    handler.calls = []
+    server = ThreadingHTTPServer(("127.0.0.1", 0), handler)
     threading.Thread(target=server.serve_forever, daemon=True).start()
     try:
-        url = f"http://127.0.0.1:{server.server_address[1]}"
+        yield f"http://127.0.0.1:{server.server_address[1]}"
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+class Misbehaving(TeamServer):
+    """Pre-game: a program for a stranger and one for a real player; then, in turn, a malformed
+    answer, a new program, an oversized answer, a late one, an HTTP 500, and another new program."""
+
+    def on_events(self, n: int, body: dict) -> None:
+        if n == 1:
+            return self.answer(b"this is not json")
+        if n == 2:
+            return self.answer(programs_for_the_player(body, "after the malformed answer"))
+        if n == 3:
+            return self.answer(b'{"programs": {"x": "' + b"a" * 3000 + b'"}}')
+        if n == 4:
+            time.sleep(1.5)
+            return self.answer(b"{}")
+        if n == 5:
+            return self.answer(b"{}", status=500)
+        if n == 6:
+            return self.answer(programs_for_the_player(body, "after the HTTP 500"))
+        return self.answer(b"{}")
+
+
+def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
+    with team_server(Misbehaving) as url:
         proc = run_cli(
             tmp_path,
             "run",
@@ -168,8 +200,6 @@ def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
             "run_dir=out",
             timeout=240,
         )
-    finally:
-        server.shutdown()
     assert proc.returncode in (0, 1), proc.stdout + proc.stderr
     rec = json.loads((tmp_path / "out" / "episodes.jsonl").read_text())
     assert rec["status"] == "ok"
@@ -181,4 +211,44 @@ def test_a_misbehaving_team_server_is_recorded_and_the_match_plays_on(tmp_path):
     assert "HTTP 500" in problems
     chat = (tmp_path / "out" / "episode_000" / "chat.txt").read_text()
     assert "first program" in chat  # the good program of the pre-game ran
+    # it plays on: the team kept calling after each failure, and the programs it answered later ran
+    assert "after the malformed answer" in chat and "after the HTTP 500" in chat
     assert Misbehaving.calls[0] == "/pregame" and Misbehaving.calls[-1] == "/postgame"
+
+
+class FromTheFuture(TeamServer):
+    protocol = 2
+
+
+def test_a_team_server_speaking_another_protocol_is_refused_in_one_line(tmp_path):
+    with team_server(FromTheFuture) as url:
+        proc = run_cli(tmp_path, "run", "red=remote", f"red.url={url}", "blue=do_nothing", "episode_length=10")
+    assert_refused_in_one_line(proc, f"remote team at {url} speaks protocol 2, the benchmark speaks 1", tmp_path)
+    assert FromTheFuture.calls == []  # asked GET / only: no episode began
+
+
+class DiesMidGame(TeamServer):
+    """Answers the first events; killed while answering the second: the answer is cut short and
+    every later call is refused."""
+
+    def on_events(self, n: int, body: dict) -> None:
+        if n == 1:
+            return self.answer(b"{}")
+        self.wfile.write(b'HTTP/1.1 200 OK\r\nTransfer-Encoding: chunked\r\n\r\n40\r\n{"programs"')
+        self.close_connection = True
+        server = self.server
+        threading.Thread(target=lambda: (server.shutdown(), server.server_close())).start()
+
+
+async def test_a_team_server_that_dies_mid_game_is_a_problem_and_the_episode_finishes(tmp_path):
+    with team_server(DiesMidGame) as url:
+        team = RemoteTeam(url=url, call_timeout_s=0.5, events_every_s=0.5)
+        (rec,) = await play_series("mushroom_war", team, "do_nothing", tmp_path, length=12)
+    assert rec.status == "ok", rec.error
+    assert json.loads((tmp_path / "episode_000" / "timeline.json").read_text())[-1]["t"] == 12
+    problems = rec.problems["red"]
+    assert any(p.startswith(f"remote /events: broken answer from {url}/events") for p in problems), problems
+    # the team played on: it called again (refused now) until the whistle, then the post-game
+    assert any(p.startswith(f"remote /events: cannot reach {url}/events") for p in problems), problems
+    assert problems[-1].startswith(f"remote /postgame: cannot reach {url}/postgame"), problems
+    assert DiesMidGame.calls == ["/pregame", "/events", "/events"]

@@ -46,7 +46,8 @@ def _league_keys(pairs: dict) -> tuple[dict, dict]:
     return ours, {k: v for k, v in pairs.items() if k not in ours}
 
 
-def init(league_dir: Path, args: list[str]) -> League:
+def new_league(league_dir: Path, args: list[str]) -> League:
+    """A new league with the built-in opponents, checked but not saved yet."""
     if league_path(league_dir).exists():
         raise ConfigError(f"{league_path(league_dir)} exists already; this directory holds a league")
     ours, other = _league_keys(_pairs(args))
@@ -59,8 +60,17 @@ def init(league_dir: Path, args: list[str]) -> League:
     league.entrants = [Entrant(name=n, team=n) for n in names]
     for e in league.entrants:
         check_entrant(e, league.scenarios)
+    return league
+
+
+def _created(league_dir: Path, league: League) -> str:
+    return f"{league_path(league_dir)}: {len(league.entrants)} entrants ({', '.join(e.name for e in league.entrants)})"
+
+
+def init(league_dir: Path, args: list[str]) -> League:
+    league = new_league(league_dir, args)
     save_league(league_dir, league)
-    print(f"{league_path(league_dir)}: {len(league.entrants)} entrants ({', '.join(names)})")
+    print(_created(league_dir, league))
     return league
 
 
@@ -68,7 +78,8 @@ def add(league_dir: Path, args: list[str]) -> None:
     if not args or "=" in args[0]:
         raise ConfigError("add NAME team=TEAM [llm=PRESET] [OPTION=VALUE ...] [llm.KEY=VALUE ...]")
     name, pairs = args[0], _pairs(args[1:])
-    league = load_league(league_dir) if league_path(league_dir).exists() else init(league_dir, [])
+    created = not league_path(league_dir).exists()  # written only once the entrant passes its checks
+    league = new_league(league_dir, []) if created else load_league(league_dir)
     if league.entrant(name):
         raise ConfigError(f"an entrant named {name!r} exists already in {league_path(league_dir)}; choose another name")
     team, llm = pairs.pop("team", None), pairs.pop("llm", None)
@@ -82,6 +93,8 @@ def add(league_dir: Path, args: list[str]) -> None:
         llm_options={k[4:]: v for k, v in pairs.items() if k.startswith("llm.")},
     )
     check_entrant(entrant, league.scenarios)
+    if created:
+        print(_created(league_dir, league))
     league.entrants.append(entrant)
     save_league(league_dir, league)
     print(f"{league_path(league_dir)}: added {name} (team {entrant.team}); {len(league.entrants)} entrants")

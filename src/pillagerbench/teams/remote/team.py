@@ -8,13 +8,14 @@ the team, which may answer new programs (a player's running program is then stop
 started). Post-game: the episode record. The team's time counts like an LLM's: pre-game is timed,
 in-game answers arrive while the clock runs.
 
-A refused connection, a time-out, a malformed or oversized answer, a wrong player name: recorded
-in `problems` (so in episodes.jsonl) and the team plays on; a player without a program idles.
+A refused connection, a time-out, a broken (cut), malformed or oversized answer, a wrong player
+name: recorded in `problems` (so in episodes.jsonl) and the team plays on; a player without a program idles.
 """
 
 from __future__ import annotations
 
 import asyncio
+import http.client
 import json
 import time
 import urllib.error
@@ -59,6 +60,8 @@ def _http(method: str, url: str, body: bytes | None, timeout: float, limit: int)
         if isinstance(reason, TimeoutError):
             raise RemoteError(f"no answer from {url} within {timeout:g} s") from None
         raise RemoteError(f"cannot reach {url}: {reason}") from None
+    except http.client.HTTPException as exc:  # e.g. the server died mid-answer (IncompleteRead)
+        raise RemoteError(f"broken answer from {url}: {exc!r}") from None
     if len(data) > limit:
         raise RemoteError(f"answer from {url} is larger than max_answer_bytes={limit}")
     return data
