@@ -4,20 +4,21 @@ cannot reach): every limit of docs/fair-play.md leaves the server's state unchan
 
 from __future__ import annotations
 
-import asyncio
 from contextlib import asynccontextmanager
 
 from tests.arena.conftest import count
+from tests.support.server_clock import caught_up, chat_code
 
 
 @asynccontextmanager
-async def refusals(arena):
-    """Collects the server's `refused` events while the block runs (a list, filled on exit)."""
+async def refusals(arena, bot):
+    """Collects the server's `refused` events while the block runs (a list, filled on exit, once the
+    server has handled everything `bot` sent in the block: a late refusal is in it)."""
     q = arena.control.subscribe()
     got: list[dict] = []
     try:
         yield got
-        await asyncio.sleep(0.3)
+        await caught_up(arena, bot.username, lambda text: bot.eval(chat_code(text)))
     finally:
         arena.control.unsubscribe(q)
         got.extend(e for e in (q.get_nowait() for _ in range(q.qsize())) if e.get("event") == "refused")
@@ -36,7 +37,7 @@ async def test_dig_out_of_reach_is_refused(arena, bots, area):
     await area.put(alice, 0, 0)
     far = area.at(10, 4, 0)
     await arena.request("set_block", pos=far, block="dirt")
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval(
             raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % far[0]
             + "\nawait sleep(900)\n"
@@ -53,7 +54,7 @@ async def test_dig_faster_than_dig_time_is_refused(arena, bots, area):
     await area.put(alice, 0, 0)
     near = area.at(1, 4, 0)
     await arena.request("set_block", pos=near, block="stone")  # 7.5 s by hand
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval(
             raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % near[0]
             + "\nawait sleep(300)\n"
@@ -73,7 +74,7 @@ async def test_honest_digging_passes(arena, bots, area):
     await area.put(alice, 0, 0, {"wooden_shovel": 1})
     near = area.at(2, 4, 1)
     await area.set_block(near, "dirt", seen_by=alice)
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval(
             "await bot.equip(mcData.itemsByName.wooden_shovel.id, 'hand')\n"
             "await bot.dig(bot.blockAt(new Vec3(%d, 4, 1)), true)\nawait sleep(200)" % near[0]
@@ -91,7 +92,7 @@ async def test_place_out_of_reach_occupied_unsupported_or_into_a_player_is_refus
         "set_blocks", blocks=[[x + 11, 3, 0, "grass_block"], [x + 1, 4, 2, "stone"], [x + 1, 5, 2, "stone"]]
     )
     place = "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, %d, %d), direction: %d, cursorX: 0.5, cursorY: 0.5, cursorZ: 0.5, insideBlock: false})\nawait sleep(250)"
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval("await bot.equip(mcData.itemsByName.dirt.id, 'hand')")
         await alice.eval(place % (x + 11, 3, 0, 1))  # 10.6 blocks away: top of far grass
         await alice.eval(place % (x + 1, 4, 2, 1))  # on top of a stone with a stone above it: occupied
@@ -117,7 +118,7 @@ async def test_chest_out_of_reach_cannot_be_used(arena, bots, area):
     chest = area.at(10, 4, 3)
     await arena.request("set_block", pos=chest, block="chest")
     await arena.request("set_chest", pos=chest, items={"gold_nugget": 64})
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval(
             "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, 4, 3), direction: 1, cursorX: 0.5,"
             " cursorY: 0.5, cursorZ: 0.5, insideBlock: false})\nawait sleep(400)\n"
@@ -140,7 +141,7 @@ async def test_open_chest_closes_when_its_player_goes_out_of_reach(arena, bots, 
         "for (let i = 0; i < 100 && bot.blockAt(at)?.name !== 'chest'; i++) await sleep(50)  // the block update\n"
         "global.c = await bot.openContainer(bot.blockAt(at))" % chest[0]
     )
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await arena.request("teleport", player="alice", pos=area.at(12.5, 4, 0.5))
         await alice.eval(
             "await sleep(500)\nbot._client.write('window_click', {windowId: global.c.id, slot: 0, mouseButton: 1, action: 2,"
@@ -161,7 +162,7 @@ async def test_attack_out_of_reach_is_refused_and_the_cooldown_scales_damage(are
         "for (let i = 0; i < 60 && !(bot.entities[%d] && bot.entities[%d]); i++) await sleep(50)" % (far, near)
     )
     health = lambda mobs, i: next(m["health"] for m in mobs if m["id"] == i)  # noqa: E731
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval(
             "await bot.equip(mcData.itemsByName.iron_sword.id, 'hand')\nawait sleep(1000)\n"
             "bot._client.write('use_entity', {target: %d, mouse: 1, sneaking: false})\nawait sleep(200)" % far
@@ -194,7 +195,7 @@ async def test_moves_beyond_the_limits_are_put_back(arena, bots, area):
     await area.put(alice, 0, 0)
     x, z = area.x0 + 0.5, 0.5
     pos = lambda: next(p["pos"] for p in players if p["name"] == "alice")  # noqa: E731
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await moves(alice, MOVE % (x + 16, 4, z + 6))  # 17 blocks in one move
         players = await arena.request("players")
         assert pos() == [x, 4, z]
@@ -226,7 +227,7 @@ async def test_hovering_is_brought_down(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0)
     x, z = area.x0 + 0.5, 0.5
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         # the client's own position says 4.9 and, without physics, stays there (it re-sends it every second)
         await moves(alice, "bot.entity.position.y = 4.9\nawait sleep(2600)")
     players = await arena.request("players")
@@ -271,7 +272,7 @@ async def test_placing_against_a_block_dug_a_moment_ago_is_a_silent_race(arena, 
     await area.put(alice, 0, 0, {"dirt": 2})
     x = area.x0
     await area.set_block([x + 2, 4, 0], "oak_leaves", seen_by=alice)  # breaks in 0.3 s by hand
-    async with refusals(arena) as got:
+    async with refusals(arena, alice) as got:
         await alice.eval(
             "await bot.equip(mcData.itemsByName.dirt.id, 'hand')\nawait bot.dig(bot.blockAt(new Vec3(%d, 4, 0)), true)\n"
             "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, 4, 0), direction: 1, cursorX: 0.5,"
@@ -279,3 +280,50 @@ async def test_placing_against_a_block_dug_a_moment_ago_is_a_silent_race(arena, 
         )
     assert await block(arena, [x + 2, 5, 0]) == "air" and await block(arena, [x + 2, 4, 0]) == "air"
     assert got == []
+
+
+async def test_refusal_chat_lines_are_capped_at_four_a_second_and_control_events_are_not(arena, bots, area):
+    alice, _ = bots
+    await area.put(alice, 0, 0)
+    digs = "".join(
+        raw("block_dig", "{status: 0, location: new Vec3(%d, 4, %d), face: 1}") % (area.x0 + 10, z) + "\n"
+        for z in range(8)
+    )
+    # the [refused] lines the bot gets up to its own chat's echo (the server writes them in order)
+    told = (
+        "const lines = []\nconst on = (m) => lines.push(m)\nbot.on('messagestr', on)\n%s"
+        "bot.chat('%s')\nfor (let i = 0; i < 200 && !lines.some(l => l.endsWith('%s')); i++) await sleep(25)\n"
+        "bot.removeListener('messagestr', on)\nreturn lines.filter(l => l.startsWith('[refused]'))"
+    )
+    await alice.eval("await sleep(1100)")  # the last refusal's second (from other tests) is over
+    async with refusals(arena, alice) as got:
+        burst = await alice.eval(told % (digs, "burst told", "burst told"))
+    assert len(got) == 8 and all(g["action"] == "dig" for g in got), got  # every refusal reaches the control channel
+    assert len(burst) == 4 and all(line.startswith("[refused] dig: too far to dig") for line in burst), burst
+    await alice.eval("await sleep(1100)")  # a new second: the player is told again
+    later = await alice.eval(told % (digs.splitlines()[0] + "\n", "later told", "later told"))
+    assert len(later) == 1, later
+
+
+async def test_creative_players_are_not_checked(arena, bots, area):
+    alice, _ = bots
+    await area.put(alice, 0, 0)
+    far = area.at(10, 4, 0)
+    await arena.request("set_block", pos=far, block="dirt")
+    x, z = area.x0 + 0.5, 0.5
+    await arena.request("gamemode", player="alice", mode="creative")
+    try:
+        async with refusals(arena, alice) as got:
+            await alice.eval(raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % far[0])
+            # 17 blocks in one move (the bot's own physics off, its position set there: what it re-sends)
+            await alice.eval(
+                "bot.physicsEnabled = false\nawait sleep(300)\n%s\nbot.entity.position.set(%f, 4, %f)"
+                % (MOVE % (x + 16, 4, z + 6), x + 16, z + 6)
+            )
+        players = await arena.request("players")
+    finally:
+        await alice.eval("bot.physicsEnabled = true")
+        await arena.request("gamemode", player="alice", mode="survival")
+    assert got == []
+    assert await block(arena, far) == "air"  # a creative player breaks at once, from anywhere
+    assert next(p["pos"] for p in players if p["name"] == "alice") == [x + 16, 4, z + 6]

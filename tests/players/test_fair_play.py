@@ -4,14 +4,19 @@ vanilla server refuses, its state stays unchanged, and the refusal reaches the p
 
 from __future__ import annotations
 
-import asyncio
+import json
+import os
 
 from pillagerbench.players.events import chat_log, errors
+from pillagerbench.scenarios import make_scenario
 from tests.players.conftest import count
+from tests.support.cli import run_cli
+from tests.support.server_clock import caught_up, chat_code
 
 
-async def _refused(server, q) -> list[dict]:
-    await asyncio.sleep(0.3)
+async def _refused(server, q, player) -> list[dict]:
+    """The `refused` events in `q`, once the server has handled everything `player` sent so far."""
+    await caught_up(server, player.name, lambda text: player.run(chat_code(text)))
     return [e for e in (q.get_nowait() for _ in range(q.qsize())) if e.get("event") == "refused"]
 
 
@@ -30,7 +35,7 @@ async def test_teleporting_by_setting_the_position_is_put_back_and_cannot_dig_th
             f"await bot.dig(bot.blockAt(new Vec3({area.x0 - 9}, 4, 6)), true).catch(() => {{}})\n"
             "await bot.waitForTicks(5)"
         )
-        got = await _refused(server, q)
+        got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
     assert await _pos(server, p.name) == start
@@ -46,7 +51,7 @@ async def test_rising_into_the_air_is_put_back(server, area, make_player):
         events = await p.run(
             "bot.entity.position.set(bot.entity.position.x, 20, bot.entity.position.z)\nawait bot.waitForTicks(40)"
         )
-        got = await _refused(server, q)
+        got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
     assert (await _pos(server, p.name))[1] < 5.5
@@ -62,7 +67,7 @@ async def test_digging_a_block_out_of_reach_is_refused(server, area, make_player
         events = await p.run(
             f"await bot.dig(bot.blockAt(new Vec3({area.x0 + 15}, 4, 6)), true)\nawait bot.waitForTicks(5)"
         )
-        got = await _refused(server, q)
+        got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
     assert (await server.request("get_block", pos=area.at(15, 4, 6)))["name"] == "red_mushroom_block"
@@ -84,7 +89,7 @@ async def test_a_chest_out_of_reach_cannot_be_opened(server, area, make_player):
             "await c.withdraw(mcData.itemsByName.gold_nugget.id, null, 64)",
             timeout=30,
         )
-        got = await _refused(server, q)
+        got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
     assert await server.request("get_chest", pos=chest) == {"gold_nugget": 64}
@@ -107,10 +112,53 @@ async def test_honest_primitives_trip_nothing(server, area, make_player):
             f"await getItemFromChest(bot, new Vec3({area.x0 + 9}, 4, -4), {{gold_nugget: 5}})",
             timeout=60,
         )
-        got = await _refused(server, q)
+        got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
     assert (await server.request("get_block", pos=area.at(8, 4, 4)))["name"] == "air"
     assert (await server.request("get_block", pos=area.at(3, 4, 0)))["name"] == "dirt"
     assert await count(server, p.name, "gold_nugget") == 5
     assert got == []
+
+
+FAR_DIGGER = '''
+from pillagerbench.teams import Team
+
+
+class FarDigger(Team):
+    """Its first player digs the ground 12 blocks away once (refused); the other does nothing."""
+
+    name = "far_digger"
+    scenarios = ("mushroom_war",)
+
+    async def play(self, ctx):
+        first = next(iter(ctx.players.values()))
+        await first.run(
+            "const p = bot.entity.position.floored()\\n"
+            "await bot.dig(bot.blockAt(p.offset(12, -1, 0)), true).catch(() => {})\\nawait bot.waitForTicks(5)"
+        )
+'''
+
+
+def test_an_episodes_record_counts_each_players_refusals(tmp_path):
+    (tmp_path / "far_digger.py").write_text(FAR_DIGGER)
+    run = tmp_path / "run"
+    proc = run_cli(
+        tmp_path,
+        "run",
+        "scenario=mushroom_war",
+        "red=far_digger:FarDigger",
+        "blue=do_nothing",
+        "episode_length=6",
+        f"run_dir={run}",
+        env={"PYTHONPATH": os.pathsep.join(filter(None, [str(tmp_path), os.environ.get("PYTHONPATH")]))},
+    )
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    [rec] = [json.loads(line) for line in (run / "episodes.jsonl").read_text().splitlines()]
+    first = make_scenario("mushroom_war").side("red").player_names[0]
+    assert rec["status"] == "ok" and rec["refusals"] == {first: 1}, rec
+    world = [json.loads(line) for line in open(run / "episode_000" / "world_events.jsonl")]
+    [refused] = [e for e in world if e["event"] == "refused"]
+    assert (
+        refused["player"] == first and refused["action"] == "dig" and "too far to dig grass_block" in refused["reason"]
+    )
