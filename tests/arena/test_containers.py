@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import asyncio
-import time
 
 from tests.arena.conftest import count
+from tests.support.server_clock import tick, wait_ticks
 
 FIND = """
 let block = null
@@ -73,13 +73,12 @@ async def test_forged_chest_click_gets_nothing(arena, bots, area):
     assert await arena.request("get_chest", pos=chest) == {"egg": 1}
 
 
-async def test_furnace_smelts_potato_in_ten_seconds_with_prefuel(arena, bots, area):
+async def test_furnace_smelts_potato_in_200_ticks_with_prefuel(arena, bots, area):
     alice, _ = bots
     furnace = area.at(3, 4, 2)
     await arena.request("set_block", pos=furnace, block="furnace")
     await arena.request("set_furnace", pos=furnace, fuel=["coal", 2])
     await area.put(alice, 2, 2, {"potato": 2})
-    t0 = time.monotonic()
     await alice.eval(
         FIND % ("furnace", "furnace")
         + """
@@ -88,14 +87,27 @@ async def test_furnace_smelts_potato_in_ten_seconds_with_prefuel(arena, bots, ar
         f.close()
     """
     )
-    await asyncio.sleep(0.2)
-    state = await arena.request("get_furnace", pos=furnace)
-    assert state["input"] == ["potato", 2] and state["fuel"] == ["coal", 1] and state["burning"]
-    while (await arena.request("get_furnace", pos=furnace))["output"] is None:
-        assert time.monotonic() - t0 < 20, "no baked potato after 20 s"
+
+    async def started_at() -> tuple[dict, int]:
+        """The furnace and the tick its current item started cooking (progress is cook ticks / 200;
+        a tick may pass between the two reads)."""
+        state = await arena.request("get_furnace", pos=furnace)
+        return state, await tick(arena) - round(state["progress"] * 200)
+
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + 60  # wall time only bounds the waits: the server counts ticks
+    while not (state := await arena.request("get_furnace", pos=furnace))["burning"]:
+        assert loop.time() < deadline, f"the furnace never lit: {state}"
+        await asyncio.sleep(0.05)
+    state, first_start = await started_at()
+    assert state["input"] == ["potato", 2] and state["fuel"] == ["coal", 1] and state["burning"], state
+    while (state := await arena.request("get_furnace", pos=furnace))["output"] is None:
+        assert loop.time() < deadline, f"no baked potato after 60 s: {state}"
         await asyncio.sleep(0.25)
-    first = time.monotonic() - t0
-    assert 8.5 < first < 13, f"first baked potato after {first:.1f} s, expected about 10 s"
+    state, second_start = await started_at()
+    assert state["output"] == ["baked_potato", 1] and state["input"] == ["potato", 1], state
+    # the second potato started the tick the first came out
+    assert abs((second_start - first_start) - 200) <= 3, f"first baked potato after {second_start - first_start} ticks"
     taken = await alice.eval(
         FIND % ("furnace", "furnace")
         + """
@@ -115,6 +127,6 @@ async def test_furnace_without_fuel_does_nothing(arena, bots, area):
     furnace = area.at(3, 4, 2)
     await arena.request("set_block", pos=furnace, block="furnace")
     await arena.request("set_furnace", pos=furnace, input=["beef", 3])
-    await asyncio.sleep(1.0)
+    await wait_ticks(arena, 20)
     state = await arena.request("get_furnace", pos=furnace)
     assert state == {"input": ["beef", 3], "fuel": None, "output": None, "burning": False, "progress": 0}

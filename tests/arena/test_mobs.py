@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 
 from tests.arena.conftest import count
+from tests.support.server_clock import tick, wait_ticks
 
 ATTACK = """
 const mob = bot.nearestEntity(e => e.name === '%s')
@@ -82,11 +83,18 @@ async def test_egg_farm_fills_its_chest_only_while_a_chicken_lives_nearby(arena,
     with_chicken, without = area.at(2, 4, 2), area.at(12, 4, 12)
     await arena.request("set_blocks", blocks=[[*with_chicken, "chest"], [*without, "chest"]])
     await arena.request("summon", mob="chicken", pos=area.at(3.5, 4, 3.5))
-    await arena.request("egg_farm", chest=with_chicken, interval_s=0.25)
+    before = await tick(arena)
+    await arena.request("egg_farm", chest=with_chicken, interval_s=0.25)  # 5 ticks
     await arena.request("egg_farm", chest=without, interval_s=0.25, radius=2)
-    await asyncio.sleep(1.5)
+    after = await tick(arena)
+    await wait_ticks(arena, 30)
+    lo = await tick(arena)
     eggs = (await arena.request("get_chest", pos=with_chicken)).get("egg", 0)
-    assert 3 <= eggs <= 7
+    hi = await tick(arena)
+    # the farm's first tick f is in (before, after + 1]; its chicken lays the first egg 0 to 9 ticks
+    # after it, then one every 5 to 10 ticks, and the chest is read at a tick t in [lo, hi]
+    least, most = (lo - (after + 1) - 9) // 10 + 1, (hi - (before + 1)) // 5 + 1
+    assert least >= 3 and least <= eggs <= most, (eggs, least, most)
     assert await arena.request("get_chest", pos=without) == {}
 
 

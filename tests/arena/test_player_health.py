@@ -4,6 +4,7 @@ regeneration, immunity right after a hit, and sweet berry bushes that hurt a pla
 from __future__ import annotations
 
 from tests.arena.conftest import wait_until
+from tests.support.server_clock import tick, wait_ticks
 
 HIT = "bot._client.write('use_entity', {target: bot.players.%s.entity.id, mouse: 1, sneaking: false})"
 
@@ -31,14 +32,28 @@ async def sword_hit(arena, bots, area) -> None:
     )
 
 
-async def test_a_hurt_player_heals_one_point_a_second(arena, bots, area):
+async def ticked_health(arena, name: str) -> tuple[float, int, int]:
+    """A player's health and the server ticks just before and after reading it."""
+    before = await tick(arena)
+    value = await health(arena, name)
+    return value, before, await tick(arena)
+
+
+def heals_between(a: int, b: int) -> int:
+    """Regeneration ticks (every 20th server tick) in (a, b]."""
+    return b // 20 - a // 20
+
+
+async def test_a_hurt_player_heals_one_point_every_twenty_ticks(arena, bots, area):
     await sword_hit(arena, bots, area)
     assert await wait_until(lambda: _below(arena, 20))
-    hurt = await health(arena, "alice")
+    hurt, hurt_lo, hurt_hi = await ticked_health(arena, "alice")
     assert 14 <= hurt <= 15, hurt  # 20 - 6, and perhaps one point healed already
-    await bots[0].eval("await sleep(3000)")
-    healed = await health(arena, "alice")
-    assert 2 <= healed - hurt <= 4, (hurt, healed)  # about 3 s at one point a second (flying-squid: none)
+    await wait_ticks(arena, 60)
+    healed, healed_lo, healed_hi = await ticked_health(arena, "alice")
+    # one point on every 20th tick between the two reads (flying-squid: none)
+    least, most = heals_between(hurt_hi, healed_lo), heals_between(hurt_lo, healed_hi)
+    assert least >= 3 and least <= healed - hurt <= most, (hurt, healed, least, most)
     await full_health(arena, "alice")
 
 
@@ -50,7 +65,8 @@ async def test_a_weaker_hit_within_ten_ticks_of_a_hit_does_nothing(arena, bots, 
     after = await health(arena, "alice")
     assert after >= 14, after  # 11.1 without the immunity (12.1 with a point healed)
     # more than 10 ticks after the first hit, a full-strength hit lands again
-    await bob.eval("await sleep(700)\n" + HIT % "alice" + "\nawait sleep(300)")
+    await wait_ticks(arena, 14)  # the sword back at full strength (12.5 ticks)
+    await bob.eval(HIT % "alice" + "\nawait sleep(300)")
     again = await health(arena, "alice")
     assert after - 6 <= again <= after - 4, (after, again)
     await full_health(arena, "alice")

@@ -9,7 +9,7 @@ import sys
 import time
 
 from pillagerbench.players import primitives as prim_docs
-from pillagerbench.players.events import chats_by, errors, last_observation, without_state
+from pillagerbench.players.events import chats_by, errors, last_observation
 
 STATUS_KEYS = {
     "health",
@@ -107,7 +107,9 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     await p.stop()
     events = await asyncio.wait_for(run, 2)
     took = time.perf_counter() - t0
-    assert took < 0.5, took
+    # settled by the bot itself (at once: 7-30 ms measured, docs/players.md), not by the restart that
+    # Player.stop falls back on after 2 s; the wall bound leaves a busy machine ample room
+    assert took < 1.5 and p.restarts == 0, (took, p.restarts)
     assert events[-1][0] == "observe" and errors(events) == []
     x1 = last_observation(await p.observe())["status"]["position"]["x"]
     await asyncio.sleep(0.6)
@@ -123,7 +125,8 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     t0 = time.perf_counter()
     await p.stop()
     events = await asyncio.wait_for(run, 2)
-    assert time.perf_counter() - t0 < 0.5
+    took = time.perf_counter() - t0
+    assert took < 1.5 and p.restarts == 0, (took, p.restarts)
 
     async def slime_left() -> int:
         names = [(await server.request("get_block", pos=area.at(dx, 4, 6)))["name"] for dx in range(12)]
@@ -152,7 +155,9 @@ async def test_run_timeout(area, make_player):
     p = await make_player(area)
     t0 = time.perf_counter()
     events = await p.run("await bot.waitForTicks(10000)", timeout=0.5)
-    assert time.perf_counter() - t0 < 1.5
+    took = time.perf_counter() - t0
+    # ended by its 0.5 s timeout (wall time is the spec), not by the code (500 s of ticks)
+    assert 0.45 <= took < 3, took
     assert "Timeout" in errors(events)[0]
     assert events[-1][0] == "observe"
 
@@ -213,7 +218,6 @@ def test_try_command(tmp_path):
     assert "at line 2: notAFunction()" in proc.stderr
     kinds = [json.loads(line)[0] for line in proc.stdout.splitlines()]
     assert kinds == ["onChat", "onError", "observe"]
-    assert without_state  # helper import used by other tests
 
 
 async def test_observation_reads_the_same_blocks_as_blockat_and_findblocks(server, area, make_player):

@@ -11,6 +11,7 @@ import signal
 import pytest
 
 from pillagerbench.arena import ArenaServer
+from pillagerbench.load import SERVER_TPS_MIN
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import TEAMS, make_team
@@ -84,7 +85,9 @@ async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
         # do_nothing may score: its idle players pick up what the opponent breaks next to them
         # (vanilla pickup; the paper: "do_nothing gets non-zero points")
         assert rec.player_order[:2] == [sc_red0(rec.scenario), sc_blue0(rec.scenario)]
-        assert 15 < rec.server_tps < 25
+        # the server's own ticks over the game's wall time: never above 20 TPS; whatever the machine's
+        # load, below load.SERVER_TPS_MIN the episode is flagged as lagged
+        assert 0 < rec.server_tps <= 20.5 and (rec.server_tps >= SERVER_TPS_MIN or rec.lagged), rec
         timeline = json.loads((tmp_path / name / "episode_000" / "timeline.json").read_text())
         length = LENGTH.get(name, EPISODE_S)
         assert [p["t"] for p in timeline] == list(range(length)) + [length]
