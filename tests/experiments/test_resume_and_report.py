@@ -122,9 +122,12 @@ def test_a_different_command_cannot_resume_the_run(killed_and_resumed):
 
 def test_report_writes_every_file(killed_and_resumed, tmp_path, capsys):
     run = killed_and_resumed[0]
+    listing = sorted(str(p.relative_to(run)) for p in run.rglob("*"))
     assert report_main([str(run), "--out", str(tmp_path / "report")]) == 0
+    assert sorted(str(p.relative_to(run)) for p in run.rglob("*")) == listing  # the run directory is only read
     names = {p.name for p in (tmp_path / "report").iterdir()}
     tables = ["summary", "per_scenario", "per_team", "pairings", "groups", "learning_curve", "calibration", "skipped"]
+    tables += ["provenance"]
     expected = {f"{t}.{ext}" for t in tables for ext in ("md", "csv")} | {
         "heatmaps_mushroom_war.png",
         "timeline_mushroom_war.png",
@@ -140,8 +143,17 @@ def test_report_writes_every_file(killed_and_resumed, tmp_path, capsys):
     summary = (tmp_path / "report" / "summary.md").read_text()
     assert "| do_nothing | 3 |" in summary and "| passive | 3 |" in summary
     html = (tmp_path / "report" / "report.html").read_text()
-    assert html.count("data:image/png;base64,") == 6 and "Points difference per episode" in html
-    assert html.count("<figcaption>") == 6
+    # the four figures with episodes behind them; no groups or self-play here: their files only, off the page
+    assert html.count("data:image/png;base64,") == 4 and "Points difference per episode" in html
+    assert html.count("<figcaption>") == 4
+    assert ">Groups</h2>" not in html and ">Self-play series</h2>" not in html
+    # provenance from the manifests: the experiment, its revision, episode length, scoring and protocol
+    manifest = json.loads((run / "manifest.json").read_text())
+    provenance = html[html.index(">Provenance") : html.index("</table>", html.index(">Provenance"))]
+    for cell in ("experiment round_robin_mushroom_war", manifest["git_revision"][:12], "10 s", "6 of 6", "clean"):
+        assert f"<td>{cell}</td>" in provenance, cell
+    # every episode's replay page under --out
+    assert len(list((tmp_path / "report" / "replays" / run.name / "series").rglob("episode_*.html"))) == 2 * EPISODES
     # σ_blue of balanced comes from the do_nothing-red series of the same run
     calibration = (tmp_path / "report" / "calibration.csv").read_text()
     assert "mushroom_war,balanced," in calibration

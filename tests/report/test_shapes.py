@@ -1,7 +1,8 @@
 """The report at any shape: a calibration run (one red team: do_nothing) and a 12-team league give
 legible heatmaps (no thin strip: cells of a fixed size), a per-team view that shows the opponents'
 points whichever side they played, and a one-line caption under every figure with its number of
-episodes. Replays: every episode is listed; one without a recording says so."""
+episodes. Replays: every episode is listed; one without a recording says so; the pages go under the
+report's directory."""
 
 from __future__ import annotations
 
@@ -43,7 +44,10 @@ def test_a_calibration_run_shows_the_opponents_and_captions_every_figure(tmp_pat
     assert (out / "teams_mushroom_war.png").stat().st_size > 0
     page = (out / "report.html").read_text()
     caps = captions(page)
-    assert len(caps) == page.count("data:image/png;base64,") == 6
+    # the four figures with episodes behind them; groups and self-play have none: off the page, files kept
+    assert len(caps) == page.count("data:image/png;base64,") == 4
+    assert ">Groups</h2>" not in page and ">Self-play series</h2>" not in page
+    assert (out / "groups.png").exists() and (out / "series_scores.png").exists()
     assert all(re.search(r"\b\d+ (team-group )?episode\(s\)", c) for c in caps), caps
     assert "8 episode(s)" in caps[0]
     # replays: listed for every episode; these hand-written runs have no recording
@@ -74,7 +78,8 @@ def test_the_report_links_a_recorded_episode_replay(tmp_path):
     shutil.copy(FIXTURE / "replay.jsonl.gz", run / "episode_000")
     result = build_report([run], tmp_path / "report")
     page = (tmp_path / "report" / "report.html").read_text()
-    assert "href='../run/episode_000/replay.html'" in page
-    assert (run / "episode_000" / "replay.html").exists()
-    assert not (run / "episode_001" / "replay.html").exists()
+    assert "href='replays/run/episode_000.html'" in page
+    assert (tmp_path / "report" / "replays" / "run" / "episode_000.html").exists()
+    assert not (tmp_path / "report" / "replays" / "run" / "episode_001.html").exists()
+    assert not list(run.rglob("replay.html"))  # nothing written into the run directory
     assert "replays: 1 of 2 episode(s)" in " ".join(result["notes"])

@@ -27,6 +27,10 @@ from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCO
 
 CALIBRATION = "calibration.json"
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
+REFERENCE_FALLBACK = (
+    "upstream's reference scores, as these runs carry no calibration for it "
+    "(the same as --calibration reference; pillagerbench calibrate measures your own)"
+)
 
 
 def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
@@ -104,13 +108,16 @@ def explicit_calibration(explicit: Path, want: dict[str, tuple[str, float]]) -> 
     return reference_calibration(want) if str(explicit) == REFERENCE_CALIBRATION else read_calibration(explicit)
 
 
-def resolve(runs: Runs, explicit: Path | None = None, origin: dict | None = None) -> tuple[dict, list[str]]:
+def resolve(
+    runs: Runs, explicit: Path | None = None, origin: dict | None = None, fallback: bool = False
+) -> tuple[dict, list[str]]:
     """σ_blue per (scenario, opponent team) as scaled Estimates, and notes on where each came from
     (`origin`, if given, gets (scenario, team) -> where).
 
     Order: an explicit file (must match the runs' scenario versions and episode lengths; `reference`:
     upstream's reference scores, as its analysis used them), then
-    calibration.json files stored in the runs, then do_nothing-red episodes among the runs."""
+    calibration.json files stored in the runs, then do_nothing-red episodes among the runs; with
+    `fallback` (the report), a scenario that none of these covers gets upstream's reference scores."""
     df = runs.episodes
     want = (
         {}
@@ -125,36 +132,44 @@ def resolve(runs: Runs, explicit: Path | None = None, origin: dict | None = None
     table: dict[tuple[str, str], Estimate] = {}
     notes: list[str] = []
     for where, cal, strict in sources:
-        for scenario, entry in cal["scenarios"].items():
-            if scenario not in want:
-                continue
-            have = (str(entry.get("version")), float(entry.get("episode_length", 0)))
-            if have != want[scenario]:
-                msg = (
-                    f"calibration {where} for {scenario} is of version {have[0]} with {have[1]:g} s episodes; "
-                    f"the runs are version {want[scenario][0]} with {want[scenario][1]:g} s episodes"
-                )
-                if strict:
-                    raise ReportError(msg)
-                notes.append(msg + ": not used")
-                continue
-            scale = SCORE_SCALE.get(scenario, 1.0)
-            used = []
-            for team, o in entry["opponents"].items():
-                if (scenario, team) in table or o.get("sigma_blue") is None:
-                    continue
-                ci = o.get("ci")
-                table[(scenario, team)] = Estimate(
-                    float(o["sigma_blue"]) * scale,
-                    float("nan") if ci is None else float(ci) * scale,
-                    int(o.get("n", 0)),
-                )
-                used.append(f"{team} (n={o.get('n')})")
-                if origin is not None:
-                    origin[(scenario, team)] = where
-            if used:
-                notes.append(f"σ_blue for {scenario} from {where}: {', '.join(used)}")
+        _use(where, cal, strict, want, table, notes, origin)
+    if fallback:
+        bare = {sc: v for sc, v in want.items() if not any(key[0] == sc for key in table)}
+        _use(REFERENCE_FALLBACK, reference_calibration(bare), False, want, table, notes, origin)
     return table, notes
+
+
+def _use(where, cal: dict, strict: bool, want: dict, table: dict, notes: list[str], origin: dict | None) -> None:
+    """Add a calibration's σ_blue to `table` where it has none yet (resolve's order decides)."""
+    for scenario, entry in cal["scenarios"].items():
+        if scenario not in want:
+            continue
+        have = (str(entry.get("version")), float(entry.get("episode_length", 0)))
+        if have != want[scenario]:
+            msg = (
+                f"calibration {where} for {scenario} is of version {have[0]} with {have[1]:g} s episodes; "
+                f"the runs are version {want[scenario][0]} with {want[scenario][1]:g} s episodes"
+            )
+            if strict:
+                raise ReportError(msg)
+            notes.append(msg + ": not used")
+            continue
+        scale = SCORE_SCALE.get(scenario, 1.0)
+        used = []
+        for team, o in entry["opponents"].items():
+            if (scenario, team) in table or o.get("sigma_blue") is None:
+                continue
+            ci = o.get("ci")
+            table[(scenario, team)] = Estimate(
+                float(o["sigma_blue"]) * scale,
+                float("nan") if ci is None else float(ci) * scale,
+                int(o.get("n", 0)),
+            )
+            used.append(f"{team} (n={o['n']})" if o.get("n") else team)
+            if origin is not None:
+                origin[(scenario, team)] = where
+        if used:
+            notes.append(f"σ_blue for {scenario} from {where}: {', '.join(used)}")
 
 
 def main(argv: list[str]) -> int:

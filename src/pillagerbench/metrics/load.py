@@ -49,6 +49,8 @@ class SeriesInfo:
     group: str | None = None
     group_x: float | None = None
     episode_offset: int = 0
+    config: dict = field(default_factory=dict)  # the match's resolved config
+    manifest: dict = field(default_factory=dict)  # the series' manifest.json ({} when not started)
 
 
 @dataclass
@@ -70,6 +72,8 @@ def _series_of(run: Path) -> list[SeriesInfo]:
             scenario=cfg["scenario"]["name"],
             version=str(sc.get("version", "?")),
             episode_length=float(cfg.get("episode_length", 120)),
+            config=cfg,
+            manifest=manifest,
             **extra,
         )
 

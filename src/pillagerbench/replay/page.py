@@ -174,11 +174,13 @@ def render(replay: Replay, where: str = "") -> str:
     )
 
 
-def write_replay(episode_dir: Path) -> tuple[Path, Replay]:
-    """Write `replay.html` into the episode directory; return its path and the recording read."""
+def write_replay(episode_dir: Path, out: Path | None = None) -> tuple[Path, Replay]:
+    """Write the episode's page to `out` (default: `replay.html` in the episode directory); return
+    its path and the recording read."""
     episode_dir = Path(episode_dir)
     replay = load_replay(episode_dir)
-    out = episode_dir / PAGE
+    out = Path(out) if out else episode_dir / PAGE
+    out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(render(replay, str(episode_dir)))
     return out, replay
 

@@ -1,23 +1,59 @@
 """`pillagerbench report RUN_DIR... [--out DIR] [--calibration FILE|reference]`: the paper's tables and
 figures from run directories (experiments or plain runs), as Markdown, CSV, PNG and one HTML page.
 
-Dash & Dine scores are scaled ×0.1 as in the paper. σ_blue (for S) comes from --calibration (`reference`: upstream's reference scores), else
-from calibration.json files stored in the runs, else from do_nothing-red episodes among the runs;
-where none exists, S is left empty. Skipped episodes are listed with the reason in skipped.md and
-on the page; runs of different scenario versions are refused.
+Everything is written under --out (replay pages included); the run directories are only read.
+The page opens with the runs' provenance (revision, seeds, episode length, models, scoring and
+protocol, from their manifests) and a table of contents; a section with nothing in it is left off
+the page (its file is still written, so scripts can rely on the set of files). A value resting on
+one episode is marked "n = 1" (it has no interval). Dash & Dine scores are scaled ×0.1 as in the
+paper. σ_blue (for S) comes from --calibration (`reference`: upstream's reference scores), else
+from calibration.json files stored in the runs, else from do_nothing-red episodes among the runs,
+else, for a scenario none of these covers, from upstream's reference scores (a note says so).
+Skipped episodes are listed with the reason in skipped.md and on the page; runs of different
+scenario versions are refused.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
+
+import pandas as pd
 
 from pillagerbench.metrics import calibration as calib
-from pillagerbench.metrics.load import ReportError, load_runs
+from pillagerbench.metrics.load import ReportError, Runs, load_runs
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.fidelity import fidelity_sections
+from pillagerbench.report.provenance import provenance
+
+
+@dataclass
+class Section:
+    """One part of the report, in page order: a table (written as NAME.csv and NAME.md), a figure
+    (content: (png path, caption)) or markup; on the page and in its contents unless empty."""
+
+    title: str
+    kind: str  # "table" | "image" | "html"
+    content: Any
+    name: str | None = None
+    empty: bool = False
+
+    def files(self, out: Path) -> list[Path]:
+        if self.kind == "table":
+            return tables.write(self.content, out, str(self.name), self.title)
+        return [self.content[0]] if self.kind == "image" else []
+
+
+def table(name: str, title: str, frame: pd.DataFrame) -> Section:
+    return Section(title, "table", frame, name, empty=not len(frame))
+
+
+def figure(title: str, path: Path, caption: str, episodes: int) -> Section:
+    return Section(title, "image", (path, caption), empty=not episodes)
 
 
 def build_report(
@@ -25,112 +61,156 @@ def build_report(
 ) -> dict:
     runs = load_runs(run_dirs)
     origin: dict = {}
-    sigma, notes = calib.resolve(runs, calibration, origin)
-    if not sigma:
-        notes.append("no σ_blue for these runs (pillagerbench calibrate): S is left empty")
-    df = runs.episodes
+    sigma, notes = calib.resolve(runs, calibration, origin, fallback=True)
     out.mkdir(parents=True, exist_ok=True)
+    df = runs.episodes
     main = tables.main_episodes(df)
     symmetry, one_order = side_symmetry(main)
     fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma, origin)
-    t = {
-        "summary": (tables.summary(main, sigma, runs.ledger), "Summary per red team (all scenarios and opponents)"),
-        "per_scenario": (tables.summary(main, sigma, runs.ledger, by_scenario=True), "Per red team and scenario"),
-        "pairings": (tables.pairings(main, sigma), "Per pairing (heatmap values)"),
-        "per_team": (tables.per_team(main, sigma), "Per team, whichever side it played (own points vs the opponent's)"),
-        "groups": (
-            tables.groups(df, sigma),
-            "Groups (adaptation: same/different opponent; self-play: after k episodes)",
+    pairs, per_team = tables.pairings(main, sigma), tables.per_team(main, sigma)
+    grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(df)
+    sections = [  # the report's one list of sections: its files, its contents and its page
+        table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
+        table(
+            "summary", "Summary per red team (all scenarios and opponents)", tables.summary(main, sigma, runs.ledger)
         ),
-        "learning_curve": (tables.learning_curve(main), "Points difference per episode index"),
-        "side_symmetry": (symmetry, "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)"),
-        "fidelity": (
-            fidelity,
+        table("per_scenario", "Per red team and scenario", tables.summary(main, sigma, runs.ledger, by_scenario=True)),
+        table("per_team", "Per team, whichever side it played (own points vs the opponent's)", per_team),
+        table("pairings", "Per pairing (heatmap values)", pairs),
+        table("groups", "Groups (adaptation: same/different opponent; self-play: after k episodes)", grouped),
+        table(
+            "side_symmetry",
+            "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)",
+            symmetry,
+        ),
+        table(
+            "fidelity",
             "Fidelity: built-in opponents against do_nothing beside upstream's reference (✓: within ±25 %)",
+            fidelity,
         ),
-        "claims": (claims, "Fidelity: the paper's Benchmark Analysis claims on this round robin"),
-        "calibration": (tables.calibration(sigma), "σ_blue used for the sabotage metric"),
-        "lagged": (tables.lagged(df), "Played under lag (used; scores may be low: see docs/performance.md)"),
-        "skipped": (tables.skipped(runs.skipped), "Skipped"),
-    }
-    files = []
-    for name, (frame, title) in t.items():
-        files += tables.write(frame, out, name, title)
-    scenarios = tables.scenario_order(df) if len(df) else []
+        table("claims", "Fidelity: the paper's Benchmark Analysis claims on this round robin", claims),
+        *scenario_figures(df, main, pairs, per_team, out),
+        *series_figures(df, main, grouped, curve, out),
+        table("learning_curve", "Points difference per episode index", curve),
+        table("calibration", "σ_blue used for the sabotage metric", tables.calibration(sigma)),
+        table("lagged", "Played under lag (used; scores may be low: see docs/performance.md)", lag),
+        table("skipped", "Skipped", tables.skipped(runs.skipped)),
+    ]
+    notes = [
+        f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
+        "± is the 95 % confidence interval",
+        *notes,
+        *more_notes(runs, sigma, pairs, fidelity_notes),
+        *lag_notes(lag, one_order),
+    ]
+    files: list[Path] = []
+    if with_replays:
+        replay_rows, files = replays.write_all(runs.series, out)
+        recorded = sum(1 for r in replay_rows if r["replay"])
+        notes.append(f"replays: {recorded} of {len(replay_rows)} episode(s) have a replay page (linked below)")
+        html_rows = replays.table_html(replay_rows)
+        sections.append(
+            Section("Replays (one page per episode, opens offline)", "html", html_rows, empty=not replay_rows)
+        )
+    files += [f for s in sections for f in s.files(out)]
+    shown = [(s.title, s.kind, s.content) for s in sections if not s.empty]
+    page = out / "report.html"
+    page.write_text(html.page("PillagerBench report", runs.runs, notes, shown, toc=True))
+    files.append(page)
+    lagged = [(str(r["series"]), int(r["episode"]), str(r["lag_reason"])) for _, r in lag.iterrows()]
+    return {"files": files, "notes": notes, "skipped": runs.skipped, "lagged": lagged, "episodes": len(df), "out": out}
+
+
+def scenario_figures(
+    df: pd.DataFrame, main: pd.DataFrame, pairs: pd.DataFrame, per_team: pd.DataFrame, out: Path
+) -> list[Section]:
+    """Per scenario: heatmaps, every team from its own side, points over time; each caption says
+    what it shows and how many episodes stand behind it."""
     view = tables.team_view(main)
-    figures = []  # (heading, path, caption: what it shows and how many episodes stand behind it)
-    for sc in scenarios:
-        n = int((main["scenario"] == sc).sum()) if len(main) else 0
-        pairs = t["pairings"][0]
-        n_pairs = int(((pairs["scenario"] == sc) & (pairs["blue"] != tables.ALL)).sum()) if len(pairs) else 0
-        figures.append(
-            (
-                f"Heatmaps: {plots._title(sc)}",
+    sections = []
+    for sc in tables.scenario_order(df):
+        n = int((main["scenario"] == sc).sum())
+        n_pairs = int(((pairs["scenario"] == sc) & (pairs["blue"] != tables.ALL)).sum())
+        title = plots._title(sc)
+        sections += [
+            figure(
+                f"Heatmaps: {title}",
                 plots.heatmaps(pairs, sc, out / f"heatmaps_{sc}.png"),
                 f"P, S, W and D of each red team (rows) against each opponent (columns) and over all, "
                 f"mean ± 95 % CI: {n} episode(s) in {n_pairs} pairing(s).",
-            )
-        )
-        figures.append(
-            (
-                f"Per team: {plots._title(sc)}",
-                plots.teams(view, t["per_team"][0], sc, out / f"teams_{sc}.png"),
+                n,
+            ),
+            figure(
+                f"Per team: {title}",
+                plots.teams(view, per_team, sc, out / f"teams_{sc}.png"),
                 f"Every team from its own side, whichever side it played: P, S, D, W and its points over "
                 f"time: {n} episode(s), each counted once for each of its two teams.",
-            )
-        )
-        figures.append(
-            (
-                f"Points over time: {plots._title(sc)}",
+                n,
+            ),
+            figure(
+                f"Points over time: {title}",
                 plots.timeline(main, sc, out / f"timeline_{sc}.png"),
-                f"Mean points of each red team at each second of the episode (95 % CI band): {n} episode(s).",
-            )
-        )
-    grouped = t["groups"][0]
-    n_main = len(main)
+                f"Mean points of each red team (solid) and of its opponents on the blue side (dashed) at each "
+                f"second of the episode (95 % CI bands): {n} episode(s).",
+                n,
+            ),
+        ]
+    return sections
+
+
+def series_figures(
+    df: pd.DataFrame, main: pd.DataFrame, grouped: pd.DataFrame, curve: pd.DataFrame, out: Path
+) -> list[Section]:
+    """The figures over the episodes of a series: D per episode index, per group, self-play."""
     n_groups = int(grouped.loc[grouped["scenario"] != tables.ALL, "episodes"].sum()) if len(grouped) else 0
     same = df[(df["red_team"] == df["blue_team"]) & (df["red_team"] != "do_nothing")] if len(df) else df
-    figures.append(
-        (
+    return [
+        figure(
             "Points difference per episode",
-            plots.learning_curve(t["learning_curve"][0], out / "learning_curve.png"),
-            f"D (red − blue) by episode index within a series, mean ± 95 % CI: {n_main} episode(s).",
-        )
-    )
-    figures.append(
-        (
+            plots.learning_curve(curve, out / "learning_curve.png"),
+            f"D (red − blue) by episode index within a series, mean ± 95 % CI: {len(main)} episode(s).",
+            len(main),
+        ),
+        figure(
             "Groups",
-            plots.groups(t["groups"][0], out / "groups.png"),
+            plots.groups(grouped, out / "groups.png"),
             f"D per evaluation group (adaptation, self-play after k episodes): {n_groups} episode(s).",
-        )
-    )
-    figures.append(
-        (
+            n_groups,
+        ),
+        figure(
             "Self-play series",
             plots.series_scores(df, out / "series_scores.png"),
             f"Red and blue points per episode of the longest series of a team against itself: {len(same)} episode(s).",
-        )
-    )
-    files += [p for _, p, _ in figures]
-    notes.insert(
-        0,
-        f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
-        "± is the 95 % confidence interval",
-    )
-    without_model = (
-        [(r, side) for r in df.itertuples() for side in (getattr(r, "problems", None) or {})]
-        if len(df) and "problems" in df
-        else []
-    )
-    if without_model:
-        r, side = without_model[-1]
+            len(same),
+        ),
+    ]
+
+
+def more_notes(runs: Runs, sigma: dict, pairs: pd.DataFrame, fidelity_notes: list[str]) -> list[str]:
+    """Notes a reader needs to weigh the numbers: S without σ, n = 1, teams with problems, the
+    fidelity checks, each run's scoring and protocol."""
+    df, notes = runs.episodes, []
+    bare = sorted(set(df["scenario"]) - {sc for sc, _ in sigma}) if len(df) else []
+    if bare:
+        notes.append(f"no σ_blue for {', '.join(bare)} (pillagerbench calibrate): S is left empty there")
+    one = pairs[(pairs["blue"] != tables.ALL) & (pairs["episodes"] == 1)]
+    if len(one):
         notes.append(
-            f"{len(without_model)} team-episode(s) with problems (model or team server not answering ...), e.g. "
+            f"n = 1: {len(one)} of {int((pairs['blue'] != tables.ALL).sum())} pairing(s) rest on a single episode; "
+            "their values have no confidence interval (marked “n = 1”)"
+        )
+    problems = [(r, side) for r in df.itertuples() for side in (r.problems or {})] if "problems" in df else []
+    if problems:
+        r, side = problems[-1]
+        notes.append(
+            f"{len(problems)} team-episode(s) with problems (model or team server not answering ...), e.g. "
             f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}"
         )
-    notes += fidelity_notes
-    notes += modes(df)
-    lag = t["lagged"][0]
+    return notes + fidelity_notes + modes(df)
+
+
+def lag_notes(lag: pd.DataFrame, one_order: list[str]) -> list[str]:
+    notes = []
     if len(lag):
         notes.append(
             f"{len(lag)} episode(s) played under lag (scores may be low; re-run them with a lower parallel=), e.g. "
@@ -138,24 +218,7 @@ def build_report(
         )
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
-    sections = [
-        (t[k][1], "table", t[k][0])
-        for k in ("summary", "per_scenario", "per_team", "pairings", "groups", "side_symmetry")
-    ]
-    sections += [(t[k][1], "table", t[k][0]) for k in ("fidelity", "claims") if len(t[k][0])]
-    sections += [(title, "image", (path, caption)) for title, path, caption in figures]
-    sections += [(t[k][1], "table", t[k][0]) for k in ("learning_curve", "calibration", "lagged", "skipped")]
-    if with_replays:
-        replay_rows, pages = replays.write_all(runs.series, out)
-        files += pages
-        recorded = sum(1 for r in replay_rows if r["replay"])
-        notes.append(f"replays: {recorded} of {len(replay_rows)} episode(s) have a replay page (linked below)")
-        sections.append(("Replays (one page per episode, opens offline)", "html", replays.table_html(replay_rows)))
-    page = out / "report.html"
-    page.write_text(html.page("PillagerBench report", runs.runs, notes, sections))
-    files.append(page)
-    lagged = [(str(r["series"]), int(r["episode"]), str(r["lag_reason"])) for _, r in lag.iterrows()]
-    return {"files": files, "notes": notes, "skipped": runs.skipped, "lagged": lagged, "episodes": len(df), "out": out}
+    return notes
 
 
 def modes(df) -> list[str]:
@@ -179,7 +242,7 @@ def main(argv: list[str]) -> int:
         default=None,
         help="a calibration.json (pillagerbench calibrate), or `reference`: upstream's reference scores",
     )
-    p.add_argument("--no-replays", action="store_true", help="do not write each episode's replay.html")
+    p.add_argument("--no-replays", action="store_true", help="do not write the episodes' replay pages")
     a = p.parse_args(argv)
     out = Path(a.out) if a.out else Path(a.runs[0]) / "report"
     try:

@@ -2,7 +2,7 @@
 
 - heatmaps_<scenario>.png   P, S, W, D per red team (rows) and opponent (columns, plus "all")
 - teams_<scenario>.png      each team's P, S, D, W and points over time, whichever side it played
-- timeline_<scenario>.png   mean red score over the episode per red team, shaded CI band
+- timeline_<scenario>.png   mean points over the episode per red team and of its opponents (blue), shaded CI bands
 - learning_curve.png        D per episode index (experience) per red team, CI error bars
 - groups.png                P/D per group (adaptation same/different, self-play "after k")
 - series_scores.png         red and blue score per episode of long series where a team meets itself
@@ -97,7 +97,10 @@ def heatmaps(pairs: pd.DataFrame, scenario: str, path: Path) -> Path:
         ax.set_title(TITLES[metric], fontsize=10)
         ax.set_xlabel("blue team (opponent)", fontsize=8)
         ax.set_ylabel("red team", fontsize=8)
-        fig.colorbar(im, ax=ax, fraction=0.05, pad=0.02, shrink=0.9 if len(rows) > 2 else 1.0)
+        if np.isfinite(grid).any():
+            fig.colorbar(im, ax=ax, fraction=0.05, pad=0.02, shrink=0.9 if len(rows) > 2 else 1.0)
+        else:  # no scale for a panel without values (S without any σ_blue)
+            ax.set_title(f"{TITLES[metric]}: no values", fontsize=10)
     fig.suptitle(f"{_title(scenario)} (mean ± 95 % CI)")
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -152,25 +155,38 @@ def teams(view: pd.DataFrame, table: pd.DataFrame, scenario: str, path: Path) ->
     return path
 
 
-def timeline(df: pd.DataFrame, scenario: str, path: Path) -> Path:
+def timeline_lines(df: pd.DataFrame, scenario: str) -> list[dict]:
+    """What the timeline draws: for each red team, its own mean points over the episode and its
+    opponents' (the blue side), each with the 95 % half-width (None for one episode)."""
     sd = df[df["scenario"] == scenario] if len(df) else df
-    if not len(sd):
-        return _empty(path, f"{_title(scenario)}: no episodes")
-    fig, ax = plt.subplots(figsize=(7, 4))
+    lines = []
     for red in red_order(sd):
         rd = sd[sd["red"] == red]
         n_t = min(len(t) for t in rd["t"])
-        t = rd["t"].iloc[0][:n_t]
-        y = np.stack([v[:n_t] for v in rd["red_t"]])
-        mean = y.mean(axis=0)
-        (line,) = ax.plot(t, mean, label=f"{red} (n={len(y)})")
-        if len(y) > 1:
-            half = t_critical(len(y) - 1) * y.std(axis=0, ddof=1) / math.sqrt(len(y))
-            ax.fill_between(t, mean - half, mean + half, color=line.get_color(), alpha=0.2)
+        for side in ("red", "blue"):
+            y = np.stack([v[:n_t] for v in rd[f"{side}_t"]])
+            half = t_critical(len(y) - 1) * y.std(axis=0, ddof=1) / math.sqrt(len(y)) if len(y) > 1 else None
+            label = f"{red} (red, n={len(y)})" if side == "red" else f"{red}'s opponents (blue)"
+            t = rd["t"].iloc[0][:n_t]
+            lines.append({"red": red, "side": side, "label": label, "t": t, "mean": y.mean(0), "half": half})
+    return lines
+
+
+def timeline(df: pd.DataFrame, scenario: str, path: Path) -> Path:
+    lines = timeline_lines(df, scenario)
+    if not lines:
+        return _empty(path, f"{_title(scenario)}: no episodes")
+    fig, ax = plt.subplots(figsize=(7, 4))
+    colours = {red: plt.get_cmap("tab10")(i % 10) for i, red in enumerate(dict.fromkeys(x["red"] for x in lines))}
+    for x in lines:
+        colour = colours[x["red"]]
+        ax.plot(x["t"], x["mean"], color=colour, ls="-" if x["side"] == "red" else "--", label=x["label"])
+        if x["half"] is not None:
+            ax.fill_between(x["t"], x["mean"] - x["half"], x["mean"] + x["half"], color=colour, alpha=0.15)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel("points (red team)" + (" ×0.1" if scenario == "dash_and_dine" else ""))
-    ax.set_title(f"{_title(scenario)}: points over time against all opponents (95 % CI)")
-    ax.legend(fontsize=8)
+    ax.set_ylabel("points" + (" ×0.1" if scenario == "dash_and_dine" else ""))
+    ax.set_title(f"{_title(scenario)}: points over time, red (solid) and blue (dashed), 95 % CI")
+    ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

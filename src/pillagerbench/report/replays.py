@@ -1,6 +1,7 @@
-"""The report's replays: every episode of the runs gets its replay page (`replay.html` in the
-episode's directory, written from its recording) and a row in the report linking to it; an
-episode without a recording (played before replays existed) or with a cut-short one says so."""
+"""The report's replays: every episode of the runs gets its replay page, written from its recording
+under the report's directory (`replays/<run>/[series/<id>/]episode_NNN.html`: the run directories
+are only read), and a row in the report linking to it; an episode without a recording (played
+before replays existed) or with a cut-short one says so."""
 
 from __future__ import annotations
 
@@ -12,10 +13,20 @@ from pathlib import Path
 from pillagerbench.replay.load import ReplayError
 from pillagerbench.replay.page import write_replay
 
+REPLAYS = "replays"
+
+
+def run_names(series: list) -> dict[Path, str]:
+    """A folder name per run directory: its name, numbered when two runs share one."""
+    runs = list(dict.fromkeys(Path(s.run) for s in series))
+    names = [r.name for r in runs]
+    return {r: r.name if names.count(r.name) == 1 else f"{r.name}_{i}" for i, r in enumerate(runs)}
+
 
 def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
-    """Write every episode's replay page; rows for the report's table and the pages written."""
+    """Write every episode's replay page under `out`; rows for the report's table and the pages written."""
     rows, pages = [], []
+    folders = run_names(series)
     for s in series:
         if not Path(s.dir).exists():
             continue
@@ -32,7 +43,8 @@ def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
             except (OSError, ValueError):
                 row["score"] = "unfinished"
             try:
-                page, replay = write_replay(ep)
+                where = out / REPLAYS / folders[Path(s.run)] / ep.relative_to(s.run)
+                page, replay = write_replay(ep, where.with_name(ep.name + ".html"))
             except ReplayError as exc:
                 row["note"] = str(exc).split(": ", 1)[-1] if "no replay recording" in str(exc) else str(exc)
             else:

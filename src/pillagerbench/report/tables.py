@@ -261,19 +261,24 @@ def _fmt(v) -> str:
     return str(v)
 
 
+def _cell(mean, ci, single: bool) -> str:
+    """ "mean ± ci"; a value without an interval says "n = 1" when it rests on one episode."""
+    if _fmt(mean) == "–":
+        return "–"
+    if ci is None or (isinstance(ci, float) and math.isnan(ci)):
+        return f"{_fmt(mean)} (n = 1)" if single else _fmt(mean)
+    return f"{_fmt(mean)} ± {_fmt(ci)}"
+
+
 def display_frame(df: pd.DataFrame) -> pd.DataFrame:
     """Merge `X` and `X_ci` into "mean ± ci" strings for Markdown and HTML."""
+    single = list(df["episodes"] == 1) if "episodes" in df.columns else [False] * len(df)
     out = {}
     for c in df.columns:
         if c.endswith("_ci") and c[:-3] in df.columns:
             continue
         if f"{c}_ci" in df.columns:
-            out[c] = [
-                _fmt(m)
-                if (ci is None or (isinstance(ci, float) and math.isnan(ci))) or _fmt(m) == "–"
-                else f"{_fmt(m)} ± {_fmt(ci)}"
-                for m, ci in zip(df[c], df[f"{c}_ci"])
-            ]
+            out[c] = [_cell(m, ci, one) for m, ci, one in zip(df[c], df[f"{c}_ci"], single)]
         else:
             out[c] = [_fmt(v) for v in df[c]]
     return pd.DataFrame(out, columns=list(out))

@@ -1,0 +1,83 @@
+"""What the report is made of: one row per run directory, read from its manifests (the run's
+manifest.json and each series' own): git revision (12 characters), seeds, episode length, episodes used of those
+planned, the LLM teams' models, scoring and protocol. Distinct values are joined with ", "."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+
+from pillagerbench.metrics.load import Runs, SeriesInfo
+from pillagerbench.teams import TEAMS
+
+COLUMNS = [
+    "run",
+    "what",
+    "created",
+    "revision",
+    "scenarios",
+    "seeds",
+    "episode_length",
+    "episodes",
+    "models",
+    "scoring",
+    "protocol",
+]
+
+
+def _distinct(values, empty: str = "–") -> str:
+    return ", ".join(dict.fromkeys(str(v) for v in values if v not in (None, ""))) or empty
+
+
+def seed_range(seeds: list[int]) -> str:
+    """0, 1, 2, 3 -> "0–3"; gaps are listed."""
+    s = sorted(set(seeds))
+    if len(s) > 2 and s == list(range(s[0], s[-1] + 1)):
+        return f"{s[0]}–{s[-1]}"
+    return ", ".join(map(str, s)) or "–"
+
+
+def models(s: SeriesInfo) -> list[str]:
+    """`label: provider model` for each side of the series whose team uses an LLM (a team the
+    registry does not know is not imported to find out), with TactiCrafter's per-role models."""
+    out = []
+    for side, label in (("red", s.red), ("blue", s.blue)):
+        team = s.config.get(side) or {}
+        cls = TEAMS.get(str(team.get("name")))
+        if cls is None or not cls.uses_llm:
+            continue
+        llm = {**(s.config.get("llm") or {}), **(team.get("llm") or {})}
+        roles = {r: o["model"] for r, o in (team.get("roles") or {}).items() if (o or {}).get("model")}
+        extra = f" ({', '.join(f'{r}: {m}' for r, m in roles.items())})" if roles else ""
+        out.append(f"{label}: {llm.get('provider', '?')} {llm.get('model', '?')}{extra}")
+    return out
+
+
+def provenance(runs: Runs) -> pd.DataFrame:
+    df = runs.episodes
+    rows = []
+    for run in runs.runs:
+        top = json.loads((run / "manifest.json").read_text()) if (run / "manifest.json").exists() else {}
+        series = [s for s in runs.series if s.run == run]
+        used = int((df["run"] == str(run)).sum()) if len(df) else 0
+        rows.append(
+            {
+                "run": str(run),
+                "what": f"experiment {top['experiment']}" if top.get("experiment") else "run",
+                "created": top.get("created", "–"),
+                "revision": _distinct(
+                    str(r)[:12]
+                    for r in [top.get("git_revision")] + [s.manifest.get("git_revision") for s in series]
+                    if r
+                ),
+                "scenarios": _distinct(f"{s.scenario} v{s.version}" for s in series),
+                "seeds": seed_range([int(s.config["seed"]) for s in series if s.config.get("seed") is not None]),
+                "episode_length": _distinct(f"{s.episode_length:g} s" for s in series),
+                "episodes": f"{used} of {sum(s.episodes for s in series)}",
+                "models": _distinct((m for s in series for m in models(s)), "no LLM team"),
+                "scoring": _distinct(s.config.get("scoring", "clean") for s in series),
+                "protocol": _distinct(s.config.get("protocol", "pillagerbench") for s in series),
+            }
+        )
+    return pd.DataFrame(rows, columns=COLUMNS)
