@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import asyncio
 import json
+import os
+import signal
 import time
 
 import pytest
@@ -111,12 +113,23 @@ async def test_escape_attempts(pair, code, expected):
     assert bad.restarts == 0 and bad.alive
 
 
-async def test_process_exit_through_host_object_is_contained(pair):
-    """Even if something reached the host realm and ended the process, the run reports it and the
-    player comes back."""
+async def test_a_bot_process_that_exits_mid_run_is_reported_and_restarted(pair):
+    """Even if something reached the host realm and ended the bot process (here: a signal from
+    outside, as agent code cannot), the run reports it, the player comes back with its inventory, and
+    the bystander plays on."""
     bad, other = pair
-    events = await bad.run("const e = new Error('x'); Object.getPrototypeOf(e)")  # harmless, stays a context object
-    assert errors(events) == []
+    running = asyncio.Event()
+    run = asyncio.create_task(
+        bad.run("bot.chat('started')\nawait bot.waitForTicks(400)", on_event=lambda e: running.set())
+    )
+    await asyncio.wait_for(running.wait(), 10)  # the code is running
+    assert bad.proc is not None
+    os.kill(bad.proc.pid, signal.SIGTERM)
+    events = await asyncio.wait_for(run, 30)
+    assert "the bot process ended" in errors(events)[0] and "restarted" in errors(events)[0], errors(events)
+    assert last_observation(events)["inventory"] == {"bread": 1}
+    assert bad.alive and bad.restarts == 1
+    assert "back again" in chats_by(await bad.run("bot.chat('back again')"), bad.name)
     await _bystander_ok(other)
 
 

@@ -54,7 +54,11 @@ async def test_two_episode_series_learns_and_checkpoints(tmp_path, fake_llm, llm
     code0 = load(ep0 / "code.json")
     assert code0["Ryn"]["code"] == LOOP and code0["Ryn"]["iterations"] == ryn0
     assert any(e[0] == "onChat" for e in code0["Ryn"]["events"])
-    assert first.red_score >= 0
+    # the code acted in the game: the server saw red's players dig the slime of their area
+    world = [json.loads(line) for line in (run / "episode_000" / "world_events.jsonl").read_text().splitlines()]
+    dug = [e for e in world if e["event"] == "block_dug" and e["block"] == "slime_block"]
+    assert {e["player"] for e in dug} & {"Ryn", "Raze"}, dug
+    assert first.red_score == load(run / "episode_000" / "timeline.json")[-1]["red"]
 
     # episode 1: everything updated from episode 0's events
     ep1 = run / "episode_001" / "red"

@@ -96,7 +96,9 @@ async def test_later_episode_updates_from_last_episodes_events(tmp_path, fake_ll
     assert "<Byte> Mined 1 brown_mushroom_block" in opp and "Team blue is clean!" in opp
     assert "<Ryn> Mined" not in opp and "unknown" in opp
     upd = requests_of(fake_llm, "tactics")[0].prompt
-    assert "A round has been played" in upd and "Ryn (" in upd or "Ryn: slime_block: 2" in upd
+    assert "A round has been played" in upd and "<Ryn> Mined 2 slime_block\n<Byte> Mined" in upd  # the chat log
+    assert "end of last round:\nRyn: slime_block\nRaze: slime_block\n" in upd  # blocks near the players
+    assert "end of last round:\nRyn: slime_block: 2\nRaze: slime_block: 2\n" in upd  # their inventories
     assert "1. Ryn removes slime blocks in the red area." in upd  # previous tactics
     assert "Byte and Blink mine slime blocks" in upd  # opponent tactics
     assert "Examples of good tactics" in upd  # few-shot
