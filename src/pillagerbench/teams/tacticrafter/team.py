@@ -149,6 +149,18 @@ class TactiCrafter(Team):
     # --- pre-game ----------------------------------------------------------------------------------
 
     async def pre_game(self, ctx: TeamContext) -> None:
+        digests = self._start_record(ctx)
+        has_events = any(digests.values())
+        t0 = time.monotonic()
+        graph_text = await self._causal_step(ctx, digests, has_events)  # 1. causal model
+        await self._opponent_step(ctx, digests, has_events, graph_text)  # 2. opponent model
+        await self._tactics_step(ctx, digests, has_events, graph_text)  # 3. tactics
+        self.record["modules_s"] = round(time.monotonic() - t0, 3)
+        await self._start_agents(ctx, digests)  # 4. base agents: first code of the episode, in parallel
+        self._write(ctx)
+
+    def _start_record(self, ctx: TeamContext) -> dict[str, list]:
+        """Resets the episode's LLM, counters and record; returns last episode's digest per player."""
         players = ctx.side.player_names
         self.agent_names = agent_names(ctx.scenario)
         self.llm = RoleLLM(ctx.llm, self.roles) if ctx.llm is not None else None
@@ -156,7 +168,6 @@ class TactiCrafter(Team):
         self.iterations = [0] * len(players)
         mem = self.memory
         digests = {name: mem.events.get(name, []) for name in players}
-        has_events = any(digests.values())
         self.record = {
             "episode": ctx.episode,
             "team": ctx.side.team_name,
@@ -176,120 +187,137 @@ class TactiCrafter(Team):
         }
         if self.llm_off:
             self.record["llm_off"] = self.llm_off
-        graph_text = mem.graph.text() if self.causal_enabled else "(causal model disabled)"
-        t0 = time.monotonic()
+        return digests
 
-        # 1. causal model
-        if self.causal_enabled:
-            if not len(mem.graph):
-                if self._llm_ok():
-                    graph, asked = await causal.initial(self.llm, ctx.scenario, attempts=self.attempts)
-                    rec = self._module_record("causal", asked, step="initial")
-                    if graph is not None:
-                        mem.graph = graph
-                        rec["relations"] = len(graph)
-                        rec["missing_modules"] = graph.missing_modules(list(ctx.scenario.primitives))
-                else:
-                    self._module_record("causal", None, step="initial", skipped=self.llm_off)
-            elif has_events:
-                if self._llm_ok():
-                    evidence = own_chat_with_inventory(digests, max_lines=self.max_chat_lines)
-                    new, asked = await causal.update(
-                        self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts
-                    )
-                    rec = self._module_record("causal", asked, step="update")
-                    if new is not None:
-                        rec["merge"] = mem.graph.merge(new)
-                else:
-                    self._module_record("causal", None, step="update", skipped=self.llm_off)
-            graph_text = mem.graph.text()
-
-        # 2. opponent model
-        opp = ctx.opponent
-        if self.opponent_enabled and has_events:
+    async def _causal_step(self, ctx: TeamContext, digests: dict[str, list], has_events: bool) -> str:
+        """1. The causal model: a first graph, or what last episode's chat and inventories add.
+        Returns the graph as the other modules' prompts show it."""
+        if not self.causal_enabled:
+            return "(causal model disabled)"
+        mem = self.memory
+        if not len(mem.graph):
             if self._llm_ok():
-                asked = await opponent.update(
-                    self.llm,
-                    opponent_team=opp.team_name,
-                    opponent_players=opp.player_names,
-                    objective=f"{opp.team_name} ({', '.join(opp.player_names)}) wants to end the game with more "
-                    f"points than {ctx.side.team_name}.",
-                    scenario=ctx.scenario.description(),
-                    graph=graph_text,
-                    chat_log=opponent_chat(
-                        digests,
-                        ctx.scenario,
-                        opp,
-                        max_lines=self.max_chat_lines,
-                        world_chat=ctx.last_episode.get("chat"),
-                    ),
-                    previous=mem.opponent_tactics or UNKNOWN,
-                    attempts=self.attempts,
-                    max_items=3,
-                )
-                self._module_record("opponent", asked, step="update")
-                if asked.ok:
-                    mem.opponent_tactics, mem.opponent_source = asked.value, "inferred"
-                else:
-                    mem.opponent_source = "kept"
+                graph, asked = await causal.initial(self.llm, ctx.scenario, attempts=self.attempts)
+                rec = self._module_record("causal", asked, step="initial")
+                if graph is not None:
+                    mem.graph = graph
+                    rec["relations"] = len(graph)
+                    rec["missing_modules"] = graph.missing_modules(list(ctx.scenario.primitives))
             else:
-                self._module_record("opponent", None, step="update", skipped=self.llm_off)
+                self._module_record("causal", None, step="initial", skipped=self.llm_off)
+        elif has_events:
+            if self._llm_ok():
+                evidence = own_chat_with_inventory(digests, max_lines=self.max_chat_lines)
+                new, asked = await causal.update(self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts)
+                rec = self._module_record("causal", asked, step="update")
+                if new is not None:
+                    rec["merge"] = mem.graph.merge(new)
+            else:
+                self._module_record("causal", None, step="update", skipped=self.llm_off)
+        return mem.graph.text()
 
-        # 3. tactics
+    async def _opponent_step(
+        self, ctx: TeamContext, digests: dict[str, list], has_events: bool, graph_text: str
+    ) -> None:
+        """2. The opponent model: from the second episode, the opponent's tactics guessed from its chat."""
+        if not (self.opponent_enabled and has_events):
+            return
+        if not self._llm_ok():
+            self._module_record("opponent", None, step="update", skipped=self.llm_off)
+            return
+        mem, opp = self.memory, ctx.opponent
+        asked = await opponent.update(
+            self.llm,
+            opponent_team=opp.team_name,
+            opponent_players=opp.player_names,
+            objective=f"{opp.team_name} ({', '.join(opp.player_names)}) wants to end the game with more "
+            f"points than {ctx.side.team_name}.",
+            scenario=ctx.scenario.description(),
+            graph=graph_text,
+            chat_log=opponent_chat(
+                digests,
+                ctx.scenario,
+                opp,
+                max_lines=self.max_chat_lines,
+                world_chat=ctx.last_episode.get("chat"),
+            ),
+            previous=mem.opponent_tactics or UNKNOWN,
+            attempts=self.attempts,
+            max_items=3,
+        )
+        self._module_record("opponent", asked, step="update")
+        if asked.ok:
+            mem.opponent_tactics, mem.opponent_source = asked.value, "inferred"
+        else:
+            mem.opponent_source = "kept"
+
+    async def _tactics_step(
+        self, ctx: TeamContext, digests: dict[str, list], has_events: bool, graph_text: str
+    ) -> None:
+        """3. The tactics module: preset, first written, updated from last episode's events, or kept."""
+        mem = self.memory
         if mem.tactics is None and self.preset_tactics:
             mem.tactics, mem.tactics_source = self.preset_tactics, "preset"
             self._module_record("tactics", None, step="preset")
         elif mem.tactics is None:
-            if self._llm_ok():
-                asked = await tactics.initial(
-                    self.llm,
-                    team_name=ctx.side.team_name,
-                    players=players,
-                    objective=self.objective(ctx),
-                    scenario=ctx.scenario.description(),
-                    graph=graph_text,
-                    attempts=self.attempts,
-                    max_items=self.max_tactics,
-                )
-                self._module_record("tactics", asked, step="initial")
-                if asked.ok:
-                    mem.tactics, mem.tactics_source = asked.value, "generated"
-                else:
-                    mem.tactics_source = "none"
-            else:
-                self._module_record("tactics", None, step="initial", skipped=self.llm_off)
+            await self._initial_tactics(ctx, graph_text)
         elif has_events and self.update_tactics:
-            if self._llm_ok():
-                asked = await tactics.update(
-                    self.llm,
-                    team_name=ctx.side.team_name,
-                    players=players,
-                    objective=self.objective(ctx),
-                    scenario=ctx.scenario.description(),
-                    graph=graph_text,
-                    chat_log=tail(longest_chat(digests), self.max_chat_lines),
-                    nearby_blocks=nearby_blocks_text(digests),
-                    inventories=inventories_text(digests),
-                    previous=mem.tactics,
-                    opponent=mem.opponent_tactics if self.opponent_enabled else "(opponent model disabled)",
-                    attempts=self.attempts,
-                    max_items=self.max_tactics,
-                )
-                self._module_record("tactics", asked, step="update")
-                if asked.ok:
-                    mem.previous_tactics, mem.tactics, mem.tactics_source = mem.tactics, asked.value, "updated"
-                else:
-                    mem.tactics_source = "kept"
-            else:
-                mem.tactics_source = "kept"
-                self._module_record("tactics", None, step="update", skipped=self.llm_off)
+            await self._update_tactics(ctx, digests, graph_text, mem.tactics)
         else:
             mem.tactics_source = "kept"
             self._module_record("tactics", None, step="kept")
-        self.record["modules_s"] = round(time.monotonic() - t0, 3)
 
-        # 4. base agents: first code of the episode, in parallel
-        self.agents = [BaseAgent(self, name, k) for k, name in enumerate(players)]
+    async def _initial_tactics(self, ctx: TeamContext, graph_text: str) -> None:
+        mem = self.memory
+        if not self._llm_ok():
+            self._module_record("tactics", None, step="initial", skipped=self.llm_off)
+            return
+        asked = await tactics.initial(
+            self.llm,
+            team_name=ctx.side.team_name,
+            players=ctx.side.player_names,
+            objective=self.objective(ctx),
+            scenario=ctx.scenario.description(),
+            graph=graph_text,
+            attempts=self.attempts,
+            max_items=self.max_tactics,
+        )
+        self._module_record("tactics", asked, step="initial")
+        if asked.ok:
+            mem.tactics, mem.tactics_source = asked.value, "generated"
+        else:
+            mem.tactics_source = "none"
+
+    async def _update_tactics(self, ctx: TeamContext, digests: dict[str, list], graph_text: str, previous: str) -> None:
+        mem = self.memory
+        if not self._llm_ok():
+            mem.tactics_source = "kept"
+            self._module_record("tactics", None, step="update", skipped=self.llm_off)
+            return
+        asked = await tactics.update(
+            self.llm,
+            team_name=ctx.side.team_name,
+            players=ctx.side.player_names,
+            objective=self.objective(ctx),
+            scenario=ctx.scenario.description(),
+            graph=graph_text,
+            chat_log=tail(longest_chat(digests), self.max_chat_lines),
+            nearby_blocks=nearby_blocks_text(digests),
+            inventories=inventories_text(digests),
+            previous=previous,
+            opponent=mem.opponent_tactics if self.opponent_enabled else "(opponent model disabled)",
+            attempts=self.attempts,
+            max_items=self.max_tactics,
+        )
+        self._module_record("tactics", asked, step="update")
+        if asked.ok:
+            mem.previous_tactics, mem.tactics, mem.tactics_source = mem.tactics, asked.value, "updated"
+        else:
+            mem.tactics_source = "kept"
+
+    async def _start_agents(self, ctx: TeamContext, digests: dict[str, list]) -> None:
+        """4. One base agent per player, each given its last code and chat; their first code in parallel."""
+        self.agents = [BaseAgent(self, name, k) for k, name in enumerate(ctx.side.player_names)]
         for agent in self.agents:
             chat = (
                 tail(
@@ -299,9 +327,8 @@ class TactiCrafter(Team):
                 if digests.get(agent.name)
                 else "No chat yet: the game has not started."
             )
-            agent.start_episode(ctx, mem.code.get(agent.name, {}), chat)
+            agent.start_episode(ctx, self.memory.code.get(agent.name, {}), chat)
         await asyncio.gather(*(a.pre_game(ctx) for a in self.agents))
-        self._write(ctx)
 
     def _llm_ok(self) -> bool:
         return self.llm is not None and not self.llm_off
