@@ -140,10 +140,22 @@ def _read_lines(path: Path, skipped: list, where: str) -> dict[int, dict]:
 
 
 def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
+    finished = _finished_episodes(s, skipped)
+    scale = SCORE_SCALE.get(s.scenario, 1.0)
+    for i in sorted(finished):
+        rec = finished[i]
+        ep = s.dir / f"episode_{i:03d}"
+        timeline = _timeline(s, rec, ep, skipped)
+        if timeline is not None:
+            rows.append(_row(s, i, rec, ep, timeline, scale))
+
+
+def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
+    """The series' finished episodes by index; what is not started, half-written or missing goes to `skipped`."""
     where = str(s.dir)
     if not s.dir.exists():
         skipped.append((where, f"series not started ({s.episodes} episode(s) missing)"))
-        return
+        return {}
     finished = _read_lines(s.dir / "episodes.jsonl", skipped, where)
     for d in sorted(s.dir.glob("episode_*")):
         try:
@@ -157,74 +169,79 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
     missing = s.episodes - len(finished)
     if missing > 0:
         skipped.append((where, f"{missing} of {s.episodes} episode(s) not played (unfinished run? resume=RUN_DIR)"))
-    scale = SCORE_SCALE.get(s.scenario, 1.0)
-    for i in sorted(finished):
-        rec = finished[i]
-        ep = s.dir / f"episode_{i:03d}"
-        if rec.get("status") != "ok":
-            skipped.append((str(ep), f"failed: {rec.get('error')}"))
-            continue
-        try:
-            timeline = json.loads((ep / "timeline.json").read_text())
-        except FileNotFoundError:
-            skipped.append((str(ep), "half-written: no timeline.json"))
-            continue
-        except ValueError:
-            skipped.append((str(ep), "half-written: timeline.json cut short"))
-            continue
-        if not timeline or float(timeline[-1]["t"]) < s.episode_length:
-            end = timeline[-1]["t"] if timeline else None
-            skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
-            continue
-        if rec.get("scoring") == "upstream" and (ep / "timeline_upstream.json").exists():
-            # as upstream's analysis read it: line i of its rewards file stands for second i
-            lines = json.loads((ep / "timeline_upstream.json").read_text())
-            timeline = [{**p, "t": p["line"]} for p in lines]
-        red_it = (rec.get("iterations") or {}).get("red") or []
-        scoring = rec.get("scoring") or "clean"  # runs before scoring modes were clean
-        by_mode = rec.get("scores") or {scoring: {"red": rec["red_score"], "blue": rec["blue_score"]}}
-        alternatives = {
-            f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
-            for mode in SCORINGS
-            for side in ("red", "blue")
-        }
-        rows.append(
-            {
-                "run": str(s.run),
-                "dir": str(ep),
-                "series": s.id,
-                "scenario": s.scenario,
-                "version": s.version,
-                "episode_length": s.episode_length,
-                "red": s.red,
-                "blue": s.blue,
-                "red_team": s.red_team,
-                "blue_team": s.blue_team,
-                "protocol": s.protocol,
-                "variant": s.variant,
-                "repetition": s.repetition,
-                "group": s.group,
-                "group_x": s.group_x,
-                "episode": i,
-                "index": i + s.episode_offset,
-                "red_raw": float(rec["red_score"]),
-                "blue_raw": float(rec["blue_score"]),
-                "scale": scale,
-                "red_score": float(rec["red_score"]) * scale,
-                "blue_score": float(rec["blue_score"]) * scale,
-                "scoring": scoring,
-                **alternatives,
-                "team_protocol": rec.get("protocol") or "pillagerbench",
-                "iterations": float(np.mean(red_it)) if red_it else np.nan,
-                "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
-                "server_tps": rec.get("server_tps"),
-                "lagged": bool(rec.get("lagged")),
-                "lag_reason": rec.get("lag_reason"),
-                "t": np.array([p["t"] for p in timeline], dtype=float),
-                "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
-                "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
-            }
-        )
+    return finished
+
+
+def _timeline(s: SeriesInfo, rec: dict, ep: Path, skipped: list) -> list | None:
+    """An ok episode's score timeline (upstream's rewards file for its scoring), or None with the reason in
+    `skipped` (failed, half-written or cut short before the whistle)."""
+    if rec.get("status") != "ok":
+        skipped.append((str(ep), f"failed: {rec.get('error')}"))
+        return None
+    try:
+        timeline = json.loads((ep / "timeline.json").read_text())
+    except FileNotFoundError:
+        skipped.append((str(ep), "half-written: no timeline.json"))
+        return None
+    except ValueError:
+        skipped.append((str(ep), "half-written: timeline.json cut short"))
+        return None
+    if not timeline or float(timeline[-1]["t"]) < s.episode_length:
+        end = timeline[-1]["t"] if timeline else None
+        skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
+        return None
+    if rec.get("scoring") == "upstream" and (ep / "timeline_upstream.json").exists():
+        # as upstream's analysis read it: line i of its rewards file stands for second i
+        lines = json.loads((ep / "timeline_upstream.json").read_text())
+        timeline = [{**p, "t": p["line"]} for p in lines]
+    return timeline
+
+
+def _row(s: SeriesInfo, i: int, rec: dict, ep: Path, timeline: list, scale: float) -> dict:
+    """One episode's row of the table."""
+    red_it = (rec.get("iterations") or {}).get("red") or []
+    scoring = rec.get("scoring") or "clean"  # runs before scoring modes were clean
+    by_mode = rec.get("scores") or {scoring: {"red": rec["red_score"], "blue": rec["blue_score"]}}
+    alternatives = {
+        f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
+        for mode in SCORINGS
+        for side in ("red", "blue")
+    }
+    return {
+        "run": str(s.run),
+        "dir": str(ep),
+        "series": s.id,
+        "scenario": s.scenario,
+        "version": s.version,
+        "episode_length": s.episode_length,
+        "red": s.red,
+        "blue": s.blue,
+        "red_team": s.red_team,
+        "blue_team": s.blue_team,
+        "protocol": s.protocol,
+        "variant": s.variant,
+        "repetition": s.repetition,
+        "group": s.group,
+        "group_x": s.group_x,
+        "episode": i,
+        "index": i + s.episode_offset,
+        "red_raw": float(rec["red_score"]),
+        "blue_raw": float(rec["blue_score"]),
+        "scale": scale,
+        "red_score": float(rec["red_score"]) * scale,
+        "blue_score": float(rec["blue_score"]) * scale,
+        "scoring": scoring,
+        **alternatives,
+        "team_protocol": rec.get("protocol") or "pillagerbench",
+        "iterations": float(np.mean(red_it)) if red_it else np.nan,
+        "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
+        "server_tps": rec.get("server_tps"),
+        "lagged": bool(rec.get("lagged")),
+        "lag_reason": rec.get("lag_reason"),
+        "t": np.array([p["t"] for p in timeline], dtype=float),
+        "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
+        "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
+    }
 
 
 def _check_comparable(series: list[SeriesInfo]) -> None:
