@@ -199,11 +199,11 @@ def test_forbidden_imports_are_caught(tmp_path):
     """,
     )
     append(
-        "experiments/layout.py",
+        "experiments/progress.py",
         """
         def _circle():
-            from pillagerbench.experiments import series  # series.py imports layout.py
-            return series
+            from pillagerbench.experiments import runner  # runner.py imports progress.py
+            return runner
     """,
     )
     proc = lint_imports(tmp_path)
@@ -217,7 +217,7 @@ def test_forbidden_imports_are_caught(tmp_path):
         assert contract in out, shown(proc)
     assert "pillagerbench.scenarios.mushroom_war -> pillagerbench.teams" in out, shown(proc)
     cycles = import_cycles(tmp_path)
-    assert any({"pillagerbench.experiments.layout", "pillagerbench.experiments.series"} <= set(c) for c in cycles)
+    assert any({"pillagerbench.experiments.progress", "pillagerbench.experiments.runner"} <= set(c) for c in cycles)
     assert any({"pillagerbench.scenarios.mushroom_war", "pillagerbench.teams"} <= set(c) for c in cycles)
 
 

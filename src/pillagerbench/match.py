@@ -21,13 +21,14 @@ import json
 import random
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
 from pillagerbench.load import lag_verdict
 from pillagerbench.players import Player
 from pillagerbench.replay.record import RECORDING, Recorder
+from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team, TeamContext
 
@@ -40,52 +41,6 @@ UPSTREAM_WAIT_S = 4.0
 # protocol=upstream every run of every team pays them (a restart costs 8 s; the first code starts 4 s in)
 UPSTREAM_STEP_WAIT_S = 80 / 20
 SCORINGS = ("clean", "upstream")
-
-
-def last_episode_seen(record: dict, out: Path, timeline: list | None = None) -> dict:
-    """What a team sees of a finished episode (`TeamContext.last_episode`): its record, its events
-    directory, its score timeline and the world chat, read from the episode directory `out` where not
-    given. The match builds it after each episode; a resumed series rebuilds it from the directory."""
-    if timeline is None:
-        path = out / "timeline.json"
-        timeline = json.loads(path.read_text()) if path.exists() else []
-    chat = out / "chat.txt"
-    return {
-        "record": record,
-        "events_dir": str(out / "events"),
-        "timeline": timeline,
-        "chat": chat.read_text().splitlines() if chat.exists() else [],
-    }
-
-
-@dataclass
-class EpisodeRecord:
-    scenario: str
-    red: str
-    blue: str
-    episode: int
-    red_score: float | None = None
-    blue_score: float | None = None
-    winner: str | None = None
-    duration_s: float = 0.0  # wall time of the whole episode (reset .. post-game)
-    status: str = "ok"  # ok | failed
-    error: str | None = None
-    reset_s: float = 0.0
-    pre_game_s: dict[str, float] = field(default_factory=dict)
-    game_s: float = 0.0
-    iterations: dict[str, list[int]] = field(default_factory=dict)
-    seed: int = 0
-    player_order: list[str] = field(default_factory=list)  # the server's player order this episode
-    server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
-    bot_lag: dict[str, dict | None] = field(default_factory=dict)  # player -> physics-tick lag in the game (load.py)
-    lagged: bool = False  # played under lag: a threshold of load.py crossed (scores may be low for it)
-    lag_reason: str | None = None
-    problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
-    refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
-    scoring: str = "clean"  # which of `scores` red_score/blue_score are (config `scoring`)
-    scores: dict[str, dict[str, float]] = field(default_factory=dict)  # scoring -> side -> final score
-    protocol: str = "pillagerbench"  # the LLM teams' loop (config `protocol`)
-    runs: dict[str, int] = field(default_factory=dict)  # code runs started per player (upstream's steps)
 
 
 def count_refusals(events: list[dict]) -> dict[str, int]:
@@ -141,10 +96,6 @@ class RecordedPlayer:
         return events
 
 
-def winner_of(red: float, blue: float) -> str:
-    return "red" if red > blue else "blue" if blue > red else "tie"
-
-
 class Match:
     def __init__(
         self,
@@ -173,7 +124,8 @@ class Match:
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
         self.on_tick = on_tick or (lambda status: None)
         self.players: dict[str, Player] = {}
-        self.last_records: dict[str, dict] = {}
+        self.rundir = RunDir(run_dir)  # every path and record of the run directory
+        self.last_records: dict[str, LastEpisode] = {}
         self.recorder: Recorder | None = None  # the replay recording of the game being played
 
     def player_order(self, episode: int) -> list[str]:
@@ -230,7 +182,7 @@ class Match:
             scoring=self.scoring,
             protocol=self.protocol,
         )
-        out = self.run_dir / f"episode_{episode:03d}"
+        out = self.rundir.episode(episode)
         out.mkdir(parents=True, exist_ok=True)
         events_dir = out / "events"
         events_dir.mkdir(exist_ok=True)
@@ -255,7 +207,7 @@ class Match:
             for f in files.values():
                 f.close()
             rec.duration_s = round(time.monotonic() - t_start, 3)
-            (out / "episode.json").write_text(json.dumps(asdict(rec), indent=1))
+            self.rundir.write_episode(rec)
         return rec
 
     async def _play(self, rec: EpisodeRecord, out: Path, sink) -> None:
@@ -314,7 +266,7 @@ class Match:
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
         for key, ctx in contexts.items():
-            self.last_records[key] = last_episode_seen(asdict(rec), out, timeline)
+            self.last_records[key] = self.rundir.last_seen(asdict(rec), timeline)
             ctx.last_episode = self.last_records[key]
         await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
         for key, llm in self.llms.items():

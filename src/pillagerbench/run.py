@@ -11,9 +11,8 @@ Ctrl-C ends the match cleanly, keeping every finished episode.
 from __future__ import annotations
 
 import asyncio
-import json
 import time
-from dataclasses import asdict
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from pillagerbench.arena import ArenaServer
@@ -21,8 +20,9 @@ from pillagerbench.config import load_config
 from pillagerbench.display import MatchDisplay
 from pillagerbench.manifest import write_manifest
 from pillagerbench.match import Match
-from pillagerbench.scenarios import make_scenario
-from pillagerbench.teams import team_from_config
+from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
+from pillagerbench.scenarios import Scenario, make_scenario
+from pillagerbench.teams import Team, team_from_config
 
 
 def make_run_dir(cfg) -> Path:
@@ -32,47 +32,76 @@ def make_run_dir(cfg) -> Path:
     return Path("runs") / f"{stamp}_{cfg.scenario.name}_{cfg.red.name}_vs_{cfg.blue.name}"
 
 
+async def play_match(
+    cfg,
+    rundir: RunDir,
+    scenario: Scenario,
+    teams: dict[str, Team],
+    episodes: Iterable[int],
+    on_episode: Callable[[EpisodeRecord], None],
+    *,
+    on_tick: Callable[[dict], None] | None = None,
+    last: dict[str, LastEpisode] | None = None,
+    log_path: Path | None = None,
+    watch: int | None = None,
+) -> None:
+    """The one way to play a match from a config, for `run` and every series of an experiment: a
+    server, the LLM clients, the match; the given episodes, `on_episode(record)` after each; then
+    everything closed. `last`: what each side saw of its last episode (a resumed series)."""
+    from pillagerbench.llm.presets import make_llms
+
+    server = ArenaServer.from_config(cfg.server, log_path=log_path or rundir.path / "server.log", watch=watch)
+    await server.start()
+    if server.watch_url:
+        print(f"live view: {server.watch_url}", flush=True)
+    llms = make_llms(cfg, teams, rundir.path)
+    match = Match(
+        server,
+        scenario,
+        teams,
+        rundir.path,
+        episode_length=cfg.episode_length,
+        seed=cfg.seed,
+        scoring=cfg.get("scoring", "clean"),  # runs from before these keys: the defaults
+        protocol=cfg.get("protocol", "pillagerbench"),
+        on_tick=on_tick,
+        llms=llms,
+    )
+    match.last_records.update(last or {})
+    try:
+        await match.setup()
+        await match.play_episodes(episodes, on_episode)
+    finally:
+        await match.close()
+        await server.stop()
+        for llm in llms.values():
+            await llm.aclose()
+
+
 async def play(cfg, run_dir: Path) -> list:
     scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
     teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
     write_manifest(run_dir, cfg, scenario)
+    rundir = RunDir(run_dir)
     records = []
     title = f"{scenario.title}: red {cfg.red.name} vs blue {cfg.blue.name}"
     with MatchDisplay(title, cfg.display) as display:
-        server = ArenaServer.from_config(cfg.server, log_path=run_dir / "server.log", watch=cfg.get("watch"))
-        await server.start()
-        if server.watch_url:
-            print(f"live view: {server.watch_url}", flush=True)
-        from pillagerbench.llm.presets import make_llms
 
-        llms = make_llms(cfg, teams, run_dir)
-        match = Match(
-            server,
+        def done(rec: EpisodeRecord) -> None:
+            rundir.append(rec)
+            records.append(rec)
+            display.episode_done(rec)
+
+        await play_match(
+            cfg,
+            rundir,
             scenario,
             teams,
-            run_dir,
-            episode_length=cfg.episode_length,
-            seed=cfg.seed,
-            scoring=cfg.get("scoring", "clean"),
-            protocol=cfg.get("protocol", "pillagerbench"),
+            range(int(cfg.episodes)),
+            done,
             on_tick=display.tick,
-            llms=llms,
+            watch=cfg.get("watch"),
         )
-        try:
-            await match.setup()
-
-            def done(rec) -> None:
-                with open(run_dir / "episodes.jsonl", "a") as f:
-                    f.write(json.dumps(asdict(rec)) + "\n")
-                records.append(rec)
-                display.episode_done(rec)
-
-            await match.play_episodes(range(int(cfg.episodes)), done)
-        finally:
-            await match.close()
-            await server.stop()
-            for llm in llms.values():
-                await llm.aclose()
     return records
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from pillagerbench.experiments.series import recover, state_dir
+from pillagerbench.rundir import RunDir
 
 
 def test_recover_keeps_finished_and_discards_the_rest(tmp_path):
@@ -17,21 +17,21 @@ def test_recover_keeps_finished_and_discards_the_rest(tmp_path):
     ledger = b'{"team": "red", "call": 1}\n{"team": "red", "call": 2}\n'
     (s / "llm_calls.jsonl").write_bytes(ledger + b'{"team": "red", "call": 3}\n')
     for i in (1, 2):
-        state_dir(s, i).mkdir(parents=True)
-    (state_dir(s, 1) / "ledger_offset").write_text(str(len(ledger)))
+        RunDir(s).state(i).mkdir(parents=True)
+    (RunDir(s).state(1) / "ledger_offset").write_text(str(len(ledger)))
     (s / "live.json").write_text("{}")
 
-    finished, note = recover(s)
+    finished, note = RunDir(s).recover()
 
     assert sorted(finished) == [0, 1]
     assert (s / "episodes.jsonl").read_text() == lines[0] + "\n" + lines[1] + "\n"
     assert (s / "episode_001").exists() and not (s / "episode_002").exists()
     assert [p.name.split(".")[0] for p in (s / "discarded").iterdir() if p.is_dir()] == ["episode_002"]
     assert (s / "llm_calls.jsonl").read_bytes() == ledger
-    assert state_dir(s, 1).exists() and not state_dir(s, 2).exists()
+    assert RunDir(s).state(1).exists() and not RunDir(s).state(2).exists()
     assert not (s / "live.json").exists()
     assert len(note) == 3  # torn line, episode_002, one ledger call
-    assert recover(s) == (finished, [])  # idempotent
+    assert RunDir(s).recover() == (finished, [])  # idempotent
 
 
 def test_a_plain_run_directory_resumes_as_one_series(tmp_path):

@@ -11,10 +11,10 @@ import pytest
 import yaml  # type: ignore[import-untyped]  # pyyaml ships no stubs
 
 from pillagerbench.cli import main as cli_main
-from pillagerbench.experiments.layout import EPISODES, LEDGER
 from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.league import play
 from pillagerbench.league.rounds import round_dirs
+from pillagerbench.rundir import EPISODES, LEDGER
 
 
 @pytest.mark.parametrize(

@@ -9,7 +9,6 @@ same thing whether the series run in this process or on Ray workers.
 from __future__ import annotations
 
 import asyncio
-import json
 import sys
 import time
 from pathlib import Path
@@ -19,7 +18,7 @@ from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from pillagerbench.experiments.series import read_finished
+from pillagerbench.rundir import RunDir
 
 
 def fmt_duration(seconds: float | None) -> str:
@@ -67,7 +66,7 @@ class ExperimentProgress:
         return self.dirs.get(spec.id) or self.run_dir / "series" / spec.id
 
     def finished(self, spec) -> dict:
-        path = self.series_dir(spec) / "episodes.jsonl"
+        path = RunDir(self.series_dir(spec)).episodes_path
         try:
             st = path.stat()
             key = (st.st_size, st.st_mtime_ns)
@@ -76,7 +75,7 @@ class ExperimentProgress:
         cached = self._cache.get(spec.id)
         if cached and cached[0] == key:
             return cached[1]
-        done = read_finished(self.series_dir(spec))[0]
+        done = RunDir(self.series_dir(spec)).finished()
         self._cache[spec.id] = (key, done)
         return done
 
@@ -87,12 +86,9 @@ class ExperimentProgress:
             fin = self.finished(spec)
             done += len(fin)
             failed += sum(r.get("status") != "ok" for r in fin.values())
-            live = self.series_dir(spec) / "live.json"
-            if len(fin) < spec.episodes and live.exists():
-                try:
-                    running.append((spec, json.loads(live.read_text())))
-                except ValueError:
-                    pass
+            status = RunDir(self.series_dir(spec)).read_live() if len(fin) < spec.episodes else {}
+            if status:
+                running.append((spec, status))
         if self.start_done is None:
             self.start_done = done
         elapsed = time.monotonic() - self.start_time

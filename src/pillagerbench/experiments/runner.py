@@ -27,9 +27,10 @@ from pathlib import Path
 
 from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.experiments.progress import ExperimentProgress
-from pillagerbench.experiments.series import count_finished, read_finished, run_series
+from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.load import choose_parallel
+from pillagerbench.rundir import RunDir
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
 
@@ -138,7 +139,7 @@ async def run_all(
     results: dict[str, dict] = {}
     pending = {s.id: s for s in specs}
     for s in specs:
-        if count_finished(dirs[s.id]) >= s.episodes:
+        if len(RunDir(dirs[s.id]).finished()) >= s.episodes:
             results[s.id] = {"id": s.id, "status": "done", "played": 0}
             pending.pop(s.id)
     running: dict[asyncio.Future, SeriesSpec] = {}
@@ -252,7 +253,7 @@ def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) ->
     hit = [
         (s.id, i, rec.get("lag_reason"))
         for s in specs
-        for i, rec in sorted(read_finished(dirs[s.id])[0].items())
+        for i, rec in sorted(RunDir(dirs[s.id]).finished().items())
         if rec.get("lagged")
     ]
     if not hit:
@@ -290,7 +291,7 @@ def main_experiment(cfg, argv: list[str]) -> int:
         print(f"interrupted: finished episodes are kept; finish with resume={run_dir}")
         return 130
     errors = [r for r in results.values() if r["status"] in ("error", "skipped")]
-    episodes = sum(count_finished(dirs[s.id]) for s in specs)
+    episodes = sum(len(RunDir(dirs[s.id]).finished()) for s in specs)
     print(
         f"{episodes}/{sum(s.episodes for s in specs)} episodes finished; "
         f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else "")

@@ -28,7 +28,7 @@ from typing import Any
 from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.experiments.layout import checkpoint_dir
+from pillagerbench.rundir import RunDir
 
 PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
 # keys of the top-level config that belong to the experiment machinery, not to one series
@@ -375,7 +375,7 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
             blue,
             repetition,
         ) and spec.group is None:
-            path = checkpoint_dir(run_dir / "series" / spec.id, episode, "red")
+            path = RunDir(run_dir / "series" / spec.id).checkpoint(episode, "red")
             if (path / "team.json").exists():
                 return path.resolve()
             raise ConfigError(

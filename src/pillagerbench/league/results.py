@@ -8,12 +8,11 @@ from pathlib import Path
 
 import pandas as pd
 
-from pillagerbench.experiments.layout import LEDGER
-from pillagerbench.experiments.series import read_finished
 from pillagerbench.league.ratings import Outcome
 from pillagerbench.league.rounds import round_dirs
 from pillagerbench.llm.ledger import read_ledger
 from pillagerbench.metrics.load import Runs, load_runs
+from pillagerbench.rundir import LEDGER, RunDir
 
 
 @dataclass
@@ -64,7 +63,7 @@ def spent(league_dir: Path) -> Spent:
     out = Spent()
     for d in round_dirs(league_dir):
         for series in (d / "series").glob("*"):
-            finished = read_finished(series)[0].values()
+            finished = RunDir(series).finished().values()
             out.episodes += len(finished)
             out.hours += sum(float(r.get("duration_s") or 0.0) for r in finished) / 3600
             if (series / LEDGER).exists():

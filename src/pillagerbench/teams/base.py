@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar
 
+from pillagerbench.rundir import LastEpisode
 from pillagerbench.scenarios import Scenario, Side
 
 
@@ -29,7 +30,7 @@ class TeamContext:
     observations: dict[str, list] = field(default_factory=dict)  # events from the players' reset
     episode_length: float = 120.0
     deadline: float | None = None  # time.monotonic() at the whistle (set when the game starts)
-    last_episode: dict[str, Any] = field(default_factory=dict)  # what the match recorded last episode
+    last_episode: LastEpisode = field(default_factory=lambda: LastEpisode())  # what the team saw of its last episode
     seed: int = 0
     llm: Any = None  # an LLM client for LLM teams (pillagerbench.llm)
     # the LLM teams' loop (config `protocol`): "pillagerbench" (ours: reruns, re-asks) or "upstream"

@@ -1,0 +1,12 @@
+"""The run directory: one owner for every path and record a run writes and reads (docs/architecture.md).
+
+`RunDir` knows every path of a plain run or an experiment's series directory, appends and reads the
+episode records, tells what is finished and makes a directory consistent after a crash; `EpisodeRecord`
+is an episode's record (its line in episodes.jsonl) and `LastEpisode` what a team sees of its last
+episode. Every writer and reader of run directories goes through this package.
+"""
+
+from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
+from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, winner_of
+
+__all__ = ["EPISODES", "LEDGER", "EpisodeRecord", "LastEpisode", "RunDir", "episode_index", "winner_of"]

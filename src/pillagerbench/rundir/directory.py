@@ -1,0 +1,201 @@
+"""Every path of a run directory (a plain `pillagerbench run` or one series of an experiment), the
+episode records in it, and its repair after a crash.
+
+    manifest.json, episodes.jsonl        the config and versions; one line per finished episode
+    episode_NNN/                         an episode's files (episode.json, timeline.json, chat.txt, events/, ...)
+    llm_calls.jsonl, logs/, server*.log  the LLM ledger, the bots' logs, the server's log
+    series.json                          an experiment's series: its SeriesSpec (absent for a plain run)
+    state/episode_NNN/<side>/            both teams' state after the last finished episode (for resume)
+    state/episode_NNN/ledger_offset      size of llm_calls.jsonl at the end of that episode
+    checkpoints/episode_NNN/<side>/      checkpoints kept by the series' policy (team.json, ...)
+    live.json                            the episode being played: clock and scores (progress display)
+    discarded/                           half-written episodes (and their ledger lines) moved aside on resume
+
+An episode is finished when its line is in episodes.jsonl; the line is written last, after the
+episode's files and the teams' state.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import time
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
+
+EPISODES = "episodes.jsonl"
+LEDGER = "llm_calls.jsonl"
+_EPISODE = "episode_"
+
+
+def episode_index(name: str) -> int | None:
+    """The N of a directory named `episode_N` (None for any other name)."""
+    if not name.startswith(_EPISODE):
+        return None
+    try:
+        return int(name[len(_EPISODE) :])
+    except ValueError:
+        return None
+
+
+def _write_json_atomic(path: Path, data: Any) -> None:
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(data))
+    os.replace(tmp, path)
+
+
+class RunDir:
+    """One run directory: its paths, its records, its repair."""
+
+    def __init__(self, path: str | Path):
+        self.path = Path(path)
+
+    def __repr__(self) -> str:
+        return f"RunDir({str(self.path)!r})"
+
+    # --- paths -------------------------------------------------------------------------------------
+
+    @property
+    def episodes_path(self) -> Path:
+        return self.path / EPISODES
+
+    @property
+    def ledger_path(self) -> Path:
+        return self.path / LEDGER
+
+    @property
+    def live_path(self) -> Path:
+        return self.path / "live.json"
+
+    @property
+    def series_path(self) -> Path:
+        return self.path / "series.json"
+
+    def episode(self, index: int) -> Path:
+        return self.path / f"{_EPISODE}{index:03d}"
+
+    def state(self, index: int) -> Path:
+        return self.path / "state" / f"{_EPISODE}{index:03d}"
+
+    def checkpoint(self, index: int, side: str) -> Path:
+        return self.path / "checkpoints" / f"{_EPISODE}{index:03d}" / side
+
+    def episode_dirs(self, parent: Path | None = None) -> list[tuple[int, Path]]:
+        """(index, path) of every episode_N directory under `parent` (default: the run directory), in order."""
+        parent = self.path if parent is None else parent
+        found = [(episode_index(d.name), d) for d in sorted(parent.glob(f"{_EPISODE}*")) if d.is_dir()]
+        return [(i, d) for i, d in found if i is not None]
+
+    # --- records -----------------------------------------------------------------------------------
+
+    def append(self, record: EpisodeRecord | dict[str, Any]) -> None:
+        """Add an episode's line to episodes.jsonl (flushed to disk: it marks the episode finished)."""
+        data = asdict(record) if isinstance(record, EpisodeRecord) else record
+        self.path.mkdir(parents=True, exist_ok=True)
+        with open(self.episodes_path, "a") as f:
+            f.write(json.dumps(data) + "\n")
+            f.flush()
+            os.fsync(f.fileno())
+
+    def write_episode(self, record: EpisodeRecord) -> None:
+        """The record beside the episode's files (episode.json), finished or failed."""
+        self.episode(record.episode).mkdir(parents=True, exist_ok=True)
+        (self.episode(record.episode) / "episode.json").write_text(json.dumps(asdict(record), indent=1))
+
+    def read(self) -> tuple[dict[int, dict], int, int]:
+        """Finished episodes by index from episodes.jsonl, the byte length of its good lines, and its size."""
+        if not self.episodes_path.exists():
+            return {}, 0, 0
+        data = self.episodes_path.read_bytes()
+        finished: dict[int, dict] = {}
+        good = 0
+        for raw in data.splitlines(keepends=True):
+            if not raw.endswith(b"\n"):
+                break  # cut by a crash
+            try:
+                rec = json.loads(raw)
+            except ValueError:
+                break
+            finished.setdefault(int(rec["episode"]), rec)
+            good += len(raw)
+        return finished, good, len(data)
+
+    def finished(self) -> dict[int, dict]:
+        return self.read()[0]
+
+    def records(self) -> list[dict]:
+        """Every line of episodes.jsonl in order (a torn last line left out)."""
+        return list(self.finished().values()) if self.episodes_path.exists() else []
+
+    def last_seen(self, record: dict[str, Any], timeline: list[dict[str, Any]] | None = None) -> LastEpisode:
+        """What a team sees of a finished episode, read from its directory where not given. The match
+        builds it after each episode; a resumed series rebuilds it from the directory, the same."""
+        out = self.episode(int(record["episode"]))
+        if timeline is None:
+            path = out / "timeline.json"
+            timeline = json.loads(path.read_text()) if path.exists() else []
+        chat = out / "chat.txt"
+        return {
+            "record": record,
+            "events_dir": str(out / "events"),
+            "timeline": timeline,
+            "chat": chat.read_text().splitlines() if chat.exists() else [],
+        }
+
+    def write_live(self, status: dict[str, Any]) -> None:
+        _write_json_atomic(self.live_path, {**status, "ts": time.time()})
+
+    def read_live(self) -> dict[str, Any]:
+        try:
+            return json.loads(self.live_path.read_text())
+        except (OSError, ValueError):
+            return {}
+
+    # --- repair ------------------------------------------------------------------------------------
+
+    def _discard(self, path: Path, note: list[str]) -> None:
+        target = self.path / "discarded" / f"{path.name}.{time.strftime('%Y%m%d-%H%M%S')}"
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(str(path), str(target))
+        note.append(f"{path.name} -> discarded/{target.name}")
+
+    def _keep_tail(self, name: str, data: bytes) -> None:
+        (self.path / "discarded").mkdir(exist_ok=True)
+        (self.path / "discarded" / f"{name}.tail.{time.strftime('%Y%m%d-%H%M%S')}").write_bytes(data)
+
+    def recover(self) -> tuple[dict[int, dict], list[str]]:
+        """Make the directory consistent after a crash; returns finished episodes and what was discarded:
+        a torn last line, the unfinished episodes' directories, state and checkpoints, and their ledger lines."""
+        note: list[str] = []
+        finished, good, size = self.read()
+        if good < size:
+            self._keep_tail(EPISODES, self.episodes_path.read_bytes()[good:])
+            with open(self.episodes_path, "r+b") as f:
+                f.truncate(good)
+            note.append(f"a torn last line of {EPISODES} ({size - good} bytes)")
+        for i, d in self.episode_dirs():
+            if i not in finished:
+                self._discard(d, note)
+        for parent in (self.path / "state", self.path / "checkpoints"):
+            for i, d in self.episode_dirs(parent) if parent.exists() else []:
+                if i not in finished:
+                    shutil.rmtree(d, ignore_errors=True)
+        if self.ledger_path.exists():
+            offset = 0
+            if finished:
+                offset_file = self.state(max(finished)) / "ledger_offset"
+                whole = self.ledger_path.stat().st_size
+                offset = int(offset_file.read_text()) if offset_file.exists() else whole  # older run: keep all
+            if self.ledger_path.stat().st_size > offset:
+                data = self.ledger_path.read_bytes()
+                self._keep_tail(LEDGER, data[offset:])
+                with open(self.ledger_path, "r+b") as fh:
+                    fh.truncate(offset)
+                calls = data[offset:].count(b"\n")
+                note.append(f"{LEDGER}: {calls} call(s) of the unfinished episode")
+        self.live_path.unlink(missing_ok=True)
+        return finished, note

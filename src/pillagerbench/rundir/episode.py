@@ -1,0 +1,57 @@
+"""An episode's record (its line in episodes.jsonl and its episode.json) and what a team sees of a
+finished episode (`TeamContext.last_episode`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+from typing import Any, TypedDict
+
+
+@dataclass
+class EpisodeRecord:
+    scenario: str
+    red: str
+    blue: str
+    episode: int
+    red_score: float | None = None
+    blue_score: float | None = None
+    winner: str | None = None
+    duration_s: float = 0.0  # wall time of the whole episode (reset .. post-game)
+    status: str = "ok"  # ok | failed
+    error: str | None = None
+    reset_s: float = 0.0
+    pre_game_s: dict[str, float] = field(default_factory=dict)
+    game_s: float = 0.0
+    iterations: dict[str, list[int]] = field(default_factory=dict)
+    seed: int = 0
+    player_order: list[str] = field(default_factory=list)  # the server's player order this episode
+    server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
+    bot_lag: dict[str, dict | None] = field(default_factory=dict)  # player -> physics-tick lag in the game (load.py)
+    lagged: bool = False  # played under lag: a threshold of load.py crossed (scores may be low for it)
+    lag_reason: str | None = None
+    problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
+    refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
+    scoring: str = "clean"  # which of `scores` red_score/blue_score are (config `scoring`)
+    scores: dict[str, dict[str, float]] = field(default_factory=dict)  # scoring -> side -> final score
+    protocol: str = "pillagerbench"  # the LLM teams' loop (config `protocol`)
+    runs: dict[str, int] = field(default_factory=dict)  # code runs started per player (upstream's steps)
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
+        """A record read back (older versions lack later keys: their defaults; unknown keys are dropped)."""
+        known = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in data.items() if k in known})
+
+
+class LastEpisode(TypedDict, total=False):
+    """What a team sees of its last finished episode: its record, its events directory, its score
+    timeline and the world chat ("<player> message" lines, game-master lines plain)."""
+
+    record: dict[str, Any]
+    events_dir: str
+    timeline: list[dict[str, Any]]
+    chat: list[str]
+
+
+def winner_of(red: float, blue: float) -> str:
+    return "red" if red > blue else "blue" if blue > red else "tie"
