@@ -135,50 +135,65 @@ class ChainOfThought(Team):
         if ctx.llm is None:
             rec["status"], rec["error"] = "failed", "no LLM client (the match gave this team none)"
         else:
-            kw: dict[str, Any] = {}
-            if self.temperature is not None:
-                kw["temperature"] = float(self.temperature)
-            if self.max_tokens is not None:
-                kw["max_tokens"] = int(self.max_tokens)
-            attempts = 1 if ctx.upstream_protocol else self.attempts
-            for attempt in range(attempts):
-                t0 = time.monotonic()
-                try:
-                    answer = await ctx.llm.complete(messages, role=ROLE, **kw)
-                except LLMError as exc:
-                    rec["attempts"].append(
-                        {"error": f"{type(exc).__name__}: {exc}", "latency_s": round(time.monotonic() - t0, 3)}
-                    )
-                    rec["error"] = f"{type(exc).__name__}: {exc}"
-                    break
-                result = programs_from_answer(answer.text, players, ctx.scenario.primitives)
-                problems = list(result.problems)
-                if answer.truncated:
-                    problems.insert(0, "the answer was cut off (too long): be shorter")
+            best = await self._ask(ctx, messages, rec)
+        self._take_programs(players, best, rec)
+        self._write(ctx)
+
+    async def _ask(self, ctx: TeamContext, messages: list[dict], rec: dict[str, Any]) -> ProgramsResult | None:
+        """Asks for every player's code, retrying with the problems while some player has none;
+        each attempt goes into `rec`. Returns the answer with the most usable programs."""
+        assert ctx.llm is not None
+        players = ctx.side.player_names
+        kw: dict[str, Any] = {}
+        if self.temperature is not None:
+            kw["temperature"] = float(self.temperature)
+        if self.max_tokens is not None:
+            kw["max_tokens"] = int(self.max_tokens)
+        attempts = 1 if ctx.upstream_protocol else self.attempts
+        best: ProgramsResult | None = None
+        for attempt in range(attempts):
+            t0 = time.monotonic()
+            try:
+                answer = await ctx.llm.complete(messages, role=ROLE, **kw)
+            except LLMError as exc:
                 rec["attempts"].append(
-                    {
-                        "answer": answer.text,
-                        "finish_reason": answer.finish_reason,
-                        "latency_s": answer.latency_s,
-                        "output_tokens": answer.output_tokens,
-                        "problems": problems,
-                    }
+                    {"error": f"{type(exc).__name__}: {exc}", "latency_s": round(time.monotonic() - t0, 3)}
                 )
-                if best is None or result.usable >= best.usable:
-                    best = result
-                if result.complete:
-                    break
-                if attempt + 1 < attempts:
-                    messages = messages + [
-                        {"role": "assistant", "content": answer.text},
-                        {
-                            "role": "user",
-                            "content": PROMPTS["retry"].render(
-                                problems="\n".join(f"- {p}" for p in problems), players=", ".join(players)
-                            ),
-                        },
-                    ]
-                    rec["messages"] = messages
+                rec["error"] = f"{type(exc).__name__}: {exc}"
+                break
+            result = programs_from_answer(answer.text, players, ctx.scenario.primitives)
+            problems = list(result.problems)
+            if answer.truncated:
+                problems.insert(0, "the answer was cut off (too long): be shorter")
+            rec["attempts"].append(
+                {
+                    "answer": answer.text,
+                    "finish_reason": answer.finish_reason,
+                    "latency_s": answer.latency_s,
+                    "output_tokens": answer.output_tokens,
+                    "problems": problems,
+                }
+            )
+            if best is None or result.usable >= best.usable:
+                best = result
+            if result.complete:
+                break
+            if attempt + 1 < attempts:
+                messages = messages + [
+                    {"role": "assistant", "content": answer.text},
+                    {
+                        "role": "user",
+                        "content": PROMPTS["retry"].render(
+                            problems="\n".join(f"- {p}" for p in problems), players=", ".join(players)
+                        ),
+                    },
+                ]
+                rec["messages"] = messages
+        return best
+
+    def _take_programs(self, players: list[str], best: ProgramsResult | None, rec: dict[str, Any]) -> None:
+        """Each player's program from the best answer (or why it has none), the record's status, and
+        what the next episode's prompt shows of this one."""
         for k, name in enumerate(players):
             program = best.programs[k] if best else None
             self.programs[k] = program
@@ -197,7 +212,6 @@ class ChainOfThought(Team):
         self.last_problems = [
             f"{name}: {why}" if not why.startswith(f"{name}:") else why for name, why in rec["failures"].items()
         ]
-        self._write(ctx)
 
     async def play(self, ctx: TeamContext) -> None:
         players = ctx.side.player_names
