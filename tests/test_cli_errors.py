@@ -183,3 +183,74 @@ def test_a_port_in_use_is_one_line(tmp_path):
 def test_an_experiment_checks_its_teams_and_providers_before_anything_starts(tmp_path, args, expected):
     (line,) = one_line_refusal(tmp_path, "run", *args)
     assert expected in line, line
+
+
+# --- The small wrong things of issue 31, in-process (cli.main) --------------------------------------------
+
+KEY = "sk-proj-Abcdefghijklmnop1234567890"
+
+
+def refused(capsys, *argv):
+    """cli.main(argv) refuses in one line (exit 2, nothing on stdout); that line."""
+    from pillagerbench import cli
+
+    assert cli.main(list(argv)) == 2
+    out, err = capsys.readouterr()
+    (line,) = err.strip().splitlines()
+    assert out == "" and "Traceback" not in err
+    return line
+
+
+@pytest.mark.parametrize(
+    "argv, where",
+    [
+        (["run", "red=cot", "llm=openai", f"llm.api_key_env={KEY}"], "pillagerbench run: llm.api_key_env: "),
+        (["run", "red=cot", f"red.llm.api_key_env={KEY}"], "pillagerbench run: red.llm.api_key_env: "),
+        (["llm-ping", "llm=openai", f"llm.api_key_env={KEY}"], "pillagerbench llm-ping: llm.api_key_env: "),
+    ],
+)
+def test_a_key_given_as_api_key_env_is_never_echoed(capsys, monkeypatch, tmp_path, argv, where):
+    monkeypatch.chdir(tmp_path)
+    line = refused(capsys, *argv)
+    assert KEY not in line and line.startswith(where)
+    assert "looks like a key, not the name of an environment variable" in line and "export OPENAI_API_KEY=" in line
+    assert not (tmp_path / "runs").exists()
+
+
+def test_llm_ping_without_the_key_variable_is_a_user_error(capsys, monkeypatch):
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+    line = refused(capsys, "llm-ping", "llm=openai")
+    assert line.startswith("pillagerbench llm-ping: openai: environment variable OPENAI_API_KEY is not set")
+
+
+def test_report_with_a_missing_calibration_file_names_it_and_reference(capsys, tmp_path):
+    from tests.metrics.fake_runs import write_run
+
+    run = write_run(tmp_path / "run", "mushroom_war", "passive", "do_nothing", [(3, 1)])
+    missing = tmp_path / "foo.json"
+    line = refused(capsys, "report", str(run), "--calibration", str(missing), "--out", str(tmp_path / "out"))
+    assert line.startswith(f"pillagerbench report: --calibration {missing}: no such file")
+    assert "--calibration reference" in line and "Errno" not in line
+
+
+def test_an_unknown_experiment_team_is_named_as_the_user_typed_it(capsys, monkeypatch, tmp_path):
+    monkeypatch.chdir(tmp_path)
+    line = refused(capsys, "run", "experiment=main_benchmark", "experiment.team=cott")
+    assert line.startswith("pillagerbench run: experiment.team=cott: unknown team 'cott'; valid teams: aggressive")
+    assert "red=" not in line and "cot," in line
+    assert not (tmp_path / "runs").exists()
+
+
+def test_an_environment_variable_given_as_an_override_gets_the_export_hint(capsys):
+    line = refused(capsys, "run", f"OPENAI_API_KEY={KEY}")
+    assert line.startswith("pillagerbench run: OPENAI_API_KEY: no such key; it looks like an environment variable")
+    assert "export OPENAI_API_KEY=..." in line and KEY not in line
+
+
+def test_an_experiment_key_without_an_experiment_gets_the_hint(capsys):
+    line = refused(capsys, "run", "experiment.team=cot")
+    assert line.startswith("pillagerbench run: experiment.team: no such key: no experiment is chosen; ")
+    assert "choose one first with experiment=NAME" in line and "main_benchmark" in line
+    line = refused(capsys, "run", "experiment=main_benchmark", "experiment.tem=cot")
+    assert line.startswith("pillagerbench run: experiment.tem: no such key (experiment main_benchmark has keys ")
+    assert "team, team_options" in line

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 import time
 import traceback
@@ -56,21 +57,41 @@ def run_main(argv: list[str]) -> int:
     return run_match(cfg)
 
 
+HELP_FLAGS = ("-h", "--help")
+
+
 def usage() -> str:
     lines = ["usage: pillagerbench <command> [key=value ...]", "", "commands:"]
     lines += [f"  {name:<10} {help_}" for name, (_, help_) in COMMANDS.items()]
+    lines += ["", "pillagerbench <command> --help: its keys, their defaults and choices, and examples", ""]
+    lines += ["pillagerbench --version: the installed version"]
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv or argv[0] in ("-h", "--help", "help"):
+    if argv[:1] == ["help"] and argv[1:2] and argv[1] in COMMANDS:  # `help run` = `run --help`
+        argv = [argv[1], "--help", *argv[2:]]
+    if not argv or argv[0] in (*HELP_FLAGS, "help"):
         print(usage())
+        return 0
+    if argv[0] in ("-V", "--version"):
+        from pillagerbench.cli_help import version
+
+        print(f"pillagerbench {version()}")
         return 0
     name, rest = argv[0], argv[1:]
     if name not in COMMANDS:
         print(f"pillagerbench: unknown command {name!r}; valid commands: {', '.join(COMMANDS)}", file=sys.stderr)
         return 2
+    if any(a in HELP_FLAGS for a in rest):  # help only: the command itself never starts
+        from pillagerbench.cli_help import command_help
+
+        try:
+            print(command_help(name, COMMANDS[name], rest), flush=True)
+        except BrokenPipeError:  # `... --help | head`: the reader has what it wanted
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     module_name, func_name = COMMANDS[name][0].split(":")
     from pillagerbench.arena.server import ArenaServerError
     from pillagerbench.config import ConfigError

@@ -99,6 +99,84 @@ def _team_keys(side: str, overrides: list[str]) -> str:
     return f"team {name} has {'options ' + ', '.join(keys) if keys else 'no options'}"
 
 
+ENV_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_KEY_PREFIX = re.compile(r"(sk|rk|pk|gsk|hf|ghp|xai|key)[-_]", re.I)
+
+
+def looks_like_key(value: str) -> bool:
+    """An API key, not a name: a provider's key prefix (sk-, gsk_, hf_, ...) or a long run of
+    letters and digits with both cases or digits (environment variable names are short words)."""
+    value = str(value)
+    if _KEY_PREFIX.match(value):
+        return True
+    return (
+        len(value) >= 24
+        and re.fullmatch(r"[A-Za-z0-9_\-.]+", value) is not None
+        and bool(re.search(r"\d", value))
+        and bool(re.search(r"[a-z]", value))
+    )
+
+
+def _masked(text: str, overrides: list[str]) -> str:
+    """`text` without any value of `overrides` that looks like a key."""
+    for o in overrides:
+        value = o.partition("=")[2]
+        if value and looks_like_key(value):
+            text = text.replace(value, "***")
+    return text
+
+
+def flag_problem(overrides: list[str]) -> str | None:
+    """`--episodes 3` / `--episodes=3`: this command takes key=value; the message shows how."""
+    for i, o in enumerate(overrides):
+        if not o.startswith("-") or o in ("-", "--"):
+            continue
+        key, sep, value = o.lstrip("-").partition("=")
+        following = overrides[i + 1] if i + 1 < len(overrides) else ""
+        given = o
+        if not sep and following and "=" not in following and not following.startswith("-"):
+            given, value = f"{o} {following}", following
+        if value and looks_like_key(value):  # never echo a key
+            given, value = given.replace(value, "..."), "..."
+        return f"{given}: write {key}={value or 'VALUE'} (options are key=value, without dashes; --help lists the keys)"
+    return None
+
+
+def _experiment_chosen(overrides: list[str]) -> str | None:
+    chosen = [v for k, sep, v in (o.partition("=") for o in overrides) if sep and k.lstrip("+~") == "experiment"]
+    return chosen[-1] if chosen and chosen[-1] not in ("null", "") else None
+
+
+def _no_such_key(key: str, overrides: list[str]) -> str:
+    if ENV_NAME.fullmatch(key) and key.isupper():  # OPENAI_API_KEY=...: an environment variable, not a key
+        return (
+            f"{key}: no such key; it looks like an environment variable: set it in the shell, not here "
+            f"(export {key}=...), and name it with llm.api_key_env={key} if the preset does not already"
+        )
+    if key.startswith("experiment.") and not _experiment_chosen(overrides):
+        return (
+            f"{key}: no such key: no experiment is chosen; choose one first with experiment=NAME "
+            f"(valid: {', '.join(config_options('experiment'))})"
+        )
+    experiment = _experiment_chosen(overrides)
+    if key.startswith("experiment.") and experiment in config_options("experiment"):
+        from importlib import resources
+
+        text = (resources.files("pillagerbench.conf") / "experiment" / f"{experiment}.yaml").read_text()
+        keys = [str(k) for k in OmegaConf.create(text) if k != "defaults"]
+        return f"{key}: no such key (experiment {experiment} has keys {', '.join(keys)})"
+    return f"{key}: no such key (conf/config.yaml lists the top-level keys; --help lists them all)"
+
+
+def config_options(group: str) -> list[str]:
+    """The options of a config group: the YAML files of `conf/<group>/` (without `base` and `_*`)."""
+    from importlib import resources
+
+    folder = resources.files("pillagerbench.conf") / group
+    names = [p.name.removesuffix(".yaml") for p in folder.iterdir() if p.name.endswith(".yaml")]
+    return sorted(n for n in names if n != "base" and not n.startswith("_"))
+
+
 def one_line(message: str, overrides: list[str] | None = None) -> str:
     """Hydra's message without its config search path, on one line, in our words."""
     missing = re.search(r"Could not find '(\w+)/([^']*)'", message)
@@ -113,13 +191,16 @@ def one_line(message: str, overrides: list[str] | None = None) -> str:
         side = key.split(".")[0]
         if side in GROUP_ALIASES:
             return f"{key}: no such option ({_team_keys(side, overrides or [])})"
-        return f"{key}: no such key (conf/config.yaml lists the top-level keys; docs/ explain them)"
+        return _no_such_key(key, overrides or [])
 
     first = message.strip().splitlines()[0] if message.strip() else message
-    return f"bad override: {first}"
+    return _masked(f"bad override: {first}", overrides or [])
 
 
 def load_config(overrides: list[str] | None = None, config_name: str = "config") -> DictConfig:
+    flag = flag_problem(list(overrides or []))
+    if flag:
+        raise ConfigError(flag)
     GlobalHydra.instance().clear()
     try:
         with initialize_config_module(config_module="pillagerbench.conf", version_base="1.3"):

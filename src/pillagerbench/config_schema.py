@@ -9,9 +9,12 @@ import socket
 from typing import Any, Literal
 
 from omegaconf import OmegaConf
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic_core import PydanticCustomError
 
-from pillagerbench.config import ConfigError, to_dict
+from pillagerbench.config import ENV_NAME, ConfigError, looks_like_key, to_dict
+
+SECRET = "secret"  # the error type of a value that must not be echoed (problems() names the key only)
 
 
 class _Strict(BaseModel):
@@ -60,6 +63,19 @@ class LLMConfig(_Strict):
     price: dict[Literal["input_per_1m", "output_per_1m"], float | None]
     budget: dict[Literal["max_calls", "max_input_tokens", "max_output_tokens", "max_cost_usd"], float | None]
 
+    @field_validator("api_key_env")
+    @classmethod
+    def _a_variable_name(cls, value: str | None) -> str | None:
+        """The NAME of the variable holding the key; a key here would be echoed and recorded."""
+        if value is None or (ENV_NAME.fullmatch(value) and not looks_like_key(value)):
+            return value
+        what = "looks like a key, not" if looks_like_key(value) else "is not"
+        raise PydanticCustomError(
+            SECRET,
+            f"{what} the name of an environment variable; put the key in a variable (export OPENAI_API_KEY=...) "
+            "and give its name: llm.api_key_env=OPENAI_API_KEY",
+        )
+
 
 class RunConfig(BaseModel):
     """The top-level keys of conf/config.yaml (groups are checked on their own)."""
@@ -102,6 +118,8 @@ def problems(model: type[BaseModel], data: Any, prefix: str = "") -> list[str]:
                 out.append(f"{key}: unknown key")
             elif e["type"] == "missing":
                 out.append(f"{key}: missing")
+            elif e["type"] == SECRET:
+                out.append(f"{key}: {e['msg']}")
             else:
                 out.append(f"{key}={e.get('input')!r}: {e['msg'][0].lower() + e['msg'][1:]}")
         return out

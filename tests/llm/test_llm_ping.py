@@ -33,10 +33,13 @@ def test_ping_provider_error_and_refused(fake_llm, closed_port, capsys):
     assert "LLMConnectionError" in capsys.readouterr().err
 
 
-def test_ping_missing_key_variable(monkeypatch, capsys):
+def test_ping_missing_key_variable_is_a_user_error(monkeypatch, capsys):
+    """The user's settings, not the provider: exit 2 and the prefix of every command's user errors
+    (exit 1 stays for what the check is for: a provider that cannot be reached, refuses or fails)."""
     monkeypatch.delenv("OPENAI_API_KEY", raising=False)
-    assert cli_main(["llm-ping", "llm=openai"]) == 1
-    assert "OPENAI_API_KEY is not set" in capsys.readouterr().err
+    assert cli_main(["llm-ping", "llm=openai"]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line.startswith("pillagerbench llm-ping: openai: ") and "OPENAI_API_KEY is not set" in line
 
 
 def test_ping_bad_preset_is_config_error(capsys):

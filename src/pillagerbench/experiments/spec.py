@@ -132,6 +132,18 @@ class _Composer:
         return self.cache[key].copy()
 
 
+def _known_team(name: Any, key: str) -> str:
+    """`name` if a team goes by it; else a ConfigError naming the experiment's key the user set
+    (experiment.team=..., not the red=... of the series built from it) and the valid teams."""
+    from pillagerbench.teams import find_team
+
+    try:
+        find_team(str(name))
+    except ConfigError as exc:
+        raise ConfigError(f"{key}={name}: {exc}") from None
+    return str(name)
+
+
 def _variants(exp: DictConfig) -> dict[str, dict]:
     base = {
         "team": exp.get("team"),
@@ -143,7 +155,7 @@ def _variants(exp: DictConfig) -> dict[str, dict]:
     if not raw:
         if not base["team"]:
             raise ConfigError(f"experiment {exp.get('name')!r} needs `team` (experiment.team=NAME)")
-        return {str(base["team"]): base}
+        return {_known_team(base["team"], "experiment.team"): base}
     out = {}
     for label, v in raw.items():
         v = v or {}
@@ -151,13 +163,14 @@ def _variants(exp: DictConfig) -> dict[str, dict]:
         merged.update({k: v[k] for k in ("team", "team_options", "llm", "llm_options") if k in v})
         if not merged["team"]:
             raise ConfigError(f"variant {label!r} of experiment {exp.get('name')!r} names no team")
+        _known_team(merged["team"], f"experiment.variants.{label}.team" if "team" in v else "experiment.team")
         out[str(label)] = merged
     return out
 
 
 def _opponents(exp: DictConfig, key: str, scenario: str) -> list[str]:
     chosen = exp.get(key)
-    return list(chosen) if chosen else builtin_teams(scenario)
+    return [_known_team(t, f"experiment.{key}") for t in chosen] if chosen else builtin_teams(scenario)
 
 
 class _Builder:

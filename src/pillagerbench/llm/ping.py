@@ -1,7 +1,10 @@
 """`pillagerbench llm-ping [llm=PRESET] [llm.key=value ...]`: one short request, to check a provider.
 
 Prints the answer, latency and token counts and exits 0, or prints the provider's error to
-stderr and exits 1. Neither cache nor ledger is used: the request always reaches the provider.
+stderr and exits 1 (the provider is unreachable, refused the key or failed: what the check is for).
+A mistake in the settings (unknown preset, a bad value, the key's variable not set) is a user error
+like any other command's: one line, exit 2. Neither cache nor ledger is used: the request always
+reaches the provider.
 """
 
 from __future__ import annotations
@@ -9,11 +12,11 @@ from __future__ import annotations
 import asyncio
 import sys
 
-from pillagerbench.config import load_config
+from pillagerbench.config import ConfigError, load_config
 from pillagerbench.config_schema import LLMConfig, check, problems
 
 from .client import LLMClient
-from .errors import LLMError
+from .errors import LLMConfigError, LLMError
 
 PROMPT = "This is a connectivity check. Reply with the single word: pong"
 
@@ -25,9 +28,11 @@ async def _ping(cfg) -> int:
         s = client.settings
         async with client:
             answer = await client.complete(PROMPT, role="ping")
-    except LLMError as exc:
+    except LLMConfigError as exc:  # the user's settings (cli.main prints it: exit 2)
+        raise ConfigError(f"{cfg.llm.provider}: {exc.detail}") from None
+    except LLMError as exc:  # the provider's answer, or none
         where = f"{s.provider} model {s.model} at {s.base_url}" if s else f"{cfg.llm.provider}"
-        print(f"llm-ping: {where}: {type(exc).__name__}: {exc.detail}", file=sys.stderr)
+        print(f"pillagerbench llm-ping: {where}: {type(exc).__name__}: {exc.detail}", file=sys.stderr)
         return 1
     print(f"provider: {s.provider}  model: {answer.model}  base_url: {s.base_url}")
     print(f"answer: {answer.text!r}")

@@ -105,7 +105,14 @@ def reference_calibration(want: dict[str, tuple[str, float]]) -> dict:
 
 def explicit_calibration(explicit: Path, want: dict[str, tuple[str, float]]) -> dict:
     """--calibration: a calibration.json, or `reference` for upstream's reference scores."""
-    return reference_calibration(want) if str(explicit) == REFERENCE_CALIBRATION else read_calibration(explicit)
+    if str(explicit) == REFERENCE_CALIBRATION:
+        return reference_calibration(want)
+    if not Path(explicit).is_file():
+        raise ReportError(
+            f"--calibration {explicit}: no such file; give a calibration.json (pillagerbench calibrate writes one) "
+            f"or --calibration {REFERENCE_CALIBRATION} for upstream's reference scores"
+        )
+    return read_calibration(explicit)
 
 
 def resolve(
