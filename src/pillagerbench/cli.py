@@ -47,6 +47,10 @@ def run_main(argv: list[str]) -> int:
     cfg = load_config(argv)
     experiment = cfg.get("experiment") is not None or bool(cfg.get("resume"))
     check_run_config(cfg, teams=not experiment)  # the whole config, before anything is created
+    if cfg.get("plan"):  # what the run would play, take and cost; plays nothing (experiments/plan.py)
+        from pillagerbench.experiments.plan import main_plan
+
+        return main_plan(cfg, argv)
     if experiment:  # many series, parallel, resumable (they run the preflight on their series)
         from pillagerbench.experiments.runner import main_experiment
 

@@ -99,6 +99,7 @@ class RunConfig(BaseModel):
     resume: str | None
     calibration: str | None
 
+    plan: bool = False  # runs from before this key: the default
 
 def _where(prefix: str, loc: tuple) -> str:
     return ".".join([prefix, *map(str, loc)] if prefix else map(str, loc))

@@ -32,7 +32,7 @@ from pillagerbench.rundir import RunDir
 
 PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
 # keys of the top-level config that belong to the experiment machinery, not to one series
-RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir")
+RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
 SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario")
 

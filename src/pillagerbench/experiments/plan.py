@@ -1,0 +1,398 @@
+"""`pillagerbench run ... plan=true`: what a run would play, how long it would take on this machine,
+how many LLM calls it would make and what they would cost; nothing is played (no server, no run
+directory). docs/experiments.md ("Before a run: plan=true") lists the assumptions; in short:
+
+- Series and episodes: the experiment's own (experiments/spec.py), or the one match of a plain run;
+  with resume=RUN_DIR only the episodes still to play.
+- Wall time: each series costs SERIES_OVERHEAD_S (server start, logins) plus per episode its
+  `episode_length` (real time), EPISODE_OVERHEAD_S (arena reset, pre- and post-game of built-in
+  teams) and, for LLM teams, the pre-game's chain of LLM calls at an assumed latency; the series
+  are then scheduled as runner.run_all does (`parallel` at once, in order, each after the series it
+  starts from), plus RUN_OVERHEAD_S once. The overheads were measured with
+  `python benchmarks/plan_accuracy.py --overheads` (figures in docs/experiments.md).
+- LLM calls per team and episode: cot, one call in the pre-game (up to `attempts` when answers
+  cannot be used); tacticrafter, in the pre-game the causal model (if on), the opponent model (if
+  on, from the second episode), the tactics (unless preset or frozen) and one action call per
+  player, each up to `attempts`; in the game up to (iterations - 1) critic + action pairs per
+  player (none at the low end). `random` and the built-in teams make none.
+- Tokens per call: input = the role's prompt files rendered with the scenario's description and
+  primitives documentation (measured now, at about 4 characters per token), at the high end plus
+  the dynamic parts (chat lines up to the team's cap, the last answer shown back); output = a
+  quarter of the output cap (`max_tokens`) at the low end, the cap at the high end.
+- Cost: tokens at the model's price (llm/prices.py); a model with no known price is "unknown".
+"""
+
+from __future__ import annotations
+
+import functools
+import heapq
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from omegaconf import OmegaConf
+
+from pillagerbench.experiments.spec import SeriesSpec, build_series
+
+# Measured by `python benchmarks/plan_accuracy.py --overheads` (do_nothing vs do_nothing, one series of
+# two 20 s episodes per scenario, parallel=1), twice, on the 2-core development machine at load average 4-5
+# (docs/experiments.md, "Before a run"): the mean of the four series and two runs.
+SERIES_OVERHEAD_S = 8.0  # a series' arena server start, world load, bot logins (5.2-7.9 s MW, 6.1-12.6 s DD)
+EPISODE_OVERHEAD_S = 0.45  # per episode beyond episode_length: arena and player reset, pre/post-game (0.15-0.93 s)
+RUN_OVERHEAD_S = 2.6  # once per run: the command's start, config composition, checks (2.0 and 3.1 s)
+# Assumed, not measured (no provider is reachable here): seconds per LLM call in a pre-game chain
+LATENCY_LOW_S = 2.0
+OUTPUT_TOKENS_PER_S = 50.0  # the high end's latency: the output cap at this rate, plus LATENCY_LOW_S
+LOW_OUTPUT_SHARE = 0.25  # the low end's answers use this share of the output cap
+CHAT_LINE_TOKENS = 20  # a chat line shown in a prompt (the high end's dynamic part)
+SHOW_SERIES = 40  # series listed one per line; the rest are counted
+
+
+def tokens(text: str) -> int:
+    return (len(text) + 3) // 4
+
+
+@dataclass
+class Calls:
+    """LLM calls of one team over some episodes: counts and tokens, low and high."""
+
+    low: int = 0
+    high: int = 0
+    in_low: int = 0
+    in_high: int = 0
+    out_low: int = 0
+    out_high: int = 0
+    chain_low: float = 0.0  # seconds of pre-game LLM calls in sequence
+    chain_high: float = 0.0
+
+    def add(self, n_low: int, n_high: int, prompt: tuple[int, int], cap: int) -> None:
+        self.low, self.high = self.low + n_low, self.high + n_high
+        self.in_low += n_low * prompt[0]
+        self.in_high += n_high * prompt[1]
+        self.out_low += int(n_low * cap * LOW_OUTPUT_SHARE)
+        self.out_high += n_high * cap
+
+    def __iadd__(self, other: Calls) -> Calls:
+        for k in self.__dataclass_fields__:
+            setattr(self, k, getattr(self, k) + getattr(other, k))
+        return self
+
+
+@dataclass
+class ModelCost:
+    label: str  # provider model
+    price: Any  # llm.prices.Price
+    calls: Calls = field(default_factory=Calls)
+
+    def cost(self) -> tuple[float | None, float | None]:
+        c = self.calls
+        return self.price.cost(c.in_low, c.out_low), self.price.cost(c.in_high, c.out_high)
+
+
+@dataclass
+class SeriesPlan:
+    spec: SeriesSpec
+    episodes: int  # still to play
+    teams: dict[str, str]  # side -> "team" or "team (LLM provider model)"
+    wall_low: float
+    wall_high: float
+
+
+@dataclass
+class Plan:
+    title: str
+    series: list[SeriesPlan]
+    episode_length: float
+    parallel: int
+    parallel_note: str | None
+    wall_low: float
+    wall_high: float
+    models: dict[str, ModelCost]
+
+    @property
+    def episodes(self) -> int:
+        return sum(s.episodes for s in self.series)
+
+
+# --- prompt sizes -------------------------------------------------------------------------------
+
+
+@functools.lru_cache(maxsize=8)
+def _scenario_texts(scenario: str) -> tuple[int, int, int]:
+    """(tokens of the scenario's description, of its primitives' docs, players per side)."""
+    from pillagerbench.players import primitives as prim
+    from pillagerbench.scenarios import make_scenario
+
+    sc = make_scenario(scenario)
+    return tokens(sc.description()), tokens(prim.docs([*sc.primitives, "mineflayer"])), len(sc.sides[0].players)
+
+
+@functools.lru_cache(maxsize=64)
+def _template_tokens(team: str, names: tuple[str, ...]) -> tuple[int, bool, bool]:
+    """Tokens of the prompt files `names` of a team, and whether they take the scenario and primitives."""
+    if team == "cot":
+        from pillagerbench.teams.cot.team import PROMPTS
+    else:
+        from pillagerbench.teams.tacticrafter.templates import PROMPTS
+    texts = [PROMPTS[n] for n in names]
+    return (
+        sum(tokens(t.text) for t in texts),
+        any("scenario" in t.placeholders for t in texts),
+        any("primitives" in t.placeholders for t in texts),
+    )
+
+
+def _prompt(team: str, names: tuple[str, ...], scenario: str, dynamic: int) -> tuple[int, int]:
+    """(low, high) input tokens of one call: the files with the scenario's texts; high adds `dynamic`."""
+    base, has_scenario, has_primitives = _template_tokens(team, names)
+    desc, docs, _ = _scenario_texts(scenario)
+    low = base + (desc if has_scenario else 0) + (docs if has_primitives else 0)
+    return low, low + dynamic
+
+
+# --- calls per team -----------------------------------------------------------------------------
+
+
+def _latency_high(cap: int) -> float:
+    return LATENCY_LOW_S + cap / OUTPUT_TOKENS_PER_S
+
+
+def team_calls(team: str, options: dict, llm: Any, scenario: str, episodes: range, upstream: bool) -> Calls:
+    """LLM calls of one team over the given episode indices (module docstring: the assumptions)."""
+    calls = Calls()
+    cap = int(llm.max_tokens or 512)
+    attempts = max(1, int(options.get("attempts") or 3))
+    _, _, players = _scenario_texts(scenario)
+    if team == "cot":
+        cap = int(options.get("max_tokens") or cap)
+        n = 1 if upstream else attempts
+        chat = int(options.get("max_chat_lines") or 0) * CHAT_LINE_TOKENS
+        for _ in episodes:
+            names = ("system", "user") + ("code_format",) * players
+            calls.add(1, n, _prompt("cot", names, scenario, chat + cap), cap)
+            calls.chain_low += LATENCY_LOW_S
+            calls.chain_high += n * _latency_high(cap)
+        return calls
+    if team != "tacticrafter":
+        return calls
+    roles = options.get("roles") or {}
+
+    def role_cap(role: str) -> int:
+        return int((roles.get(role) or {}).get("max_tokens") or cap)
+
+    causal = options.get("causal", True) if options.get("enable_causal") is None else options["enable_causal"]
+    opponent = options.get("opponent", True) if options.get("enable_opponent") is None else options["enable_opponent"]
+    iterations = max(1, int(options.get("iterations") or 10))
+    chat = int(options.get("max_chat_lines") or 0) * CHAT_LINE_TOKENS
+    for k in episodes:
+        chain_low = chain_high = 0.0
+        steps: list[tuple[str, tuple[str, ...]]] = []
+        if causal:
+            steps.append(("causal", ("causal_initial",) if k == 0 else ("causal_update",)))
+        if opponent and k > 0:
+            steps.append(("opponent", ("opponent_system", "opponent_user")))
+        if k == 0 and not options.get("preset_tactics"):
+            steps.append(("tactics", ("tactics_system", "tactics_examples", "tactics_initial")))
+        elif k > 0 and options.get("update_tactics", True):
+            steps.append(("tactics", ("tactics_system", "tactics_examples", "tactics_update")))
+        for role, names in steps:
+            c = role_cap(role)
+            calls.add(1, attempts, _prompt("tacticrafter", names, scenario, chat + c), c)
+            chain_low, chain_high = chain_low + LATENCY_LOW_S, chain_high + attempts * _latency_high(c)
+        act, crit = role_cap("action"), role_cap("critic")
+        action_prompt = _prompt("tacticrafter", ("action_system", "action_user"), scenario, chat + act)
+        critic_prompt = _prompt("tacticrafter", ("critic_system", "critic_user"), scenario, chat)
+        calls.add(players, players * (1 if upstream else attempts), action_prompt, act)  # first code, in parallel
+        chain_low, chain_high = chain_low + LATENCY_LOW_S, chain_high + attempts * _latency_high(act)
+        later = players * (iterations - 1)  # in the game: a critic and an action call per later iteration
+        calls.add(0, later, action_prompt, act)
+        calls.add(0, later, critic_prompt, crit)
+        calls.chain_low += chain_low
+        calls.chain_high += chain_high
+    return calls
+
+
+# --- the plan -----------------------------------------------------------------------------------
+
+
+def _sides(config: dict) -> list[tuple[str, str, dict, Any]]:
+    """(side, team, options with defaults, LLMSettings or None) of a series config."""
+    from pillagerbench.llm.presets import side_llm_config
+    from pillagerbench.llm.settings import LLMSettings
+    from pillagerbench.teams import declared_options, find_team
+
+    cfg = OmegaConf.create(config)
+    out = []
+    for side in ("red", "blue"):
+        name = str(cfg[side].name)
+        cls = find_team(name)
+        node = dict(config[side])
+        options = {**declared_options(name, cls), **{k: v for k, v in node.items() if k not in ("name", "llm")}}
+        llm = LLMSettings.from_config(side_llm_config(cfg, side).llm) if cls.uses_llm else None
+        out.append((side, name, options, llm))
+    return out
+
+
+def schedule(specs: list[SeriesSpec], durations: dict[str, float], parallel: int) -> float:
+    """Seconds until every series has finished, started as runner.run_all starts them."""
+    pending = list(specs)
+    running: list[tuple[float, str]] = []
+    done: set[str] = set()
+    now = 0.0
+    while pending or running:
+        for s in list(pending):
+            if len(running) >= parallel:
+                break
+            if all(d in done for d in s.after):
+                pending.remove(s)
+                heapq.heappush(running, (now + durations[s.id], s.id))
+        if not running:  # a dependency that never finishes (run_all skips these)
+            break
+        now, sid = heapq.heappop(running)
+        done.add(sid)
+    return now
+
+
+def _specs(cfg: Any, argv: list[str]) -> tuple[str, list[SeriesSpec], dict[str, int]]:
+    """(title, series, episodes already finished per series) of what the command would run."""
+    from pillagerbench.experiments.runner import load_experiment
+    from pillagerbench.experiments.series import count_finished
+
+    if cfg.get("resume"):
+        title, specs, dirs = load_experiment(Path(cfg.resume))
+        return title, specs, {s.id: count_finished(dirs[s.id]) for s in specs}
+    if cfg.get("experiment") is not None:
+        return str(cfg.experiment.name), build_series(cfg, argv), {}
+    from pillagerbench.config import to_dict
+
+    red, blue, scenario = str(cfg.red.name), str(cfg.blue.name), str(cfg.scenario.name)
+    spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, int(cfg.episodes), int(cfg.seed), to_dict(cfg))
+    return f"run {scenario}: red {red} vs blue {blue}", [spec], {}
+
+
+def _parallel(cfg: Any, cpus: int | None, load: float | None) -> tuple[int, str | None]:
+    """Series at once, as the run would choose (a plain run plays one match)."""
+    from pillagerbench.experiments.runner import local_parallel
+
+    if cfg.get("experiment") is None and not cfg.get("resume"):
+        return 1, None
+    if str(cfg.get("launcher") or "local") == "ray":
+        if cfg.get("parallel"):
+            return int(cfg.parallel), None
+        return 1, "launcher=ray without parallel: planned as 1 at once (give parallel=N)"
+    return local_parallel(cfg, cpus=cpus, load=load)
+
+
+def build_plan(cfg: Any, argv: list[str], *, cpus: int | None = None, load: float | None = None) -> Plan:
+    from pillagerbench.llm.prices import price_of
+
+    title, specs, finished = _specs(cfg, argv)
+    parallel, note = _parallel(cfg, cpus, load)
+    models: dict[str, ModelCost] = {}
+    plans, low, high = [], {}, {}
+    length = float(cfg.get("episode_length") or 120)
+    for s in specs:
+        todo = range(finished.get(s.id, 0), s.episodes)
+        upstream = str(s.config.get("protocol", "pillagerbench")) == "upstream"
+        chain_low = chain_high = 0.0
+        teams = {}
+        for side, name, options, llm in _sides(s.config):
+            teams[side] = name
+            if llm is None:
+                continue
+            calls = team_calls(name, options, llm, s.scenario, todo, upstream)
+            if not calls.high:
+                continue
+            label = f"{llm.provider} {llm.model}"
+            teams[side] = f"{name} (LLM {label})"
+            models.setdefault(label, ModelCost(label, price_of(llm))).calls += calls
+            chain_low, chain_high = max(chain_low, calls.chain_low), max(chain_high, calls.chain_high)
+        n = len(todo)
+        base = (SERIES_OVERHEAD_S if n else 0.0) + n * (
+            float(s.config.get("episode_length", length)) + EPISODE_OVERHEAD_S
+        )
+        low[s.id], high[s.id] = base + chain_low, base + chain_high
+        plans.append(SeriesPlan(s, n, teams, low[s.id], high[s.id]))
+    return Plan(
+        title=title,
+        series=plans,
+        episode_length=length,
+        parallel=parallel,
+        parallel_note=note,
+        wall_low=RUN_OVERHEAD_S + schedule(specs, low, parallel),
+        wall_high=RUN_OVERHEAD_S + schedule(specs, high, parallel),
+        models=models,
+    )
+
+
+# --- printing -----------------------------------------------------------------------------------
+
+
+def duration(seconds: float) -> str:
+    seconds = round(seconds)
+    h, rest = divmod(seconds, 3600)
+    m, s = divmod(rest, 60)
+    if h:
+        return f"{h} h {m:02d} min"
+    return f"{m} min {s:02d} s" if m else f"{s} s"
+
+
+def _usd(value: float | None) -> str:
+    return "?" if value is None else (f"${value:.4f}" if value < 1 else f"${value:,.2f}")
+
+
+def lines(plan: Plan) -> list[str]:
+    out = [f"plan: {plan.title} (nothing is played: no server, no run directory)"]
+    out.append(f"series: {len(plan.series)}")
+    for sp in plan.series[:SHOW_SERIES]:
+        out.append(f"  {sp.spec.id}: {sp.episodes} episode(s), red {sp.teams['red']} vs blue {sp.teams['blue']}")
+    if len(plan.series) > SHOW_SERIES:
+        out.append(f"  ... and {len(plan.series) - SHOW_SERIES} more series")
+    out.append(f"episodes: {plan.episodes} of {plan.episode_length:g} s")
+    out.append(f"parallel: {plan.parallel} at once" + (f" ({plan.parallel_note})" if plan.parallel_note else ""))
+    wall = duration(plan.wall_low)
+    if plan.wall_high > plan.wall_low + 1:
+        wall = f"{wall} to {duration(plan.wall_high)} (LLM pre-game time at {LATENCY_LOW_S:g} s a call to the output cap at {OUTPUT_TOKENS_PER_S:g} tokens/s)"
+    out.append(
+        f"wall time: {wall}; per series {SERIES_OVERHEAD_S:g} s and per episode {EPISODE_OVERHEAD_S:g} s beyond "
+        "the game (measured, benchmarks/plan_accuracy.py)"
+    )
+    if not plan.models:
+        out.append("LLM calls: none (no team of this run uses an LLM)")
+    for label, m in plan.models.items():
+        c = m.calls
+        out.append(
+            f"LLM calls ({label}): {c.low:,} to {c.high:,}; input tokens {c.in_low:,} to {c.in_high:,}, "
+            f"output tokens {c.out_low:,} to {c.out_high:,}"
+        )
+        lo, hi = m.cost()
+        if lo is None or hi is None:
+            out.append(
+                f"cost ({label}): unknown ({c.high:,} calls unpriced: {m.price.source}); "
+                "give a price with llm.price.input_per_1m=USD llm.price.output_per_1m=USD"
+            )
+        else:
+            out.append(
+                f"cost ({label}): {_usd(lo)} to {_usd(hi)} at ${m.price.input_per_1m:g} / "
+                f"${m.price.output_per_1m:g} per million input / output tokens ({m.price.source})"
+            )
+    if plan.models:
+        out.append("assumptions: calls, tokens and latency as in docs/experiments.md (Before a run: plan=true)")
+    return out
+
+
+def main_plan(cfg: Any, argv: list[str]) -> int:
+    """`pillagerbench run ... plan=true`: print the plan, play nothing. An experiment's series are
+    checked as a run checks them (teams, options, LLM settings), without the preflight."""
+    if cfg.get("experiment") is not None and not cfg.get("resume"):
+        from pillagerbench.config_schema import check
+        from pillagerbench.validate import team_problems
+
+        seen: dict[str, None] = {}
+        for s in build_series(cfg, argv):
+            for line in team_problems(OmegaConf.create(s.config)):
+                seen.setdefault(line, None)
+        check(list(seen))
+    for line in lines(build_plan(cfg, argv)):
+        print(line)
+    return 0
