@@ -142,7 +142,7 @@ def run_match(cfg) -> int:
     try:
         records = asyncio.run(play(cfg, run_dir))
     except KeyboardInterrupt:
-        print("interrupted: finished episodes are kept in episodes.jsonl")
+        print(f"interrupted: finished episodes are kept in {RunDir(run_dir).episodes_path}")
         print(f"run directory: {run_dir}")
         return 130
     failed = sum(r.status != "ok" for r in records)

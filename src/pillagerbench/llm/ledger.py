@@ -23,9 +23,11 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.rundir import LEDGER
+
 from .redact import redact
 
-LEDGER_NAME = "llm_calls.jsonl"
+LEDGER_NAME = LEDGER
 CONTENT_MODES = ("full", "hash")
 
 

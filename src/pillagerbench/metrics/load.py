@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE
+from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir
 
 # the scorings an episode can record (config key `scoring`; docs/fidelity.md): red_score/blue_score
 # are the run's own scoring, and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
@@ -123,28 +124,12 @@ def _series_of(run: Path) -> list[SeriesInfo]:
     raise ReportError(f"{run}: not a run directory (no experiment.json or manifest.json)")
 
 
-def _read_lines(path: Path, skipped: list, where: str) -> dict[int, dict]:
-    finished: dict[int, dict] = {}
-    if not path.exists():
-        return finished
-    for n, line in enumerate(path.read_text().splitlines(), 1):
-        if not line.strip():
-            continue
-        try:
-            rec = json.loads(line)
-        except ValueError:
-            skipped.append((f"{where}/episodes.jsonl:{n}", "a line cut short (the run was killed while writing it)"))
-            continue
-        finished.setdefault(int(rec["episode"]), rec)
-    return finished
-
-
 def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
     finished = _finished_episodes(s, skipped)
     scale = SCORE_SCALE.get(s.scenario, 1.0)
     for i in sorted(finished):
         rec = finished[i]
-        ep = s.dir / f"episode_{i:03d}"
+        ep = RunDir(s.dir).episode(i)
         timeline = _timeline(s, rec, ep, skipped)
         if timeline is not None:
             rows.append(_row(s, i, rec, ep, timeline, scale))
@@ -156,15 +141,14 @@ def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
     if not s.dir.exists():
         skipped.append((where, f"series not started ({s.episodes} episode(s) missing)"))
         return {}
-    finished = _read_lines(s.dir / "episodes.jsonl", skipped, where)
-    for d in sorted(s.dir.glob("episode_*")):
-        try:
-            i = int(d.name.split("_", 1)[1])
-        except ValueError:
-            continue
+    rundir = RunDir(s.dir)
+    finished, bad = rundir.read_lenient()
+    for n in bad:
+        skipped.append((f"{where}/{EPISODES}:{n}", "a line cut short (the run was killed while writing it)"))
+    for i, d in rundir.episode_dirs():
         if i not in finished:
             skipped.append(
-                (str(d), "half-written: no line in episodes.jsonl (killed mid-episode; resume=RUN_DIR plays it again)")
+                (str(d), f"half-written: no line in {EPISODES} (killed mid-episode; resume=RUN_DIR plays it again)")
             )
     missing = s.episodes - len(finished)
     if missing > 0:
@@ -197,11 +181,11 @@ def _timeline(s: SeriesInfo, rec: dict, ep: Path, skipped: list) -> list | None:
     return timeline
 
 
-def _row(s: SeriesInfo, i: int, rec: dict, ep: Path, timeline: list, scale: float) -> dict:
+def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: float) -> dict:
     """One episode's row of the table."""
-    red_it = (rec.get("iterations") or {}).get("red") or []
-    scoring = rec.get("scoring") or "clean"  # runs before scoring modes were clean
-    by_mode = rec.get("scores") or {scoring: {"red": rec["red_score"], "blue": rec["blue_score"]}}
+    rec = EpisodeRecord.from_dict(data)  # whichever version wrote it
+    red_it = rec.iterations.get("red") or []
+    by_mode = rec.scores
     alternatives = {
         f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
         for mode in SCORINGS
@@ -225,19 +209,19 @@ def _row(s: SeriesInfo, i: int, rec: dict, ep: Path, timeline: list, scale: floa
         "group_x": s.group_x,
         "episode": i,
         "index": i + s.episode_offset,
-        "red_raw": float(rec["red_score"]),
-        "blue_raw": float(rec["blue_score"]),
+        "red_raw": float(rec.red_score or 0.0),
+        "blue_raw": float(rec.blue_score or 0.0),
         "scale": scale,
-        "red_score": float(rec["red_score"]) * scale,
-        "blue_score": float(rec["blue_score"]) * scale,
-        "scoring": scoring,
+        "red_score": float(rec.red_score or 0.0) * scale,
+        "blue_score": float(rec.blue_score or 0.0) * scale,
+        "scoring": rec.scoring,
         **alternatives,
-        "team_protocol": rec.get("protocol") or "pillagerbench",
+        "team_protocol": rec.protocol,
         "iterations": float(np.mean(red_it)) if red_it else np.nan,
-        "problems": {k: list(v) for k, v in (rec.get("problems") or {}).items()},
-        "server_tps": rec.get("server_tps"),
-        "lagged": bool(rec.get("lagged")),
-        "lag_reason": rec.get("lag_reason"),
+        "problems": {k: list(v) for k, v in rec.problems.items()},
+        "server_tps": rec.server_tps,
+        "lagged": bool(rec.lagged),
+        "lag_reason": rec.lag_reason,
         "t": np.array([p["t"] for p in timeline], dtype=float),
         "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
         "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
@@ -273,7 +257,7 @@ def load_runs(paths: list[str | Path]) -> Runs:
     _check_comparable(series)
     for s in series:
         _load_series(s, rows, skipped)
-        path = s.dir / "llm_calls.jsonl"
+        path = RunDir(s.dir).ledger_path
         if path.exists():
             from pillagerbench.llm.ledger import read_ledger
 

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from pillagerbench.replay.load import ReplayError
 from pillagerbench.replay.page import write_replay
+from pillagerbench.rundir import RunDir
 
 REPLAYS = "replays"
 
@@ -30,9 +31,7 @@ def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
     for s in series:
         if not Path(s.dir).exists():
             continue
-        for ep in sorted(Path(s.dir).glob("episode_[0-9]*")):
-            if not ep.is_dir():
-                continue
+        for _, ep in RunDir(s.dir).episode_dirs():
             row = {"series": s.id, "episode": ep.name, "red": s.red, "blue": s.blue, "score": "", "replay": None}
             try:
                 rec = json.loads((ep / "episode.json").read_text())

@@ -124,6 +124,25 @@ class RunDir:
             good += len(raw)
         return finished, good, len(data)
 
+    def read_lenient(self) -> tuple[dict[int, dict], list[int]]:
+        """Every whole line of episodes.jsonl by episode (the first one wins) and the numbers of the
+        lines that are not whole: what a reader of a damaged run uses, where `read` stops at the first
+        bad line as a resume must."""
+        finished: dict[int, dict] = {}
+        bad: list[int] = []
+        if not self.episodes_path.exists():
+            return finished, bad
+        for n, line in enumerate(self.episodes_path.read_text().splitlines(), 1):
+            if not line.strip():
+                continue
+            try:
+                rec = json.loads(line)
+            except ValueError:
+                bad.append(n)
+                continue
+            finished.setdefault(int(rec["episode"]), rec)
+        return finished, bad
+
     def finished(self) -> dict[int, dict]:
         return self.read()[0]
 

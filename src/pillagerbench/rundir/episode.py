@@ -38,9 +38,19 @@ class EpisodeRecord:
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
-        """A record read back (older versions lack later keys: their defaults; unknown keys are dropped)."""
+        """A record read back, whichever version wrote it: the one place that knows earlier versions.
+        Keys added since take their defaults (records before scoring modes were clean-scored, before
+        protocols played ours), `scores` is filled from red_score/blue_score where it was not
+        recorded, null lists and maps are empty; unknown keys are dropped."""
         known = {f.name for f in fields(cls)}
-        return cls(**{k: v for k, v in data.items() if k in known})
+        rec = cls(**{k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE})
+        if not rec.scores and rec.red_score is not None and rec.blue_score is not None:
+            rec.scores = {rec.scoring: {"red": rec.red_score, "blue": rec.blue_score}}
+        return rec
+
+
+# keys whose null is a value (not "missing in an earlier version")
+_NULLABLE = {"red_score", "blue_score", "winner", "error", "server_tps", "lag_reason"}
 
 
 class LastEpisode(TypedDict, total=False):

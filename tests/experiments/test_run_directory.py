@@ -1,0 +1,71 @@
+"""The run directory has one owner (pillagerbench.rundir): no other module spells its file names,
+and a run directory written before it (tests/experiments/fixtures/run_6198d49: an experiment
+written at 6198d49, two of three episodes finished) still loads, reports and resumes."""
+
+from __future__ import annotations
+
+import ast
+import json
+import re
+import shutil
+from pathlib import Path
+
+from pillagerbench.metrics.load import load_runs
+from pillagerbench.report.build import main as report_main
+from pillagerbench.rundir import EpisodeRecord, RunDir
+from tests.support.cli import run_cli
+
+SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
+FIXTURE = Path(__file__).parent / "fixtures" / "run_6198d49"
+SERIES = "000_mushroom_war_do_nothing_vs_passive"
+NAMES = re.compile(r"episodes\.jsonl|llm_calls\.jsonl|live\.json|^episode_$|^episode_\d|^/?episode_[{\[*]")
+
+
+def literals(path: Path) -> list[tuple[int, str]]:
+    """String constants of a module that are not docstrings or comments' kin (bare string statements)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    bare = {id(n.value) for n in ast.walk(tree) if isinstance(n, ast.Expr) and isinstance(n.value, ast.Constant)}
+    return [
+        (n.lineno, n.value)
+        for n in ast.walk(tree)
+        if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in bare
+    ]
+
+
+def test_only_the_rundir_package_spells_the_run_directorys_names():
+    found = [
+        f"{path.relative_to(SRC)}:{line}: {text!r}"
+        for path in sorted(SRC.rglob("*.py"))
+        if "rundir" not in path.parts
+        for line, text in literals(path)
+        if NAMES.search(text)
+    ]
+    assert not found, "ask pillagerbench.rundir.RunDir for these paths:\n" + "\n".join(found)
+
+
+def test_a_record_of_an_earlier_version_reads_with_todays_defaults():
+    old = {"scenario": "mushroom_war", "red": "a", "blue": "b", "episode": 3, "red_score": 2.0, "blue_score": 1.0}
+    rec = EpisodeRecord.from_dict({**old, "iterations": None, "no_longer_recorded": 1})
+    assert (rec.scoring, rec.protocol, rec.iterations) == ("clean", "pillagerbench", {})
+    assert rec.scores == {"clean": {"red": 2.0, "blue": 1.0}}
+
+
+def test_a_run_written_before_the_rundir_package_loads_reports_and_resumes(tmp_path, capsys):
+    run = tmp_path / "run"
+    shutil.copytree(FIXTURE, run)
+    series = RunDir(run / "series" / SERIES)
+    before = series.episodes_path.read_text()
+
+    runs = load_runs([run])
+    assert sorted(runs.episodes["episode"]) == [0, 1]
+    assert set(runs.episodes["scoring"]) == {"clean"} and set(runs.episodes["team_protocol"]) == {"pillagerbench"}
+    assert report_main([str(run), "--out", str(tmp_path / "report"), "--no-replays"]) == 0
+    assert "2 episode" in capsys.readouterr().out
+
+    res = run_cli(tmp_path, "run", f"resume={run}", "display=plain", timeout=180)
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "resume after 2 finished episode(s)" in res.stdout
+    assert series.episodes_path.read_text().startswith(before)  # the finished ones untouched
+    records = [json.loads(line) for line in series.episodes_path.read_text().splitlines()]
+    assert [(r["episode"], r["status"]) for r in records] == [(0, "ok"), (1, "ok"), (2, "ok")]
+    assert json.loads((series.episode(2) / "timeline.json").read_text())[-1]["t"] == 5
