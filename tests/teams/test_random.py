@@ -92,6 +92,16 @@ def test_checks_keep_actions_executable():
             assert '"cow"' in a.code or '"chicken"' in a.code
 
 
+def test_smelts_only_what_the_server_can_smelt():
+    # clay_ball and wet_sponge were once in the Random baseline's own list; the server's furnace cannot smelt them
+    unsmeltable = {**OBS[1], "inventory": {"clay_ball": 4, "wet_sponge": 1, "coal": 3}}
+    gen = RandomActions(3, DD, ())
+    assert "smeltItem" not in {gen.next(unsmeltable).kind for _ in range(300)}
+    with_potato = {**unsmeltable, "inventory": {**unsmeltable["inventory"], "potato": 2}}
+    smelts = [a.code for a in (gen.next(with_potato) for _ in range(300)) if a.kind == "smeltItem"]
+    assert smelts and all('"potato"' in code for code in smelts)
+
+
 async def test_random_plays_whole_episodes_in_both_scenarios(tmp_path):
     recs = await asyncio.gather(
         play_series("mushroom_war", "random", "random", tmp_path / "mw", length=20),

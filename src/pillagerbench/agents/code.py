@@ -24,35 +24,12 @@ import threading
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
+from pillagerbench.node import JS_DIR
 from pillagerbench.players import primitives as prim
 
-# What agent code may reference without defining it: the sandbox's names (see js/bot/sandbox.js)
-SANDBOX_NAMES = frozenset(
-    {
-        "bot",
-        "mcData",
-        "Vec3",
-        "Movements",
-        "setTimeout",
-        "clearTimeout",
-        "setInterval",
-        "clearInterval",
-        "console",
-        "GoalNear",
-        "GoalBlock",
-        "GoalXZ",
-        "GoalNearXZ",
-        "GoalY",
-        "GoalGetToBlock",
-        "GoalLookAtBlock",
-        "GoalPlaceBlock",
-        "GoalBreakBlock",
-        "GoalFollow",
-        "GoalCompositeAny",
-        "GoalCompositeAll",
-        "GoalInvert",
-    }
-)
+# What agent code may reference without defining it: the sandbox's names, declared once in
+# js/bot/sandbox_globals.json (js/bot/sandbox.js gives agent code exactly these)
+SANDBOX_NAMES = frozenset(json.loads((JS_DIR / "bot" / "sandbox_globals.json").read_text(encoding="utf-8")))
 # ... and the ECMAScript built-ins every vm context has
 JS_BUILTINS = frozenset(
     {

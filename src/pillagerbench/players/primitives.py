@@ -1,53 +1,21 @@
 """The control primitives' documentation for LLM prompts (the "context" upstream showed to LLMs).
 
 Each primitive module lives in `js/bot/primitives/<name>.js` with its documentation in
-`<name>.md` next to it; `mineflayer.md` documents the bot API subset agent code may use.
+`<name>.md` next to it; `mineflayer.md` documents the bot API subset agent code may use. The modules and
+their functions are listed once, in `js/bot/primitives/modules.json` (read here and by `index.js`).
 """
 
 from __future__ import annotations
+
+import json
 
 from pillagerbench.node import JS_DIR
 
 PRIMITIVES_DIR = JS_DIR / "bot" / "primitives"
 
-# module -> functions it defines (what `Player(primitives=[...])` accepts, besides module names)
-MODULES: dict[str, list[str]] = {
-    "mineBlock": ["mineBlock", "blockExists"],
-    "craftItem": ["craftItem"],
-    "placeItem": ["placeItem"],
-    "smeltItem": ["smeltItem"],
-    "killMob": ["killMob"],
-    "giveToPlayer": ["giveToPlayer", "goToPlayer", "discard"],
-    "useChest": ["getItemFromChest", "depositItemIntoChest", "checkItemInsideChest"],
-    "farm": [
-        "tillLand",
-        "plantCrop",
-        "plantSweetBerryBushes",
-        "plantWheatSeeds",
-        "plantPotatoes",
-        "plantCarrots",
-        "plantBeetrootSeeds",
-        "plantMelonSeeds",
-        "plantPumpkinSeeds",
-        "plantCocoaBeans",
-        "plantSugarCane",
-        "harvest",
-        "harvestBerries",
-        "harvestWheat",
-        "harvestPotatoes",
-        "harvestCarrots",
-        "harvestBeetroot",
-        "harvestCocoa",
-        "harvestMelons",
-        "harvestPumpkins",
-        "harvestSugarCane",
-        "equipBucket",
-        "milkCow",
-        "destroyCrop",
-    ],
-    "multiAgent": ["sendSignal", "waitSignal"],
-    "exploreUntil": ["exploreUntil"],
-}
+# module -> functions it defines (what `Player(primitives=[...])` accepts, besides module names), declared
+# once on the JavaScript side: `js/bot/primitives/modules.json`, which `index.js` builds the primitives from
+MODULES: dict[str, list[str]] = json.loads((PRIMITIVES_DIR / "modules.json").read_text(encoding="utf-8"))
 DOC_ONLY = ("mineflayer",)
 
 

@@ -21,6 +21,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
+from pillagerbench.node import JS_DIR
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import Team, TeamContext
@@ -66,26 +67,8 @@ CRAFTABLE = (
     "wooden_hoe",
 )
 FUEL = "coal"
-# Furnace inputs (smelting anything else cannot work)
-SMELTABLE = (
-    "potato",
-    "beef",
-    "chicken",
-    "porkchop",
-    "mutton",
-    "rabbit",
-    "cod",
-    "salmon",
-    "kelp",
-    "sand",
-    "cobblestone",
-    "iron_ore",
-    "gold_ore",
-    "cactus",
-    "clay_ball",
-    "oak_log",
-    "wet_sponge",
-)
+# Furnace inputs: what the server can smelt (its SMELTING table, js/server/smelting.json); anything else is refused
+SMELTABLE = frozenset(json.loads((JS_DIR / "server" / "smelting.json").read_text(encoding="utf-8")))
 
 
 def js(value: Any) -> str:

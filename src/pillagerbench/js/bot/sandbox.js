@@ -11,6 +11,10 @@ const { waitTicks } = require('./ticks')
 const { lockPrototypes } = require('./lockdown')
 const { defaultMovements } = require('./movements')
 
+// The names agent code may use without defining them (besides the primitives and the language's
+// built-ins), declared once: Python's code check reads the same file (agents/code.py).
+const GLOBALS = require('./sandbox_globals.json')
+
 const FILENAME = 'agent.js'
 const SYNC_TIMEOUT_MS = 1000
 
@@ -220,9 +224,7 @@ function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report
   }
   const clearTimer = (clear, registry) => (id) => { if (registry.has(id)) { registry.delete(id); clear(id) } }
   const print = (level) => (...args) => log(level, args.map(a => typeof a === 'string' ? a : safeString(a)).join(' '))
-  const goalNames = ['GoalNear', 'GoalBlock', 'GoalXZ', 'GoalNearXZ', 'GoalY', 'GoalGetToBlock', 'GoalLookAtBlock',
-    'GoalPlaceBlock', 'GoalBreakBlock', 'GoalFollow', 'GoalCompositeAny', 'GoalCompositeAll', 'GoalInvert']
-  const sandbox = {
+  const provided = {
     bot: makeFacade(bot, run, { chat, save, report }),
     mcData,
     Vec3,
@@ -232,9 +234,14 @@ function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report
     setInterval: trackTimer(setInterval, clearInterval, run.intervals),
     clearInterval: clearTimer(clearInterval, run.intervals),
     console: { log: print('log'), info: print('info'), warn: print('warn'), error: print('error'), debug: print('debug') },
-    ...Object.fromEntries(goalNames.map(n => [n, goals[n]])),
-    ...primitives
+    ...goals
   }
+  const sandbox = {}
+  for (const name of GLOBALS) {
+    if (!(name in provided)) throw new Error(`sandbox_globals.json names ${name}, which the sandbox does not provide`)
+    sandbox[name] = provided[name]
+  }
+  Object.assign(sandbox, primitives)
   const context = vm.createContext(sandbox, { name: 'agent', codeGeneration: { strings: false, wasm: false } })
   LOCK_STACK_TRACES.runInContext(context)
   return context

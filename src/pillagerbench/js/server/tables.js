@@ -72,24 +72,9 @@ const FRUIT_SOIL = ['farmland', 'dirt', 'grass_block', 'coarse_dirt', 'podzol']
 const TILLABLE = ['grass_block', 'dirt', 'grass_path']
 const HOES = ['wooden_hoe', 'stone_hoe', 'iron_hoe', 'golden_hoe', 'diamond_hoe', 'netherite_hoe']
 
-// Smelting: input item -> output item. Ticks per item and fuel burn ticks (vanilla numbers).
-const SMELTING = {
-  potato: 'baked_potato',
-  beef: 'cooked_beef',
-  chicken: 'cooked_chicken',
-  porkchop: 'cooked_porkchop',
-  mutton: 'cooked_mutton',
-  rabbit: 'cooked_rabbit',
-  cod: 'cooked_cod',
-  salmon: 'cooked_salmon',
-  kelp: 'dried_kelp',
-  sand: 'glass',
-  cobblestone: 'stone',
-  iron_ore: 'iron_ingot',
-  gold_ore: 'gold_ingot',
-  oak_log: 'charcoal',
-  cactus: 'green_dye'
-}
+// Smelting: input item -> output item, in smelting.json (Python's Random baseline reads it too:
+// teams/random_team.py). Ticks per item and fuel burn ticks (vanilla numbers).
+const SMELTING = require('./smelting.json')
 const SMELT_TICKS = 200
 const FUEL_TICKS = {
   coal: 1600,

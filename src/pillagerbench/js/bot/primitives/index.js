@@ -1,8 +1,9 @@
 'use strict'
 // The control primitives: one module per file (the function) with its documentation for LLMs in the
 // .md file of the same name. `build(ctx, allowed)` makes the functions for one run.
-const MODULES = ['mineBlock', 'craftItem', 'placeItem', 'smeltItem', 'killMob', 'giveToPlayer', 'useChest', 'farm',
-  'multiAgent', 'exploreUntil'].map(name => require('./' + name))
+// modules.json lists the modules (in this order) and the functions each one's make(ctx) returns;
+// Python reads the same file (players/primitives.py), tests/players/test_shared_lists.py checks both.
+const MODULES = Object.keys(require('./modules.json')).map(name => require('./' + name))
 
 // allowed: null (all) or a list of module names ("farm") and/or function names ("milkCow").
 function build (ctx, allowed = null) {
