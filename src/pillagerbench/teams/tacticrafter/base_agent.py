@@ -257,95 +257,117 @@ class BaseAgent:
         self.program = await self.write_code(ctx)
 
     async def play(self, ctx) -> None:
-        t, player = self.team, ctx.players[self.name]
-        program = self.program
+        """Run, criticise and rewrite the code until the whistle (upstream: until the iteration cap)."""
+        player = ctx.players[self.name]
+        program: Program | None = self.program
         failures = 0
         upstream = ctx.upstream_protocol
         while ctx.time_left() > 0:
             if program is None and not upstream:
                 program = self.good
-            if program is None and upstream:  # an unusable answer: an iteration without a run, as upstream's
-                if t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, ACTION):
-                    self._idle(ctx)
-                    await asyncio.sleep(ctx.time_left())
-                    break
-                t.iterations[self.k] += 1
-                self.record["iterations"].append({"n": t.iterations[self.k], "counted": True, "no_code": True})
-                if t.iterations[self.k] < t.max_iterations:
-                    program = await self.write_code(ctx)
-                continue
-            if program is None:  # nothing runnable: ask for code while that is possible
-                if failures < t.max_llm_failures and self.can_call(ctx, ACTION):
-                    program = await self.write_code(ctx)
-                    if program is None:
-                        failures += 1
-                        await asyncio.sleep(min(t.restart_pause_s, ctx.time_left()))
-                    continue
-                self._idle(ctx)
-                await asyncio.sleep(ctx.time_left())
-                break
-            counted = t.iterations[self.k] < t.max_iterations
-            if counted:
-                t.iterations[self.k] += 1
+            if program is None:
+                step = await self._without_program(ctx, failures, upstream)
             else:
-                self.reruns += 1
-                self.record["reruns"] = self.reruns
-            new_code = program.source != self.last_source
-            self.last_source = program.source
-            started = time.monotonic()
-            events = await player.run(program.exec_code)
-            duration = time.monotonic() - started
-            deduped, stats = dedupe(events, t.agent_names)
-            self.stats = self.stats.add(stats)
-            self.events = deduped
-            obs = last_observation(events)
-            if obs:
-                self.observation = obs
-            errors = C.error_lines(events)
-            failed_at_once = bool(errors) and duration < t.quick_fail_s
-            self.last_error = "\n".join(errors[:5]) or C.NONE
-            if not failed_at_once:
-                self.good = program
-            it = {
-                "n": t.iterations[self.k],
-                "counted": counted,
-                "new_code": new_code,
-                "entry": program.entry,
-                "duration_s": round(duration, 2),
-                "errors": errors[:3],
-                "failed_at_once": failed_at_once,
-                "events": stats.before,
-                "events_deduped": stats.after,
-            }
-            self.record["iterations"].append(it)
-            if ctx.time_left() <= 0:
-                it["ended_by_whistle"] = True
+                step = await self._iteration(ctx, player, program, failures, upstream)
+            if step is None:
                 break
-            fallback = self.good or (None if failed_at_once else program)
-            if upstream and (t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, CRITIC)):
-                self._idle(ctx)  # upstream: no more steps after the cap (nor once no call can finish)
-                await asyncio.sleep(ctx.time_left())
-                break
-            if (
-                not counted
-                or t.iterations[self.k] >= t.max_iterations
-                or failures >= t.max_llm_failures
-                or not self.can_call(ctx, CRITIC)
-            ):
-                program = fallback
-                if duration < t.restart_pause_s:
-                    await asyncio.sleep(min(t.restart_pause_s - duration, ctx.time_left()))
-                continue
-            await self.criticize(ctx)
-            it["success"], it["critique"] = self.success, self.critique
-            new = await self.write_code(ctx) if self.can_call(ctx, ACTION) else None
-            if new is None:
+            program, failures = step
+
+    async def _without_program(self, ctx, failures: int, upstream: bool) -> tuple[Program | None, int] | None:
+        """No code to run: ask for some while that is possible. Returns (program, failures), or None
+        once the agent idles until the whistle."""
+        t = self.team
+        if upstream:  # an unusable answer: an iteration without a run, as upstream's
+            if t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, ACTION):
+                await self._idle_until_whistle(ctx)
+                return None
+            t.iterations[self.k] += 1
+            self.record["iterations"].append({"n": t.iterations[self.k], "counted": True, "no_code": True})
+            return (await self.write_code(ctx) if t.iterations[self.k] < t.max_iterations else None), failures
+        if failures < t.max_llm_failures and self.can_call(ctx, ACTION):
+            program = await self.write_code(ctx)
+            if program is None:
                 failures += 1
-                program = None if upstream else fallback
-                if duration < t.restart_pause_s:
-                    await asyncio.sleep(min(t.restart_pause_s - duration, max(0.0, ctx.time_left())))
-            else:
-                program = new
+                await asyncio.sleep(min(t.restart_pause_s, ctx.time_left()))
+            return program, failures
+        await self._idle_until_whistle(ctx)
+        return None
+
+    async def _iteration(
+        self, ctx, player, program: Program, failures: int, upstream: bool
+    ) -> tuple[Program | None, int] | None:
+        """One iteration: run the program, then criticise and rewrite it (or rerun the last good code).
+        Returns (the next program, failures), or None at the whistle."""
+        t = self.team
+        it, duration, failed_at_once, counted = await self._run(ctx, player, program)
+        if ctx.time_left() <= 0:
+            it["ended_by_whistle"] = True
+            return None
+        fallback = self.good or (None if failed_at_once else program)
+        if upstream and (t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, CRITIC)):
+            await self._idle_until_whistle(ctx)  # upstream: no more steps after the cap (nor once no call can finish)
+            return None
+        if (
+            not counted
+            or t.iterations[self.k] >= t.max_iterations
+            or failures >= t.max_llm_failures
+            or not self.can_call(ctx, CRITIC)
+        ):
+            if duration < t.restart_pause_s:
+                await asyncio.sleep(min(t.restart_pause_s - duration, ctx.time_left()))
+            return fallback, failures
+        await self.criticize(ctx)
+        it["success"], it["critique"] = self.success, self.critique
+        new = await self.write_code(ctx) if self.can_call(ctx, ACTION) else None
+        if new is not None:
+            return new, failures
+        if duration < t.restart_pause_s:
+            await asyncio.sleep(min(t.restart_pause_s - duration, max(0.0, ctx.time_left())))
+        return (None if upstream else fallback), failures + 1
+
+    async def _run(self, ctx, player, program: Program) -> tuple[dict[str, Any], float, bool, bool]:
+        """Runs the program once (an iteration while under the cap, else a rerun) and records it.
+        Returns (its iteration record, its duration, whether it failed at once, whether it counted)."""
+        t = self.team
+        counted = t.iterations[self.k] < t.max_iterations
+        if counted:
+            t.iterations[self.k] += 1
+        else:
+            self.reruns += 1
+            self.record["reruns"] = self.reruns
+        new_code = program.source != self.last_source
+        self.last_source = program.source
+        started = time.monotonic()
+        events = await player.run(program.exec_code)
+        duration = time.monotonic() - started
+        deduped, stats = dedupe(events, t.agent_names)
+        self.stats = self.stats.add(stats)
+        self.events = deduped
+        obs = last_observation(events)
+        if obs:
+            self.observation = obs
+        errors = C.error_lines(events)
+        failed_at_once = bool(errors) and duration < t.quick_fail_s
+        self.last_error = "\n".join(errors[:5]) or C.NONE
+        if not failed_at_once:
+            self.good = program
+        it = {
+            "n": t.iterations[self.k],
+            "counted": counted,
+            "new_code": new_code,
+            "entry": program.entry,
+            "duration_s": round(duration, 2),
+            "errors": errors[:3],
+            "failed_at_once": failed_at_once,
+            "events": stats.before,
+            "events_deduped": stats.after,
+        }
+        self.record["iterations"].append(it)
+        return it, duration, failed_at_once, counted
+
+    async def _idle_until_whistle(self, ctx) -> None:
+        self._idle(ctx)
+        await asyncio.sleep(ctx.time_left())
 
     def _idle(self, ctx) -> None:
         self.record["idle_from_s"] = round(ctx.episode_length - ctx.time_left(), 2)
