@@ -8,7 +8,7 @@ import json
 from pillagerbench.agents.code import parse_js
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.teams.random_team import RandomActions
+from pillagerbench.teams.random_team import ACTIONS, SEEDS, RandomActions
 from tests.teams.conftest import play_series
 
 DD = make_scenario("dash_and_dine").primitives
@@ -61,6 +61,19 @@ def test_actions_use_only_the_scenarios_primitives_and_parse():
         assert parsed.ok, (action.code, parsed.error)
         every = set(prim.functions())
         assert not [c for c in parsed.calls if c in every and c not in allowed], action.code
+
+
+def test_every_kind_in_the_actions_table_is_a_primitive_or_a_bot_method_and_gets_drawn():
+    kinds = [kind for kind, _, _ in ACTIONS]
+    assert len(kinds) == len(set(kinds))
+    assert [k for k in kinds if k not in set(prim.functions()) and not k.startswith("bot.")] == []
+    # with every primitive and an observation where every check passes, each kind comes up, calling itself
+    rich = {**OBS[0], "inventory": {**OBS[0]["inventory"], **{item: 1 for item in SEEDS.values()}}}
+    gen = RandomActions(4, list(prim.MODULES), ("Raze",))
+    actions = [gen.next(rich) for _ in range(3000)]
+    assert {a.kind for a in actions} == set(kinds)
+    for a in actions:
+        assert f"{a.kind}(" in a.code or a.code.startswith("await checkItemInsideChest("), a
 
 
 def test_checks_keep_actions_executable():

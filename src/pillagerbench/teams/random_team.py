@@ -173,122 +173,164 @@ class RandomActions:
             f"  if (block) {{\n    {body}\n  }}\n}}"
         )
 
-    # --- the actions: name -> (check, builder) ----------------------------------------------
+    # --- the actions: the ACTIONS table's rows whose check passes -----------------------------
 
     def candidates(self, s: Seen) -> list[tuple[str, Builder]]:
-        a = self.available
-        out: list[tuple[str, Builder]] = []
-
-        def add(kind: str, ok: bool, build: Builder) -> None:
-            if ok and (kind in a or kind.startswith("bot.")):
-                out.append((kind, build))
-
-        r = self.rng
-        add(
-            "mineBlock",
-            bool(s.blocks),
-            lambda g, s: (
-                f"await mineBlock(bot, {js(r.choice(s.blocks))}, {r.randint(1, 5)}, "
-                f"{g.vec(g.offset(s, 8, (-1, 1))) if r.random() < 0.5 else 'null'}, {r.randint(8, 32)})"
-            ),
-        )
-        add(
-            "placeItem",
-            bool(s.items),
-            lambda g, s: (
-                lambda name: (
-                    f"if (mcData.blocksByName[{js(name)}]) await placeItem(bot, {js(name)}, {g.vec(g.offset(s, 3, (0, 1)))})"
-                )
-            )(g.item(s)[0]),
-        )
-        add("killMob", bool(s.mobs), lambda g, s: f"await killMob(bot, {js(r.choice(s.mobs))}, {r.randint(5, 20)})")
-        add(
-            "giveToPlayer",
-            bool(s.items and self.players),
-            lambda g, s: (
-                f"await giveToPlayer(bot, {js(g.item(s)[0])}, {js(r.choice(self.players))}, {r.choice([-1, *range(1, 10)])})"
-            ),
-        )
-        add(
-            "goToPlayer",
-            bool(self.players),
-            lambda g, s: f"await goToPlayer(bot, {js(r.choice(self.players))}, {r.randint(1, 4)})",
-        )
-        add("sendSignal", bool(self.players), lambda g, s: f"await sendSignal(bot, {js(r.choice(self.players))})")
-        add("waitSignal", True, lambda g, s: f"await waitSignal(bot, null, {r.randint(1, 5) * 1000})")
-        add("craftItem", True, lambda g, s: f"await craftItem(bot, {js(r.choice(CRAFTABLE))}, {r.randint(1, 3)})")
-        smeltable = [name for name, _ in s.items if name in SMELTABLE]
-        add(
-            "smeltItem",
-            bool(smeltable),
-            lambda g, s: f"await smeltItem(bot, {js(r.choice(smeltable))}, {js(FUEL)}, {r.randint(1, 2)})",
-        )
-        add(
-            "getItemFromChest",
-            bool(s.chests),
-            lambda g, s: (
-                lambda chest: (
-                    f"await getItemFromChest(bot, {g.vec(chest[0])}, {{ {js(r.choice(chest[1])[0])}: {r.randint(1, 9)} }})"
-                    if chest[1]
-                    else f"await checkItemInsideChest(bot, {g.vec(chest[0])})"
-                )
-            )(r.choice(s.chests)),
-        )
-        add(
-            "depositItemIntoChest",
-            bool(s.chests and s.items),
-            lambda g, s: (
-                f"await depositItemIntoChest(bot, {g.vec(r.choice(s.chests)[0])}, {{ {js(g.item(s)[0])}: {r.randint(1, 9)} }})"
-            ),
-        )
-        add("tillLand", s.has_like("_hoe"), lambda g, s: 'await tillLand(bot, ["dirt", "grass_block"])')
-        for fn, seed_item in SEEDS.items():
-            add(fn, s.has(seed_item), _code(f"await {fn}(bot)"))
-        for fn in HARVESTS:
-            add(fn, True, _code(f"await {fn}(bot, null)"))
-        add("harvestSugarCane", True, lambda g, s: f"await harvestSugarCane(bot, {s.pos[1] - 1})")
-        add("milkCow", s.has("bucket") and "cow" in s.mobs, lambda g, s: "await milkCow(bot)")
-        add("equipBucket", s.has("bucket"), lambda g, s: "await equipBucket(bot)")
-        add("destroyCrop", bool(s.blocks), lambda g, s: f"await destroyCrop(bot, {js(r.choice(s.blocks))})")
-        # raw mineflayer actions
-        add(
-            "bot.pathfinder.goto",
-            True,
-            lambda g, s: (
-                lambda p: f"await bot.pathfinder.goto(new GoalNear({p[0]}, {p[1]}, {p[2]}, {r.randint(1, 3)}))"
-            )(g.offset(s, 12)),
-        )
-        add("bot.lookAt", True, lambda g, s: f"await bot.lookAt({g.vec(g.offset(s, 5, (-1, 2)))})")
-        add(
-            "bot.equip",
-            bool(s.items),
-            lambda g, s: (
-                f"{{ const it = bot.inventory.items().find(i => i.name === {js(g.item(s)[0])}); "
-                f'if (it) await bot.equip(it, "hand") }}'
-            ),
-        )
-        add(
-            "bot.activateBlock",
-            bool(s.blocks),
-            lambda g, s: g.at_random_block(
-                r.choice(s.blocks),
-                "await bot.lookAt(block.position.offset(0.5, 0.5, 0.5)); await bot.activateBlock(block)",
-            ),
-        )
-        add("bot.activateItem", bool(s.items), lambda g, s: "await bot.activateItem()")
-        add(
-            "bot.useOn",
-            bool(s.mobs),
-            lambda g, s: (
-                f"{{ const e = bot.nearestEntity(e => e.name === {js(r.choice(s.mobs))}); if (e) bot.useOn(e) }}"
-            ),
-        )
-        return out
+        """The actions possible now, in ACTIONS' order: their check passes and the scenario allows them."""
+        return [
+            (kind, build)
+            for kind, ok, build in ACTIONS
+            if ok(self, s) and (kind in self.available or kind.startswith("bot."))
+        ]
 
     def next(self, obs: dict) -> Action:
         seen = Seen.of(obs)
         kind, build = self.rng.choice(self.candidates(seen))
         return Action(kind, build(self, seen))
+
+
+Check = Callable[["RandomActions", Seen], bool]
+
+
+def _always(g: RandomActions, s: Seen) -> bool:
+    return True
+
+
+def _holding(item: str) -> Check:
+    """A check: the player has `item`."""
+    return lambda g, s: s.has(item)
+
+
+# --- one builder per kind of action: the JavaScript, with arguments drawn from g.rng --------------
+
+
+def _mine_block(g: RandomActions, s: Seen) -> str:
+    r = g.rng
+    return (
+        f"await mineBlock(bot, {js(r.choice(s.blocks))}, {r.randint(1, 5)}, "
+        f"{g.vec(g.offset(s, 8, (-1, 1))) if r.random() < 0.5 else 'null'}, {r.randint(8, 32)})"
+    )
+
+
+def _place_item(g: RandomActions, s: Seen) -> str:
+    name = g.item(s)[0]
+    return f"if (mcData.blocksByName[{js(name)}]) await placeItem(bot, {js(name)}, {g.vec(g.offset(s, 3, (0, 1)))})"
+
+
+def _kill_mob(g: RandomActions, s: Seen) -> str:
+    return f"await killMob(bot, {js(g.rng.choice(s.mobs))}, {g.rng.randint(5, 20)})"
+
+
+def _give_to_player(g: RandomActions, s: Seen) -> str:
+    r = g.rng
+    return f"await giveToPlayer(bot, {js(g.item(s)[0])}, {js(r.choice(g.players))}, {r.choice([-1, *range(1, 10)])})"
+
+
+def _go_to_player(g: RandomActions, s: Seen) -> str:
+    return f"await goToPlayer(bot, {js(g.rng.choice(g.players))}, {g.rng.randint(1, 4)})"
+
+
+def _send_signal(g: RandomActions, s: Seen) -> str:
+    return f"await sendSignal(bot, {js(g.rng.choice(g.players))})"
+
+
+def _wait_signal(g: RandomActions, s: Seen) -> str:
+    return f"await waitSignal(bot, null, {g.rng.randint(1, 5) * 1000})"
+
+
+def _craft_item(g: RandomActions, s: Seen) -> str:
+    return f"await craftItem(bot, {js(g.rng.choice(CRAFTABLE))}, {g.rng.randint(1, 3)})"
+
+
+def _smeltable(s: Seen) -> list[str]:
+    return [name for name, _ in s.items if name in SMELTABLE]
+
+
+def _smelt_item(g: RandomActions, s: Seen) -> str:
+    return f"await smeltItem(bot, {js(g.rng.choice(_smeltable(s)))}, {js(FUEL)}, {g.rng.randint(1, 2)})"
+
+
+def _get_item_from_chest(g: RandomActions, s: Seen) -> str:
+    r = g.rng
+    chest = r.choice(s.chests)
+    if chest[1]:
+        return f"await getItemFromChest(bot, {g.vec(chest[0])}, {{ {js(r.choice(chest[1])[0])}: {r.randint(1, 9)} }})"
+    return f"await checkItemInsideChest(bot, {g.vec(chest[0])})"
+
+
+def _deposit_item_into_chest(g: RandomActions, s: Seen) -> str:
+    r = g.rng
+    return (
+        f"await depositItemIntoChest(bot, {g.vec(r.choice(s.chests)[0])}, {{ {js(g.item(s)[0])}: {r.randint(1, 9)} }})"
+    )
+
+
+def _harvest_sugar_cane(g: RandomActions, s: Seen) -> str:
+    return f"await harvestSugarCane(bot, {s.pos[1] - 1})"
+
+
+def _destroy_crop(g: RandomActions, s: Seen) -> str:
+    return f"await destroyCrop(bot, {js(g.rng.choice(s.blocks))})"
+
+
+# raw mineflayer actions
+
+
+def _goto(g: RandomActions, s: Seen) -> str:
+    p = g.offset(s, 12)
+    return f"await bot.pathfinder.goto(new GoalNear({p[0]}, {p[1]}, {p[2]}, {g.rng.randint(1, 3)}))"
+
+
+def _look_at(g: RandomActions, s: Seen) -> str:
+    return f"await bot.lookAt({g.vec(g.offset(s, 5, (-1, 2)))})"
+
+
+def _equip(g: RandomActions, s: Seen) -> str:
+    return (
+        f"{{ const it = bot.inventory.items().find(i => i.name === {js(g.item(s)[0])}); "
+        f'if (it) await bot.equip(it, "hand") }}'
+    )
+
+
+def _activate_block(g: RandomActions, s: Seen) -> str:
+    return g.at_random_block(
+        g.rng.choice(s.blocks),
+        "await bot.lookAt(block.position.offset(0.5, 0.5, 0.5)); await bot.activateBlock(block)",
+    )
+
+
+def _use_on(g: RandomActions, s: Seen) -> str:
+    return f"{{ const e = bot.nearestEntity(e => e.name === {js(g.rng.choice(s.mobs))}); if (e) bot.useOn(e) }}"
+
+
+# Every kind of action: (the function or bot method it calls, when it can work, its builder), in the
+# order the generator draws from (changing the order changes a seed's actions).
+ACTIONS: tuple[tuple[str, Check, Builder], ...] = (
+    ("mineBlock", lambda g, s: bool(s.blocks), _mine_block),
+    ("placeItem", lambda g, s: bool(s.items), _place_item),
+    ("killMob", lambda g, s: bool(s.mobs), _kill_mob),
+    ("giveToPlayer", lambda g, s: bool(s.items and g.players), _give_to_player),
+    ("goToPlayer", lambda g, s: bool(g.players), _go_to_player),
+    ("sendSignal", lambda g, s: bool(g.players), _send_signal),
+    ("waitSignal", _always, _wait_signal),
+    ("craftItem", _always, _craft_item),
+    ("smeltItem", lambda g, s: bool(_smeltable(s)), _smelt_item),
+    ("getItemFromChest", lambda g, s: bool(s.chests), _get_item_from_chest),
+    ("depositItemIntoChest", lambda g, s: bool(s.chests and s.items), _deposit_item_into_chest),
+    ("tillLand", lambda g, s: s.has_like("_hoe"), _code('await tillLand(bot, ["dirt", "grass_block"])')),
+    *((fn, _holding(seed_item), _code(f"await {fn}(bot)")) for fn, seed_item in SEEDS.items()),
+    *((fn, _always, _code(f"await {fn}(bot, null)")) for fn in HARVESTS),
+    ("harvestSugarCane", _always, _harvest_sugar_cane),
+    ("milkCow", lambda g, s: s.has("bucket") and "cow" in s.mobs, _code("await milkCow(bot)")),
+    ("equipBucket", lambda g, s: s.has("bucket"), _code("await equipBucket(bot)")),
+    ("destroyCrop", lambda g, s: bool(s.blocks), _destroy_crop),
+    ("bot.pathfinder.goto", _always, _goto),
+    ("bot.lookAt", _always, _look_at),
+    ("bot.equip", lambda g, s: bool(s.items), _equip),
+    ("bot.activateBlock", lambda g, s: bool(s.blocks), _activate_block),
+    ("bot.activateItem", lambda g, s: bool(s.items), _code("await bot.activateItem()")),
+    ("bot.useOn", lambda g, s: bool(s.mobs), _use_on),
+)
 
 
 class RandomTeam(Team):
