@@ -9,7 +9,10 @@ import json
 import re
 import shutil
 from pathlib import Path
+from typing import get_args
 
+from pillagerbench.config_schema import RunConfig
+from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.load import load_runs
 from pillagerbench.report.build import main as report_main
 from pillagerbench.rundir import EpisodeRecord, RunDir
@@ -69,3 +72,7 @@ def test_a_run_written_before_the_rundir_package_loads_reports_and_resumes(tmp_p
     records = [json.loads(line) for line in series.episodes_path.read_text().splitlines()]
     assert [(r["episode"], r["status"]) for r in records] == [(0, "ok"), (1, "ok"), (2, "ok")]
     assert json.loads((series.episode(2) / "timeline.json").read_text())[-1]["t"] == 5
+
+
+def test_the_scorings_are_named_once():
+    assert get_args(RunConfig.model_fields["scoring"].annotation) == SCORINGS

@@ -26,9 +26,9 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.experiments.spec import builtin_teams
+from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
 from pillagerbench.metrics.formulas import Estimate, mean_ci, over_opponents, welch_half_width
-from pillagerbench.metrics.load import SCORINGS
 from pillagerbench.metrics.reference import REFERENCE_SCORES
 
 TOLERANCE = 0.25  # ✓ when mean / reference is within 1 ± TOLERANCE

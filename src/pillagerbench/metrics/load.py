@@ -19,12 +19,12 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir
 
-# the scorings an episode can record (config key `scoring`; docs/fidelity.md): red_score/blue_score
-# are the run's own scoring, and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
-SCORINGS = ("clean", "upstream")
+# the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
+# and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
 
 
 class ReportError(ValueError):

@@ -1,0 +1,8 @@
+"""A match (`match.py`) made of parts: the game loop (`game.py`), what follows a game (`parts.py`:
+replay, live view, world log, lag meter, progress), the scorings (`scoring.py`), the player handle
+a team gets (`player.py`) and upstream's timing quirks (`upstream.py`)."""
+
+from pillagerbench.match.match import Match
+from pillagerbench.match.scoring import SCORINGS
+
+__all__ = ["SCORINGS", "Match"]

@@ -1,0 +1,99 @@
+"""One game: the clock, the game master's rules, the scorings, the teams' play and the whistle; the
+parts (`parts.py`) follow it through their hooks."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import random
+import time
+
+from pillagerbench.match.parts import Game, Part
+from pillagerbench.match.scoring import CleanScoring, UpstreamScoring
+
+STOP_GRACE_S = 3.0
+
+
+async def play_game(
+    game: Game, contexts: dict, rng: random.Random, parts: list[Part], scoring: str
+) -> tuple[CleanScoring, UpstreamScoring | None]:
+    """Play one game to the whistle (and, with scoring=upstream, on to upstream's last sample)."""
+    gm = game.scenario.game_master(game.server, rng)
+    await gm.start()
+    game.start = start = time.monotonic()
+    deadline = start + game.length
+    for ctx in contexts.values():
+        ctx.deadline = deadline
+        game.teams[ctx.side.key].iterations = []
+    clean = CleanScoring()
+    upstream = UpstreamScoring() if scoring == "upstream" else None
+    lock = asyncio.Lock()  # one game-master step at a time (the whistle's and the rules' own)
+    over = asyncio.Event()  # the whistle, besides cancel(): Python 3.11's wait_for can swallow a cancel
+
+    async def rules():
+        while not over.is_set():
+            await asyncio.sleep(gm.period_s)
+            async with lock:
+                if not over.is_set():
+                    await gm.step()
+
+    def second(t: int, scores: dict) -> None:
+        for part in parts:
+            part.second(game, t, scores)
+
+    for part in parts:
+        await part.start(game)
+    plays = [asyncio.create_task(game.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
+    background = [
+        asyncio.create_task(rules(), name="game-master"),
+        asyncio.create_task(clean.sample(gm, start, game.length, second), name="scores"),
+    ]
+    late = (
+        asyncio.create_task(upstream.sample(gm, start, game.length, game.rec.runs), name="upstream-scores")
+        if upstream
+        else None
+    )
+    final: dict | None = None
+    try:
+        done, _ = await asyncio.wait(
+            background + ([late] if late else []),
+            timeout=max(0.0, deadline - time.monotonic()),
+            return_when=asyncio.FIRST_EXCEPTION,
+        )
+        _raise_first(done)
+        if late:  # upstream: the clean score at the whistle, then play on to upstream's sample
+            async with lock:
+                await gm.step()
+                final = await gm.scores()
+            done, _ = await asyncio.wait([late, background[0]], return_when=asyncio.FIRST_COMPLETED)
+            _raise_first(done)
+    finally:
+        # the whistle: stop every player's code, then nothing a player does counts any more
+        over.set()
+        await asyncio.gather(*(p.stop() for p in game.players.values()), return_exceptions=True)
+        tasks = plays + background + ([late] if late else [])
+        for task in tasks:
+            task.cancel()
+        await asyncio.wait(tasks, timeout=STOP_GRACE_S)
+    for part in parts:
+        await part.stopped(game)
+    if final is None:
+        await gm.step()
+        final = await gm.scores()
+    for part in parts:
+        await part.whistle(game, final)
+    clean.final(game.length, final)
+    for task in plays:
+        if task.done() and not task.cancelled() and task.exception():
+            (game.out / f"{task.get_name()}.error.txt").write_text(repr(task.exception()))
+    clean.write(game.out)
+    if upstream:
+        upstream.write(game.out)
+    (game.out / "game_master.json").write_text(json.dumps(gm.log))
+    return clean, upstream
+
+
+def _raise_first(done: set[asyncio.Task]) -> None:
+    for task in done:
+        if not task.cancelled() and (exc := task.exception()) is not None:
+            raise exc

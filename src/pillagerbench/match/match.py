@@ -1,0 +1,226 @@
+"""One match: a series of episodes between two teams on one warm server.
+
+Per episode: put the arena back in place, reset every player (position, empty inventory), pre-game
+(not timed; duration recorded), game (`game.py`: wall clock, `episode_length` s: the game master's
+rules run and every team's score is sampled each second; the parts of `parts.py` follow it),
+whistle (all code stopped; the score at exactly the end is final), post-game. The record of each
+episode is written to the run directory (`pillagerbench.rundir`). The scorings: `scoring.py`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import random
+import time
+from collections.abc import Callable
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.match import upstream
+from pillagerbench.match.game import play_game
+from pillagerbench.match.parts import Game, LagMeter, LiveView, Part, Progress, Replay, WorldLog
+from pillagerbench.match.player import RecordedPlayer
+from pillagerbench.match.scoring import SCORINGS
+from pillagerbench.players import Player
+from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
+from pillagerbench.scenarios import Scenario
+from pillagerbench.teams import Team, TeamContext
+
+
+class Match:
+    def __init__(
+        self,
+        server,
+        scenario: Scenario,
+        teams: dict[str, Team],
+        run_dir: Path,
+        *,
+        episode_length: float = 120.0,
+        seed: int = 0,
+        on_tick: Callable[[dict], None] | None = None,
+        llms: dict[str, Any] | None = None,
+        scoring: str = "clean",
+        protocol: str = "pillagerbench",
+        step_wait_s: float | None = None,
+    ):
+        if scoring not in SCORINGS:
+            raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
+        self.scoring, self.protocol = scoring, protocol
+        # seconds of waiting before and after every run (None: upstream's with protocol=upstream, else 0)
+        self.step_wait_s = upstream.step_wait_s(protocol) if step_wait_s is None else step_wait_s
+        self.server, self.scenario, self.teams = server, scenario, teams
+        self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
+        self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
+        self.on_tick = on_tick
+        self.players: dict[str, Player] = {}
+        self.rundir = RunDir(run_dir)  # every path and record of the run directory
+        self.last_records: dict[str, LastEpisode] = {}
+
+    def player_order(self, episode: int) -> list[str]:
+        """The order the server visits players in during an episode: the sides' players interleaved,
+        the side that goes first alternating by episode (red first in even episodes), then the
+        scenario's extra players. No side is always first (see docs/fidelity.md, side symmetry)."""
+        sides = list(self.scenario.sides)
+        if episode % 2:
+            sides.reverse()
+        width = max(len(s.players) for s in sides)
+        names = [s.players[i].name for i in range(width) for s in sides if i < len(s.players)]
+        return names + [p.name for p in self.scenario.extra_players]
+
+    async def setup(self) -> None:
+        """Log every player in (one at a time: the server handles logins best that way), sides
+        interleaved."""
+        log_dir = self.run_dir / "logs"
+        specs = {p.name: p for p in self.scenario.all_players()}
+        for spec in (specs[n] for n in self.player_order(0)):
+            player = Player(
+                spec.name,
+                self.server.port,
+                server=self.server,
+                log_dir=log_dir,
+                primitives=list(self.scenario.primitives),
+            )
+            await player.start()
+            self.players[spec.name] = player
+
+    async def close(self) -> None:
+        await asyncio.gather(*(p.close() for p in self.players.values()), return_exceptions=True)
+        self.players.clear()
+
+    async def play_episodes(self, episodes, on_episode: Callable[[EpisodeRecord], None]) -> None:
+        """Play the given episode indices in order; after each, `on_episode(record)`. An episode that
+        failed because the server died is followed by a fresh server and fresh logins."""
+        for episode in episodes:
+            rec = await self.play_episode(episode)
+            on_episode(rec)
+            if rec.status == "failed" and not self.server.alive:
+                await self.close()
+                await self.server.stop()
+                await self.server.start()
+                await self.setup()
+
+    def _parts(self) -> tuple[Replay, list[Part]]:
+        """The parts that follow a game, in the order their hooks run."""
+        replay = Replay()
+        parts: list[Part] = [WorldLog(), LagMeter(), replay, LiveView()]
+        if self.on_tick is not None:
+            parts.append(Progress(self.on_tick))
+        return replay, parts
+
+    async def play_episode(self, episode: int) -> EpisodeRecord:
+        sc = self.scenario
+        rec = EpisodeRecord(
+            sc.key,
+            self.teams["red"].name,
+            self.teams["blue"].name,
+            episode,
+            seed=self.seed * 1000 + episode,
+            scoring=self.scoring,
+            protocol=self.protocol,
+        )
+        out = self.rundir.episode(episode)
+        (out / "events").mkdir(parents=True, exist_ok=True)
+        files: dict[str, Any] = {}
+
+        def sink(name: str, event: list) -> None:
+            f = files.get(name) or files.setdefault(name, open(out / "events" / f"{name}.jsonl", "a"))
+            f.write(json.dumps(event, default=str) + "\n")
+
+        replay, parts = self._parts()
+        t_start = time.monotonic()
+        try:
+            await self._play(rec, out, sink, replay, parts)
+        except Exception as exc:  # noqa: BLE001 - one failed episode never ends the series
+            rec.status, rec.error = "failed", f"{type(exc).__name__}: {exc}"
+            for part in parts:
+                await part.abort()
+        finally:
+            for f in files.values():
+                f.close()
+            rec.duration_s = round(time.monotonic() - t_start, 3)
+            self.rundir.write_episode(rec)
+        return rec
+
+    async def _reset(self, rec: EpisodeRecord) -> dict[str, list]:
+        """The arena put back in place and every player reset; returns each player's observations."""
+        sc = self.scenario
+        await self.server.request("seed", seed=rec.seed)
+        rec.player_order = await self.server.request("player_order", names=self.player_order(rec.episode))
+        t0 = time.monotonic()
+        await sc.arena.build(self.server)
+        await self.server.request("crop_growth", chance=sc.crop_growth_chance, random_tick_speed=sc.random_tick_speed)
+        names = [p.name for p in sc.all_players()]
+        resets = (self.players[p.name].reset(position=p.spawn, inventory={}) for p in sc.all_players())
+        observations = dict(zip(names, await asyncio.gather(*resets)))
+        for p in sc.all_players():
+            await self.server.request("gamemode", player=p.name, mode=p.gamemode)
+        rec.reset_s = round(time.monotonic() - t0, 3)
+        return observations
+
+    def _contexts(self, rec: EpisodeRecord, out: Path, sink, replay: Replay, observations: dict) -> dict:
+        """Each side's TeamContext for this episode (its players' handles record their runs)."""
+        contexts = {}
+        for side in self.scenario.sides:
+            team_dir = out / side.key
+            team_dir.mkdir(exist_ok=True)
+            handles = {
+                n: RecordedPlayer(
+                    self.players[n], sink, rec.runs, step_wait_s=self.step_wait_s, on_program=replay.program
+                )
+                for n in side.player_names
+            }
+            contexts[side.key] = TeamContext(
+                scenario=self.scenario,
+                side=side,
+                episode=rec.episode,
+                out_dir=team_dir,
+                players=handles,
+                observations={n: observations[n] for n in side.player_names},
+                episode_length=self.episode_length,
+                seed=rec.seed,
+                llm=self.llms.get(side.key),
+                last_episode=self.last_records.get(side.key, LastEpisode()),
+                protocol=self.protocol,
+            )
+        return contexts
+
+    async def _play(self, rec: EpisodeRecord, out: Path, sink, replay: Replay, parts: list[Part]) -> None:
+        observations = await self._reset(rec)
+        for llm in self.llms.values():
+            llm.reset_episode()
+        for team in self.teams.values():
+            team.problems = []
+        contexts = self._contexts(rec, out, sink, replay, observations)
+
+        async def timed_pre_game(key):
+            t = time.monotonic()
+            await self.teams[key].pre_game(contexts[key])
+            rec.pre_game_s[key] = round(time.monotonic() - t, 3)
+
+        await asyncio.gather(*(timed_pre_game(k) for k in contexts))
+
+        game = Game(self.server, self.scenario, self.teams, self.players, rec, out, self.episode_length)
+        clean, late = await play_game(game, contexts, random.Random(rec.seed), parts, self.scoring)
+        rec.scores = {"clean": {k: clean.timeline[-1][k] for k in ("red", "blue")}}
+        if late:
+            rec.scores["upstream"] = {k: late.timeline[-1][k] for k in ("red", "blue")}
+        rec.red_score, rec.blue_score = rec.scores[self.scoring]["red"], rec.scores[self.scoring]["blue"]
+        rec.winner = winner_of(rec.red_score, rec.blue_score)
+        rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
+        await self._post_game(rec, contexts, clean.timeline)
+
+    async def _post_game(self, rec: EpisodeRecord, contexts: dict, timeline: list) -> None:
+        """Each team looks back on what it saw; what went wrong for a team goes in the record."""
+        for key, ctx in contexts.items():
+            self.last_records[key] = self.rundir.last_seen(asdict(rec), timeline)
+            ctx.last_episode = self.last_records[key]
+        await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
+        for key, llm in self.llms.items():
+            problem = llm.budget.problem()
+            if problem:
+                rec.problems.setdefault(key, []).append(problem)
+        for key, team in self.teams.items():
+            if team.problems:
+                rec.problems.setdefault(key, []).extend(team.problems)

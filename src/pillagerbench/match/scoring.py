@@ -1,0 +1,66 @@
+"""The scorings an episode can be played under (config `scoring`, docs/faithful.md). Each owns its
+sampling: when it reads the game master's score, what it keeps, and where it writes it.
+
+- clean (the default): the game master's score each second from the clock's start and at exactly the
+  whistle; timeline.json.
+- upstream: also upstream's samples: play (and every player's code) goes on past the whistle until
+  upstream's "L s" sample, the (L+1)-th line of a per-second rewards file whose lines start
+  UPSTREAM_WAIT_S + 1 s after the clock; the game master's `upstream_scores` applies the scenario's
+  quirks. Such an episode records both scores, its headline being upstream's; timeline_upstream.json.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.match.upstream import UPSTREAM_WAIT_S
+
+
+class CleanScoring:
+    """The score each second, and the final one at the whistle: `second(t, scores)` is called with each."""
+
+    name = "clean"
+    file = "timeline.json"
+
+    def __init__(self) -> None:
+        self.timeline: list[dict[str, Any]] = []
+
+    async def sample(self, gm, start: float, length: float, second: Callable[[int, dict], None]) -> None:
+        for t in range(int(length)):
+            await asyncio.sleep(max(0.0, start + t - time.monotonic()))
+            scores = await gm.scores()
+            self.timeline.append({"t": t, **scores})
+            second(t, scores)
+
+    def final(self, length: float, scores: dict[str, float]) -> None:
+        self.timeline.append({"t": length, **scores})
+
+    def write(self, out: Path) -> None:
+        (out / self.file).write_text(json.dumps(self.timeline))
+
+
+class UpstreamScoring:
+    """Upstream's samples (lines 0 … L of its rewards file, each at UPSTREAM_WAIT_S + line + 1 s)."""
+
+    name = "upstream"
+    file = "timeline_upstream.json"
+
+    def __init__(self) -> None:
+        self.timeline: list[dict[str, Any]] = []
+
+    async def sample(self, gm, start: float, length: float, runs: dict[str, int]) -> None:
+        for line in range(int(length) + 1):
+            t = UPSTREAM_WAIT_S + line + 1
+            await asyncio.sleep(max(0.0, start + t - time.monotonic()))
+            self.timeline.append({"t": t, "line": line, **await gm.upstream_scores(dict(runs))})
+
+    def write(self, out: Path) -> None:
+        (out / self.file).write_text(json.dumps(self.timeline))
+
+
+SCORINGS = ("clean", "upstream")  # config `scoring`; every episode records the clean score as well
