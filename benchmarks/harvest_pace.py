@@ -18,7 +18,7 @@ import statistics
 from collections import defaultdict
 from pathlib import Path
 
-from pillagerbench.replay.load import ReplayError, load_replay
+from pillagerbench.replay.read import ReplayError, load_replay
 
 HARVESTING = re.compile(r"Harvesting (\w+)$")
 HARVESTED = re.compile(r"Harvested (\d+) (\w+)$")

@@ -27,7 +27,7 @@ import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from pillagerbench.arena import ArenaServer
-from pillagerbench.replay.load import load_replay
+from pillagerbench.replay.read import load_replay
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.scenarios import make_scenario
 from tests.support.bots import TestBot

@@ -99,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     module_name, func_name = COMMANDS[name][0].split(":")
     from pillagerbench.arena.server import ArenaServerError
     from pillagerbench.config import ConfigError
-    from pillagerbench.metrics.load import ReportError
+    from pillagerbench.metrics.runs import ReportError
     from pillagerbench.node import NodeSetupError
 
     try:

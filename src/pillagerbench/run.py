@@ -121,7 +121,7 @@ def summarize_problems(records: list) -> tuple[list[str], bool]:
 
 
 def summarize_lag(records: list) -> list[str]:
-    """One line per episode played under lag (pillagerbench/load.py), after a count."""
+    """One line per episode played under lag (pillagerbench/machine.py), after a count."""
     hit = [r for r in records if getattr(r, "lagged", False)]
     if not hit:
         return []

@@ -13,7 +13,7 @@ from typing import get_args
 
 from pillagerbench.config_schema import RunConfig
 from pillagerbench.match import SCORINGS
-from pillagerbench.metrics.load import load_runs
+from pillagerbench.metrics.runs import load_runs
 from pillagerbench.report.build import main as report_main
 from pillagerbench.rundir import EpisodeRecord, RunDir
 from tests.support.cli import run_cli

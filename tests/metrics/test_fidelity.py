@@ -10,8 +10,8 @@ import pytest
 from pillagerbench.metrics.calibration import resolve
 from pillagerbench.metrics.fidelity import CLAIMS, claims_table, fidelity_table
 from pillagerbench.metrics.formulas import Estimate
-from pillagerbench.metrics.load import load_runs
 from pillagerbench.metrics.reference import REFERENCE_SCORES
+from pillagerbench.metrics.runs import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.fidelity import main as fidelity_main
 from tests.metrics.fake_runs import write_run

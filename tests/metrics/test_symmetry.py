@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from pillagerbench.metrics.load import load_runs
+from pillagerbench.metrics.runs import load_runs
 from pillagerbench.metrics.symmetry import side_symmetry, welch
 from pillagerbench.report.symmetry import main as symmetry_main
 from tests.metrics.fake_runs import write_run

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.replay.load import load_replay
 from pillagerbench.replay.page import write_replay
+from pillagerbench.replay.read import load_replay
 from tests.support.browser import chromium, run_test_script
 
 FIXTURE = Path(__file__).with_name("fixtures") / "episode_000"

@@ -10,8 +10,8 @@ import pytest
 
 from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
-from pillagerbench.replay.load import load_replay
 from pillagerbench.replay.page import page_data
+from pillagerbench.replay.read import load_replay
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import make_team
 

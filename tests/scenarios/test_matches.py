@@ -11,7 +11,7 @@ import signal
 import pytest
 
 from pillagerbench.arena import ArenaServer
-from pillagerbench.load import SERVER_TPS_MIN
+from pillagerbench.machine import SERVER_TPS_MIN
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.teams import TEAMS, make_team

@@ -29,7 +29,7 @@ from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
-from pillagerbench.load import choose_parallel
+from pillagerbench.machine import choose_parallel
 from pillagerbench.rundir import RunDir
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
@@ -37,7 +37,7 @@ IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run an
 
 def local_parallel(cfg, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
     """Matches at once on this machine: the user's `parallel` if given, else as many as the measured
-    headroom allows (pillagerbench/load.py), with one line saying so when that is not the CPU count."""
+    headroom allows (pillagerbench/machine.py), with one line saying so when that is not the CPU count."""
     if cfg.get("parallel"):
         return int(cfg.get("parallel")), None
     choice = choose_parallel(cpus, load)
@@ -249,7 +249,7 @@ def check_series(specs: list[SeriesSpec]) -> None:
 
 
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
-    """The episodes played under lag (pillagerbench/load.py): a count, then up to `show` of them."""
+    """The episodes played under lag (pillagerbench/machine.py): a count, then up to `show` of them."""
     hit = [
         (s.id, i, rec.get("lag_reason"))
         for s in specs

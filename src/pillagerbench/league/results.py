@@ -1,5 +1,5 @@
 """What a league has played, read only from its round directories: the usable episodes (through
-metrics.load, the report's reader), their outcomes for the ratings, and the budget spent."""
+metrics.runs, the report's reader), their outcomes for the ratings, and the budget spent."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import pandas as pd
 from pillagerbench.league.ratings import Outcome
 from pillagerbench.league.rounds import round_dirs
 from pillagerbench.llm.ledger import read_ledger
-from pillagerbench.metrics.load import Runs, load_runs
+from pillagerbench.metrics.runs import Runs, load_runs
 from pillagerbench.rundir import LEDGER, RunDir
 
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.load import lag_verdict
+from pillagerbench.machine import lag_verdict
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.rundir import EpisodeRecord
 

@@ -1,1 +1,1 @@
-"""Metrics of the paper (§IV) from run directories: load.py, formulas.py, calibration.py."""
+"""Metrics of the paper (§IV) from run directories: runs.py, formulas.py, calibration.py."""

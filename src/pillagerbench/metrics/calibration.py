@@ -22,8 +22,8 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
-from pillagerbench.metrics.load import ReportError, Runs, load_runs
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
+from pillagerbench.metrics.runs import ReportError, Runs, load_runs
 
 CALIBRATION = "calibration.json"
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes

@@ -1,2 +1,2 @@
 """Replays: what happened in an episode, recorded from the server's truth (`record.py`), read back
-tolerantly (`load.py`) and shown as one self-contained HTML page (`page.py`). Format: docs/replays.md."""
+tolerantly (`read.py`) and shown as one self-contained HTML page (`page.py`). Format: docs/replays.md."""

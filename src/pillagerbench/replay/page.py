@@ -12,7 +12,7 @@ import sys
 from importlib import resources
 from pathlib import Path
 
-from pillagerbench.replay.load import Replay, ReplayError, load_replay
+from pillagerbench.replay.read import Replay, ReplayError, load_replay
 from pillagerbench.replay.record import GROUND_Y
 
 PAGE = "replay.html"

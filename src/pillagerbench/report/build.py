@@ -24,7 +24,7 @@ from typing import Any
 import pandas as pd
 
 from pillagerbench.metrics import calibration as calib
-from pillagerbench.metrics.load import ReportError, Runs, load_runs
+from pillagerbench.metrics.runs import ReportError, Runs, load_runs
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.fidelity import fidelity_sections

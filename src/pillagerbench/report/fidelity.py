@@ -12,7 +12,7 @@ import pandas as pd
 
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.fidelity import claims_table, fidelity_table
-from pillagerbench.metrics.load import ReportError, Runs, load_runs
+from pillagerbench.metrics.runs import ReportError, Runs, load_runs
 from pillagerbench.report.tables import to_markdown
 
 SIGMA_FROM_RUNS_NOTE = (

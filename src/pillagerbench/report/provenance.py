@@ -8,7 +8,7 @@ import json
 
 import pandas as pd
 
-from pillagerbench.metrics.load import Runs, SeriesInfo
+from pillagerbench.metrics.runs import Runs, SeriesInfo
 from pillagerbench.teams import TEAMS
 
 COLUMNS = [

@@ -10,8 +10,8 @@ import json
 import os
 from pathlib import Path
 
-from pillagerbench.replay.load import ReplayError
 from pillagerbench.replay.page import write_replay
+from pillagerbench.replay.read import ReplayError
 from pillagerbench.rundir import RunDir
 
 REPLAYS = "replays"

@@ -7,7 +7,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from pillagerbench.metrics.load import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError, load_runs
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report.tables import to_markdown
 

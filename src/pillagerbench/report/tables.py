@@ -9,7 +9,7 @@ Markdown ("mean ± ci").
                  evaluation "after k" (paper's adaptation table and self-play figure)
 - learning_curve: D per episode index (experience) per red team (paper's D-per-episode figure)
 - calibration:   σ_blue used per scenario and opponent
-- lagged:        episodes played under lag (pillagerbench/load.py) and why
+- lagged:        episodes played under lag (pillagerbench/machine.py) and why
 - skipped:       what was left out and why
 """
 
@@ -240,7 +240,7 @@ def calibration(sigma: dict) -> pd.DataFrame:
 
 
 def lagged(df: pd.DataFrame) -> pd.DataFrame:
-    """Episodes played under lag (a threshold of pillagerbench/load.py crossed): used in every
+    """Episodes played under lag (a threshold of pillagerbench/machine.py crossed): used in every
     figure, listed so a reader can judge or re-run them at a lower `parallel`."""
     cols = ["series", "episode", "server_tps", "lag_reason"]
     if not len(df) or "lagged" not in df:

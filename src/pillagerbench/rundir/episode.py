@@ -26,8 +26,8 @@ class EpisodeRecord:
     seed: int = 0
     player_order: list[str] = field(default_factory=list)  # the server's player order this episode
     server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
-    bot_lag: dict[str, dict | None] = field(default_factory=dict)  # player -> physics-tick lag in the game (load.py)
-    lagged: bool = False  # played under lag: a threshold of load.py crossed (scores may be low for it)
+    bot_lag: dict[str, dict | None] = field(default_factory=dict)  # player -> physics-tick lag in the game (machine.py)
+    lagged: bool = False  # played under lag: a threshold of machine.py crossed (scores may be low for it)
     lag_reason: str | None = None
     problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
     refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)

@@ -1,4 +1,4 @@
-"""Played under lag (pillagerbench/load.py): the thresholds on synthetic values, the default
+"""Played under lag (pillagerbench/machine.py): the thresholds on synthetic values, the default
 `parallel` from headroom, the bot's physics-tick lag meter (js/bot/lag.js) against a fake clock,
 and the lag fields of episodes.jsonl from a real short match."""
 
@@ -8,9 +8,9 @@ import json
 
 from omegaconf import OmegaConf
 
-from pillagerbench import load
+from pillagerbench import machine
 from pillagerbench.experiments.runner import local_parallel
-from pillagerbench.load import choose_parallel, lag_verdict
+from pillagerbench.machine import choose_parallel, lag_verdict
 from tests.support.cli import run_cli
 from tests.support.node_script import run_node_script
 
@@ -24,11 +24,11 @@ def test_a_calm_episode_is_not_flagged():
 
 def test_each_threshold_flags_just_past_it_and_not_at_it():
     at = {
-        "tick_rate": load.BOT_TICK_RATE_MIN,
-        "late_mean_ms": load.BOT_LATE_MEAN_MS_MAX,
-        "late_pct": load.BOT_LATE_PCT_MAX,
+        "tick_rate": machine.BOT_TICK_RATE_MIN,
+        "late_mean_ms": machine.BOT_LATE_MEAN_MS_MAX,
+        "late_pct": machine.BOT_LATE_PCT_MAX,
     }
-    assert lag_verdict(load.SERVER_TPS_MIN, {"Ryn": {**CALM, **at}}) == (False, None)
+    assert lag_verdict(machine.SERVER_TPS_MIN, {"Ryn": {**CALM, **at}}) == (False, None)
     lagged, why = lag_verdict(18.9, {"Ryn": CALM})
     assert lagged and "server at 18.9 TPS" in why
     for key, past, words in (
@@ -56,7 +56,9 @@ def test_a_given_parallel_wins_and_the_default_is_explained():
     assert local_parallel(OmegaConf.create({"parallel": 3}), cpus=2, load=0.0) == (3, None)
     n, why = local_parallel(OmegaConf.create({"parallel": None}), cpus=2, load=1.9)
     assert n == 1 and why and "parallel=1" in why
-    n, why = local_parallel(OmegaConf.create({"parallel": None}), cpus=2, load=2 - 2 * load.MATCH_CORES / load.HEADROOM)
+    n, why = local_parallel(
+        OmegaConf.create({"parallel": None}), cpus=2, load=2 - 2 * machine.MATCH_CORES / machine.HEADROOM
+    )
     assert n == 2 and why is None  # the CPU count: nothing surprising to say
 
 

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.replay.load import ReplayError, load_replay
 from pillagerbench.replay.page import PAGE, page_data
+from pillagerbench.replay.read import ReplayError, load_replay
 from tests.support.cli import run_cli
 
 FIXTURE = Path(__file__).with_name("fixtures") / "episode_000"

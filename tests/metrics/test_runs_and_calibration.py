@@ -8,7 +8,7 @@ import json
 import pytest
 
 from pillagerbench.metrics import calibration as calib
-from pillagerbench.metrics.load import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError, load_runs
 from tests.metrics.fake_runs import write_run
 
 
