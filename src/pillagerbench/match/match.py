@@ -18,6 +18,7 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.control import Server
 from pillagerbench.match import upstream
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import Game, LagMeter, LiveView, Part, Progress, Replay, WorldLog
@@ -27,12 +28,13 @@ from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team, TeamContext
+from pillagerbench.teams.base import PlayerHandle
 
 
 class Match:
     def __init__(
         self,
-        server,
+        server: Server,
         scenario: Scenario,
         teams: dict[str, Team],
         run_dir: Path,
@@ -72,12 +74,14 @@ class Match:
     async def setup(self) -> None:
         """Log every player in (one at a time: the server handles logins best that way), sides
         interleaved."""
-        log_dir = self.run_dir / "logs"
+        if self.server.port is None:
+            raise RuntimeError("the arena server is not running (start it before the match's setup)")
+        port, log_dir = self.server.port, self.run_dir / "logs"
         specs = {p.name: p for p in self.scenario.all_players()}
         for spec in (specs[n] for n in self.player_order(0)):
             player = Player(
                 spec.name,
-                self.server.port,
+                port,
                 server=self.server,
                 log_dir=log_dir,
                 primitives=list(self.scenario.primitives),
@@ -165,7 +169,7 @@ class Match:
         for side in self.scenario.sides:
             team_dir = out / side.key
             team_dir.mkdir(exist_ok=True)
-            handles = {
+            handles: dict[str, PlayerHandle] = {
                 n: RecordedPlayer(
                     self.players[n], sink, rec.runs, step_wait_s=self.step_wait_s, on_program=replay.program
                 )

@@ -14,19 +14,23 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.control import Server
 from pillagerbench.machine import lag_verdict
+from pillagerbench.players import Player
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.rundir import EpisodeRecord
+from pillagerbench.scenarios import Scenario
+from pillagerbench.teams import Team
 
 
 @dataclass
 class Game:
     """One game being played: what its parts may read."""
 
-    server: Any  # the arena server (control channel requests)
-    scenario: Any
-    teams: dict[str, Any]
-    players: dict[str, Any]
+    server: Server
+    scenario: Scenario
+    teams: dict[str, Team]
+    players: dict[str, Player]
     rec: EpisodeRecord
     out: Path
     length: float
@@ -142,16 +146,19 @@ class WorldLog(Part):
 
     def __init__(self) -> None:
         self.queue: asyncio.Queue | None = None
-        self.server: Any = None
+        self.server: Server | None = None
 
     async def start(self, game: Game) -> None:
+        if game.server.control is None:
+            raise RuntimeError("the arena server is not running")
         self.server, self.queue = game.server, game.server.control.subscribe()
 
     async def whistle(self, game: Game, final: dict[str, float]) -> None:
         queue, self.queue = self.queue, None
         if queue is None:
             return
-        game.server.control.unsubscribe(queue)
+        if game.server.control is not None:
+            game.server.control.unsubscribe(queue)
         events = [queue.get_nowait() for _ in range(queue.qsize())]
         with open(game.out / "world_events.jsonl", "w") as f:
             for e in events:

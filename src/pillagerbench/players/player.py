@@ -27,6 +27,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.control import Control
 from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
 
 BOT_MAIN = JS_DIR / "bot" / "main.js"
@@ -83,7 +84,7 @@ class Player:
         host: str = "127.0.0.1",
         log_dir: Path | None = None,
         primitives: list[str] | None = None,
-        server: Any = None,
+        server: Control | None = None,
         watchdog_s: float = 1.0,
         login_timeout: float = 30.0,
     ):
@@ -92,7 +93,7 @@ class Player:
         self.host = host
         self.log_dir = Path(log_dir) if log_dir else None
         self.primitives = list(primitives) if primitives is not None else None
-        self.server = server  # anything with `async request(op, **args)`: the arena's control channel
+        self.server = server  # the arena's control channel (None: no server-side checks)
         self.watchdog_s = watchdog_s
         self.login_timeout = login_timeout
         self.restarts = 0
@@ -384,9 +385,14 @@ class Player:
         if snapshot["pos"]:
             await self._teleport(snapshot["pos"])
 
+    def _control(self) -> Control:
+        if self.server is None:
+            raise PlayerError(f"{self.name}: this needs `server=` (the arena's control channel)")
+        return self.server
+
     async def _teleport(self, pos: list[float]) -> None:
         for _attempt in range(3):
-            await self.server.request("teleport", player=self.name, pos=pos)
+            await self._control().request("teleport", player=self.name, pos=pos)
             settled = await self._request("settle", pos=pos, timeout=3, wait=6)
             if settled is True:
                 return
@@ -469,7 +475,7 @@ class Player:
                 for name in _equipment_names(equipment):
                     if name not in (inventory or {}):  # equipment not listed in the inventory is extra
                         items[name] = items.get(name, 0) + 1
-                await self.server.request("set_inventory", player=self.name, items=items)
+                await self._control().request("set_inventory", player=self.name, items=items)
             if position is not None:
                 await self._teleport(_centred(position))
             if equipment is not None:

@@ -8,6 +8,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
+from pillagerbench.control import Control
 from pillagerbench.scenarios.arena import Arena
 
 
@@ -37,7 +38,7 @@ class GameMaster(ABC):
 
     period_s: ClassVar[float] = 1.0
 
-    def __init__(self, scenario: Scenario, server, rng: random.Random):
+    def __init__(self, scenario: Scenario, server: Control, rng: random.Random):
         self.scenario, self.server, self.rng = scenario, server, rng
         self.log: list[dict] = []  # what the game master did, for the episode record
 

@@ -10,12 +10,25 @@ from __future__ import annotations
 import asyncio
 import json
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Protocol
 
+from pillagerbench.llm import LLMClient
 from pillagerbench.rundir import LastEpisode
 from pillagerbench.scenarios import Scenario, Side
+
+
+class PlayerHandle(Protocol):
+    """A player as a team drives it in an episode (the match hands out `match/player.RecordedPlayer`s
+    over the players' bots): run a program to its end, or stop it."""
+
+    name: str
+
+    async def run(self, code: str, *, timeout: float | None = None, on_event: Callable | None = None) -> list: ...
+
+    async def stop(self) -> None: ...
 
 
 @dataclass
@@ -24,7 +37,7 @@ class TeamContext:
 
     scenario: Scenario
     side: Side
-    players: dict[str, Any]  # player name -> Player handle (run/stop/observe/reset)
+    players: dict[str, PlayerHandle]  # player name -> its handle for this episode
     episode: int
     out_dir: Path  # this team's artefacts for this episode
     observations: dict[str, list] = field(default_factory=dict)  # events from the players' reset
@@ -32,7 +45,7 @@ class TeamContext:
     deadline: float | None = None  # time.monotonic() at the whistle (set when the game starts)
     last_episode: LastEpisode = field(default_factory=lambda: LastEpisode())  # what the team saw of its last episode
     seed: int = 0
-    llm: Any = None  # an LLM client for LLM teams (pillagerbench.llm)
+    llm: LLMClient | None = None  # an LLM client for LLM teams
     # the LLM teams' loop (config `protocol`): "pillagerbench" (ours: reruns, re-asks) or "upstream"
     # (the paper's: no rerun after the iteration cap or a failed answer, CoT's 10 steps, no re-asks)
     protocol: str = "pillagerbench"
