@@ -46,7 +46,6 @@ class AgentsTeam(Protocol):
 
     agents: list[BaseAgent]
     agent_names: list[str]
-    iterations: list[int]
     memory: Memory
     llm: RoleLLM | None
     llm_off: str | None
@@ -115,6 +114,7 @@ class BaseAgent:
         self.chat_before: str = C.NONE  # chat shown before the first run (last episode's)
         self.stats = DedupStats()
         self.reruns = 0
+        self.iterations = 0  # code runs counted this game (the paper's I); the team reads them, never writes
         self.record: dict[str, Any] = {}
 
     # --- episode start ---------------------------------------------------------------------------
@@ -260,7 +260,7 @@ class BaseAgent:
         """Run, criticise and rewrite the code until the whistle (upstream: until the iteration cap)."""
         player = ctx.players[self.name]
         program: Program | None = self.program
-        failures = 0
+        failures = self.iterations = 0
         upstream = ctx.upstream_protocol
         while ctx.time_left() > 0:
             if program is None and not upstream:
@@ -278,12 +278,12 @@ class BaseAgent:
         once the agent idles until the whistle."""
         t = self.team
         if upstream:  # an unusable answer: an iteration without a run, as upstream's
-            if t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, ACTION):
+            if self.iterations >= t.max_iterations or not self.can_call(ctx, ACTION):
                 await self._idle_until_whistle(ctx)
                 return None
-            t.iterations[self.k] += 1
-            self.record["iterations"].append({"n": t.iterations[self.k], "counted": True, "no_code": True})
-            return (await self.write_code(ctx) if t.iterations[self.k] < t.max_iterations else None), failures
+            self.iterations += 1
+            self.record["iterations"].append({"n": self.iterations, "counted": True, "no_code": True})
+            return (await self.write_code(ctx) if self.iterations < t.max_iterations else None), failures
         if failures < t.max_llm_failures and self.can_call(ctx, ACTION):
             program = await self.write_code(ctx)
             if program is None:
@@ -304,12 +304,12 @@ class BaseAgent:
             it["ended_by_whistle"] = True
             return None
         fallback = self.good or (None if failed_at_once else program)
-        if upstream and (t.iterations[self.k] >= t.max_iterations or not self.can_call(ctx, CRITIC)):
+        if upstream and (self.iterations >= t.max_iterations or not self.can_call(ctx, CRITIC)):
             await self._idle_until_whistle(ctx)  # upstream: no more steps after the cap (nor once no call can finish)
             return None
         if (
             not counted
-            or t.iterations[self.k] >= t.max_iterations
+            or self.iterations >= t.max_iterations
             or failures >= t.max_llm_failures
             or not self.can_call(ctx, CRITIC)
         ):
@@ -329,9 +329,9 @@ class BaseAgent:
         """Runs the program once (an iteration while under the cap, else a rerun) and records it.
         Returns (its iteration record, its duration, whether it failed at once, whether it counted)."""
         t = self.team
-        counted = t.iterations[self.k] < t.max_iterations
+        counted = self.iterations < t.max_iterations
         if counted:
-            t.iterations[self.k] += 1
+            self.iterations += 1
         else:
             self.reruns += 1
             self.record["reruns"] = self.reruns
@@ -352,7 +352,7 @@ class BaseAgent:
         if not failed_at_once:
             self.good = program
         it = {
-            "n": t.iterations[self.k],
+            "n": self.iterations,
             "counted": counted,
             "new_code": new_code,
             "entry": program.entry,

@@ -339,8 +339,9 @@ class TactiCrafter(Team):
         self.iterations = [0] * len(self.agents)
         try:
             await asyncio.gather(*(a.play(ctx) for a in self.agents))
-        finally:
-            self.record["iterations"] = {a.name: self.iterations[a.k] for a in self.agents}
+        finally:  # the whistle cancels the agents: what each did is read from it, once
+            self.iterations = [a.iterations for a in self.agents]
+            self.record["iterations"] = {a.name: a.iterations for a in self.agents}
 
     # --- post-game ---------------------------------------------------------------------------------
 
