@@ -148,7 +148,10 @@ GROUPS = {
     "red": ("team@red", "the red team (see teams); its options: red.KEY=VALUE"),
     "blue": ("team@blue", "the blue team (see teams); its options: blue.KEY=VALUE"),
     "llm": ("llm", "the LLM preset (see LLM presets); its keys: llm.KEY=VALUE"),
-    "experiment": ("experiment", "many series from the paper's protocols (see experiments); keys experiment.KEY"),
+    "experiment": (
+        "experiment",
+        "many series from the paper's experiment designs (see experiments); keys experiment.KEY",
+    ),
 }
 
 

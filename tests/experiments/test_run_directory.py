@@ -12,10 +12,11 @@ from pathlib import Path
 from typing import get_args
 
 from pillagerbench.config_schema import RunConfig
+from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.runs import load_runs
 from pillagerbench.report.build import main as report_main
-from pillagerbench.rundir import EpisodeRecord, RunDir
+from pillagerbench.rundir import EpisodeRecord, RunDir, read_experiment
 from tests.support.cli import run_cli
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
@@ -62,6 +63,7 @@ def test_a_run_written_before_the_rundir_package_loads_reports_and_resumes(tmp_p
     runs = load_runs([run])
     assert sorted(runs.episodes["episode"]) == [0, 1]
     assert set(runs.episodes["scoring"]) == {"clean"} and set(runs.episodes["team_protocol"]) == {"pillagerbench"}
+    assert set(runs.episodes["design"]) == {"round_robin"}  # written as "protocol" then
     assert report_main([str(run), "--out", str(tmp_path / "report"), "--no-replays"]) == 0
     assert "2 episode" in capsys.readouterr().out
 
@@ -72,6 +74,21 @@ def test_a_run_written_before_the_rundir_package_loads_reports_and_resumes(tmp_p
     records = [json.loads(line) for line in series.episodes_path.read_text().splitlines()]
     assert [(r["episode"], r["status"]) for r in records] == [(0, "ok"), (1, "ok"), (2, "ok")]
     assert json.loads((series.episode(2) / "timeline.json").read_text())[-1]["t"] == 5
+
+
+def test_the_design_of_an_experiment_written_when_it_was_called_protocol_reads_back(tmp_path):
+    """Before `design`, experiment.json called the experiment's design `protocol` (the word now means
+    the LLM teams' loop only); rundir.read_experiment reads it, for every reader."""
+    run = tmp_path / "run"
+    shutil.copytree(FIXTURE, run)
+    assert '"protocol": "round_robin"' in (run / "experiment.json").read_text()
+    data = read_experiment(run)
+    (series,) = data["series"]
+    assert data["experiment"]["design"] == series["design"] == "round_robin"
+    assert "protocol" not in data["experiment"] and "protocol" not in series
+    assert series["config"]["protocol"] == "pillagerbench"  # the series' team loop, as it was
+    assert [s.design for s in load_experiment(run)[1]] == ["round_robin"]
+    assert [s.design for s in load_runs([run]).series] == ["round_robin"]
 
 
 def test_the_scorings_are_named_once():

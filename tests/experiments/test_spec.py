@@ -1,4 +1,4 @@
-"""Experiment configs build the paper's protocols as series."""
+"""Experiment configs build the paper's experiment designs as series."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Experiments: the paper's protocols as lists of series, run in parallel, resumable (docs/experiments.md)."""
+"""Experiments: the paper's experiment designs as lists of series, run in parallel, resumable (docs/experiments.md)."""
 
 from pillagerbench.experiments.spec import SeriesSpec, build_series, builtin_teams
 

@@ -30,7 +30,7 @@ from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import RunDir, read_experiment
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
 
@@ -77,7 +77,7 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
 def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Path]]:
     """The series of a run directory: an experiment's, or the one series of a plain `pillagerbench run`."""
     if (run_dir / "experiment.json").exists():
-        data = json.loads((run_dir / "experiment.json").read_text())
+        data = read_experiment(run_dir)
         specs = [SeriesSpec.from_dict(s) for s in data["series"]]
         return data["name"], specs, {s.id: run_dir / "series" / s.id for s in specs}
     if (run_dir / "manifest.json").exists():
@@ -87,7 +87,7 @@ def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Pat
         spec = SeriesSpec(
             id=run_dir.name,
             index=0,
-            protocol="run",
+            design="run",
             scenario=config["scenario"]["name"],
             red=config["red"]["name"],
             blue=config["blue"]["name"],

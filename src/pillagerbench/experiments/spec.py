@@ -6,7 +6,7 @@ checkpoint to start from and which checkpoints to keep. Every series carries its
 config (the same tree `pillagerbench run` uses), so a series can be played, resumed or shipped to
 another machine without composing configs again.
 
-Protocols (conf/experiment/*.yaml, key `protocol`):
+Designs (conf/experiment/*.yaml, key `design`):
 - round_robin: every red team of `red_teams` against every blue team of `blue_teams`
 - benchmark:   each variant (team + options + model) against every opponent of every scenario
 - self_play:   each variant against itself; optionally the red checkpoints then meet every opponent
@@ -19,7 +19,6 @@ Protocols (conf/experiment/*.yaml, key `protocol`):
 
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -28,9 +27,9 @@ from typing import Any
 from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import RunDir, read_experiment
 
-PROTOCOLS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
+DESIGNS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
@@ -41,7 +40,7 @@ SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario"
 class SeriesSpec:
     id: str  # unique in the experiment, also the series' directory name
     index: int
-    protocol: str
+    design: str  # the experiment's design (DESIGNS; "run" for a plain run, "league" for a league round)
     scenario: str
     red: str  # the red row label (team name or variant label)
     blue: str  # the blue column label
@@ -214,7 +213,7 @@ class _Builder:
         spec = SeriesSpec(
             id="_".join(parts),
             index=index,
-            protocol=str(self.exp.protocol),
+            design=str(self.exp.design),
             scenario=scenario,
             red=red,
             blue=blue,
@@ -228,7 +227,7 @@ class _Builder:
         self.series.append(spec)
         return spec
 
-    # -- protocols -------------------------------------------------------------------------------
+    # -- designs ---------------------------------------------------------------------------------
     def round_robin(self) -> None:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for sc in self.exp.scenarios:
@@ -375,8 +374,7 @@ class _Builder:
 
 def read_series_index(run_dir: Path) -> list[SeriesSpec]:
     """The series of an experiment's run directory, from its experiment.json."""
-    data = json.loads((Path(run_dir) / "experiment.json").read_text())
-    return [SeriesSpec.from_dict(s) for s in data["series"]]
+    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir)["series"]]
 
 
 def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:
@@ -403,13 +401,11 @@ def build_series(cfg: DictConfig, argv: list[str] | None = None) -> list[SeriesS
     exp = cfg.get("experiment")
     if not exp:
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
-    protocol = exp.get("protocol")
-    if protocol not in PROTOCOLS:
-        raise ConfigError(
-            f"experiment {exp.get('name')!r}: unknown protocol {protocol!r}; valid: {', '.join(PROTOCOLS)}"
-        )
+    design = exp.get("design")
+    if design not in DESIGNS:
+        raise ConfigError(f"experiment {exp.get('name')!r}: unknown design {design!r}; valid: {', '.join(DESIGNS)}")
     builder = _Builder(cfg, list(argv or []))
-    getattr(builder, protocol)()
+    getattr(builder, design)()
     if not builder.series:
         raise ConfigError(f"experiment {exp.get('name')!r} has no series (check scenarios/opponents)")
     return builder.series

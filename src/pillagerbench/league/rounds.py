@@ -64,7 +64,7 @@ def write_round(
             SeriesSpec(
                 id=f"{i:03d}_{p.scenario}_{slug(p.red)}_vs_{slug(p.blue)}",
                 index=i,
-                protocol="league",
+                design="league",
                 scenario=p.scenario,
                 red=p.red,
                 blue=p.blue,
@@ -79,6 +79,6 @@ def write_round(
     stamp = {"game": list(game), "entrants": {n: e.fingerprint() for n in sorted(involved) if (e := league.entrant(n))}}
     run_dir.mkdir(parents=True, exist_ok=True)
     (run_dir / STAMP).write_text(json.dumps(stamp, indent=1))  # first: a round counts once experiment.json exists
-    top = OmegaConf.create({**runner, "experiment": {"name": f"league {run_dir.name}", "protocol": "league"}})
+    top = OmegaConf.create({**runner, "experiment": {"name": f"league {run_dir.name}", "design": "league"}})
     write_experiment(run_dir, top, list(game), specs)
     return run_dir, specs

@@ -21,7 +21,7 @@ import pandas as pd
 
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.formulas import SCORE_SCALE
-from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir
+from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, read_experiment
 
 # the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
 # and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
@@ -44,7 +44,7 @@ class SeriesInfo:
     red_team: str
     blue_team: str
     episodes: int
-    protocol: str = "run"
+    design: str = "run"  # the experiment's design (experiments/spec.py DESIGNS), "run" for a plain run
     variant: str | None = None
     repetition: int = 0
     group: str | None = None
@@ -79,7 +79,7 @@ def _series_of(run: Path) -> list[SeriesInfo]:
         )
 
     if (run / "experiment.json").exists():
-        data = json.loads((run / "experiment.json").read_text())
+        data = read_experiment(run)  # whichever version wrote it
         out = []
         for s in data["series"]:
             d = run / "series" / s["id"]
@@ -95,7 +95,7 @@ def _series_of(run: Path) -> list[SeriesInfo]:
                     red_team=s["red_team"],
                     blue_team=s["blue_team"],
                     episodes=int(s["episodes"]),
-                    protocol=s["protocol"],
+                    design=s["design"],
                     variant=s.get("variant"),
                     repetition=int(s.get("repetition", 0)),
                     group=s.get("group"),
@@ -202,7 +202,7 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "blue": s.blue,
         "red_team": s.red_team,
         "blue_team": s.blue_team,
-        "protocol": s.protocol,
+        "design": s.design,
         "variant": s.variant,
         "repetition": s.repetition,
         "group": s.group,

@@ -3,10 +3,22 @@
 `RunDir` knows every path of a plain run or an experiment's series directory, appends and reads the
 episode records, tells what is finished and makes a directory consistent after a crash; `EpisodeRecord`
 is an episode's record (its line in episodes.jsonl) and `LastEpisode` what a team sees of its last
-episode. Every writer and reader of run directories goes through this package.
+episode; `read_experiment` reads an experiment's experiment.json. Every writer and reader of run
+directories goes through this package.
 """
 
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, winner_of
+from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
 
-__all__ = ["EPISODES", "LEDGER", "EpisodeRecord", "LastEpisode", "RunDir", "episode_index", "winner_of"]
+__all__ = [
+    "EPISODES",
+    "EXPERIMENT",
+    "LEDGER",
+    "EpisodeRecord",
+    "LastEpisode",
+    "RunDir",
+    "episode_index",
+    "read_experiment",
+    "winner_of",
+]
