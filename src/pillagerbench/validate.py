@@ -1,9 +1,8 @@
 """The whole run configuration checked at once, before anything is created or started.
 
-The top-level keys are typed (config_schema.py); a team's options are
-checked against what its config file declares (`conf/team/<name>.yaml`: the keys and the types of
-their defaults); `red.llm.*` / `blue.llm.*` only for teams that use an LLM; the LLM settings of
-every side that uses one. Every problem is one line naming the key, the bad value and what is
+The top-level keys are typed (config_schema.py); a team's options are checked against its options
+model (`Team.Options`: keys, types, ranges; teams/options.py); `red.llm.*` / `blue.llm.*` only for
+teams that use an LLM; the LLM settings of every side that uses one. Every problem is one line naming the key, the bad value and what is
 valid; `check_run_config` raises one `ConfigError` holding all of them.
 """
 
@@ -12,26 +11,16 @@ from __future__ import annotations
 from typing import Any, cast
 
 from omegaconf import OmegaConf
-from pydantic import ConfigDict, create_model
 
 from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems, watch_problems
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
 from pillagerbench.scenarios import SCENARIOS
-from pillagerbench.teams import TEAMS, declared_options, find_team
+from pillagerbench.teams import TEAMS, find_team
+from pillagerbench.teams.options import defaults, options_model
 
 SIDES = ("red", "blue")
-
-
-def _option_type(default: Any) -> Any:
-    if default is None:
-        return Any
-    if isinstance(default, bool):
-        return bool
-    if isinstance(default, float):
-        return float
-    return type(default)
 
 
 def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
@@ -48,9 +37,8 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
             f"{side}={name}: plays only {', '.join(cls.scenarios)}, not {scenario}; "
             f"teams for {scenario}: {', '.join(valid)}"
         )
-    declared = declared_options(name, cls)
-    fields: dict[str, Any] = {k: (_option_type(v), v) for k, v in declared.items()}
-    model = create_model(f"{name}_options", __config__=ConfigDict(extra="forbid"), **fields)
+    model = options_model(cls)
+    declared = defaults(model)
     given = {k: v for k, v in to_dict(node).items() if k not in ("name", "llm")}
     found = problems(model, given, side)
     out += [

@@ -18,6 +18,7 @@ from typing import Any, ClassVar, Protocol
 from pillagerbench.llm import LLMClient
 from pillagerbench.rundir import LastEpisode
 from pillagerbench.scenarios import Scenario, Side
+from pillagerbench.teams.options import TeamOptions
 
 
 class PlayerHandle(Protocol):
@@ -68,7 +69,10 @@ class Team:
     name: ClassVar[str] = "team"
     scenarios: ClassVar[tuple[str, ...] | None] = None
     uses_llm: ClassVar[bool] = False  # the match gives it an LLM client (ctx.llm) from the `llm` config
-    # the options `red.KEY=VALUE` may set, with their defaults (teams without a conf/team YAML file)
+    # the options `red.KEY=VALUE` may set: types, ranges, defaults, descriptions (teams/options.py);
+    # conf/team/<name>.yaml repeats them for a built-in team (tests/teams/test_options.py)
+    Options: ClassVar[type[TeamOptions]] = TeamOptions
+    # or, shorter, for a team of your own: the options with their defaults (their types are the defaults')
     options_declared: ClassVar[dict[str, Any]] = {}
 
     def __init__(self, **options: Any):

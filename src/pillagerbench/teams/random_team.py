@@ -21,10 +21,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
+from pydantic import Field
+
 from pillagerbench.node import JS_DIR
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.options import TeamOptions
 
 UNMINABLE = {"air", "cave_air", "void_air", "bedrock", "barrier", "water", "lava", "fire"}
 SEEDS = {
@@ -333,16 +336,26 @@ ACTIONS: tuple[tuple[str, Check, Builder], ...] = (
 )
 
 
+class RandomOptions(TeamOptions):
+    """random's options (`red.KEY=VALUE`; conf/team/random.yaml repeats them)."""
+
+    pause_every: int = Field(default=5, ge=1, description="actions between pauses")
+    pause_s: float = Field(default=1.0, ge=0, description="length of a pause")
+    action_timeout_s: float = Field(
+        default=20.0, gt=0, description="an action still running after this long is stopped"
+    )
+
+
 class RandomTeam(Team):
     name = "random"
     uses_llm = False
     max_actions: ClassVar[int] = 100_000
+    Options = RandomOptions
 
-    def __init__(self, pause_every: int = 5, pause_s: float = 1.0, action_timeout_s: float = 20.0, **options: Any):
+    def __init__(self, **options: Any):
         super().__init__(**options)
-        self.pause_every = max(1, int(pause_every))
-        self.pause_s = float(pause_s)
-        self.action_timeout_s = float(action_timeout_s)
+        o = RandomOptions.model_validate(options)
+        self.pause_every, self.pause_s, self.action_timeout_s = o.pause_every, o.pause_s, o.action_timeout_s
         self.actions: dict[str, list[dict]] = {}
 
     @staticmethod

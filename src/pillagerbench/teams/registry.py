@@ -15,8 +15,9 @@ from typing import Any
 
 from omegaconf import OmegaConf
 
-from pillagerbench.config import ConfigError, team_yaml_options
+from pillagerbench.config import ConfigError
 from pillagerbench.teams.base import Team
+from pillagerbench.teams.options import defaults, options_model
 
 ENTRY_POINT_GROUP = "pillagerbench.teams"
 TEAMS: dict[str, type[Team]] = {}
@@ -37,12 +38,9 @@ class TeamEntry:
 
 
 def declared_options(name: str, cls: type[Team] | None = None) -> dict[str, Any]:
-    """The options a team declares, with their defaults (without name and llm): its config file
-    `conf/team/<name>.yaml`, or for a team without one, the class's `options_declared`."""
-    own = team_yaml_options(name)
-    if own is not None:
-        return own
-    return dict(cls.options_declared) if cls is not None else {}
+    """The options a team declares, with their defaults (without name and llm): its options model
+    (`Team.Options`, or `options_declared`; teams/options.py)."""
+    return defaults(options_model(cls if cls is not None else find_team(name)))
 
 
 def _entry_points() -> dict[str, list]:

@@ -19,12 +19,15 @@ import time
 from pathlib import Path
 from typing import Any
 
+from pydantic import Field
+
 from pillagerbench.agents import context as C
 from pillagerbench.agents.code import ProgramsResult, programs_from_answer
 from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.options import TeamOptions
 
 PROMPTS = load_prompts(Path(__file__).parent)
 ROLE = "cot"
@@ -38,24 +41,40 @@ def task_text(ctx: TeamContext) -> str:
     )
 
 
+class CoTOptions(TeamOptions):
+    """cot's options (`red.KEY=VALUE`; conf/team/cot.yaml repeats them)."""
+
+    attempts: int = Field(
+        default=3,
+        ge=1,
+        description="LLM calls per episode when an answer cannot be used (each retry shows the problems)",
+    )
+    temperature: float | None = Field(default=None, ge=0, le=2, description="null = the llm preset's temperature")
+    max_tokens: int | None = Field(
+        default=4096,
+        ge=1,
+        description="answer cap; the presets' 512 is too short for two programs (null = the llm preset's)",
+    )
+    restart_pause_s: float = Field(
+        default=1.0, ge=0, description="wait before restarting a program that ended within this many seconds"
+    )
+    max_chat_lines: int = Field(
+        default=80, ge=0, description="last round's chat log shown to the LLM (after compressing repeats)"
+    )
+
+
 class ChainOfThought(Team):
     name = "cot"
     uses_llm = True
+    Options = CoTOptions
 
-    def __init__(
-        self,
-        attempts: int = 3,
-        temperature: float | None = None,
-        max_tokens: int | None = 4096,
-        restart_pause_s: float = 1.0,
-        max_chat_lines: int = 80,
-        **options: Any,
-    ):
+    def __init__(self, **options: Any):
         super().__init__(**options)
-        self.attempts = max(1, int(attempts))
-        self.temperature, self.max_tokens = temperature, max_tokens
-        self.restart_pause_s = float(restart_pause_s)
-        self.max_chat_lines = int(max_chat_lines)
+        o = CoTOptions.model_validate(options)
+        self.attempts = o.attempts
+        self.temperature, self.max_tokens = o.temperature, o.max_tokens
+        self.restart_pause_s = o.restart_pause_s
+        self.max_chat_lines = o.max_chat_lines
         self.programs: list = []
         self.last_code: dict[str, str | None] = {}  # the block each player got last episode
         self.last_problems: list[str] = []  # why last episode's code was not (all) used

@@ -23,20 +23,30 @@ import urllib.request
 from typing import Any, TypeVar
 from urllib.parse import urlparse
 
-from pydantic import BaseModel, ValidationError
+from pydantic import BaseModel, Field, ValidationError
 
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.options import TeamOptions, defaults
 from pillagerbench.teams.remote import protocol as P
 
-DEFAULTS: dict[str, Any] = {
-    "url": None,  # http(s)://HOST:PORT of the team server
-    "pregame_timeout_s": 60.0,  # the pre-game answer (like an LLM's planning call)
-    "call_timeout_s": 5.0,  # each in-game and post-game call
-    "events_every_s": 1.0,  # how often the players' events are sent
-    "max_answer_bytes": 1_000_000,
-    "restart_pause_s": 1.0,  # wait before starting again a program that ended within this time
-}
+
+class RemoteOptions(TeamOptions):
+    """remote's options (`red.KEY=VALUE`; docs/remote-teams.md lists them)."""
+
+    url: str | None = Field(default=None, description="http(s)://HOST:PORT of the team server (required)")
+    pregame_timeout_s: float = Field(
+        default=60.0, gt=0, description="the pre-game answer (like an LLM's planning call)"
+    )
+    call_timeout_s: float = Field(default=5.0, gt=0, description="each in-game and post-game call")
+    events_every_s: float = Field(default=1.0, gt=0, description="how often the players' events are sent")
+    max_answer_bytes: int = Field(default=1_000_000, ge=1, description="a larger answer is refused")
+    restart_pause_s: float = Field(
+        default=1.0, ge=0, description="wait before starting again a program that ended within this time"
+    )
+
+
+DEFAULTS: dict[str, Any] = defaults(RemoteOptions)
 
 
 Reply = TypeVar("Reply", bound=BaseModel)
@@ -95,17 +105,15 @@ async def call(
 
 class RemoteTeam(Team):
     name = "remote"
-    options_declared = DEFAULTS
+    Options = RemoteOptions
 
     def __init__(self, **options: Any):
         super().__init__(**options)
-        opts = {**DEFAULTS, **options}
-        self.url = str(opts["url"] or "")
-        self.pregame_timeout_s = float(opts["pregame_timeout_s"])
-        self.call_timeout_s = float(opts["call_timeout_s"])
-        self.events_every_s = float(opts["events_every_s"])
-        self.max_answer_bytes = int(opts["max_answer_bytes"])
-        self.restart_pause_s = float(opts["restart_pause_s"])
+        o = RemoteOptions.model_validate(options)
+        self.url = o.url or ""
+        self.pregame_timeout_s, self.call_timeout_s = o.pregame_timeout_s, o.call_timeout_s
+        self.events_every_s, self.max_answer_bytes = o.events_every_s, o.max_answer_bytes
+        self.restart_pause_s = o.restart_pause_s
         self.programs: dict[str, str] = {}
         self.versions: dict[str, int] = {}
         self.record: dict[str, Any] = {}

@@ -23,9 +23,12 @@ import time
 from pathlib import Path
 from typing import Any
 
+from pydantic import Field, field_validator
+
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, RoleLLM
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.options import TeamOptions
 
 from . import causal, opponent, tactics
 from .base_agent import BaseAgent
@@ -47,49 +50,79 @@ from .opponent import UNKNOWN
 ROLES = ("tactics", "causal", "opponent", "action", "critic")
 
 
+class TactiCrafterOptions(TeamOptions):
+    """tacticrafter's options (`red.KEY=VALUE`; conf/team/tacticrafter.yaml repeats them)."""
+
+    iterations: int = Field(
+        default=10, ge=1, description="code iterations per player per episode (the paper's I is capped by this)"
+    )
+    causal: bool = Field(default=True, description='the causal model (false = ablation "no causal")')
+    opponent: bool = Field(default=True, description='the opponent model (false = ablation "no opponent")')
+    enable_causal: bool | None = Field(
+        default=None,
+        description="alias of `causal` (upstream's name, used by experiment=ablation_modules); null = causal",
+    )
+    enable_opponent: bool | None = Field(default=None, description="alias of `opponent`; null = opponent")
+    preset_tactics: str | None = Field(
+        default=None, description="a tactics text used instead of generating the first tactics"
+    )
+    update_tactics: bool = Field(
+        default=True, description="false = keep the first (e.g. preset) tactics for the whole series"
+    )
+    checkpoint: str | None = Field(
+        default=None, description="a directory to start from (a checkpoint, or an episode's team directory)"
+    )
+    roles: dict[str, dict[str, Any] | None] = Field(
+        default={}, description="e.g. {action: {temperature: 0.0}, critic: {model: gpt-4o-mini}}"
+    )
+    attempts: int = Field(
+        default=3, ge=1, description="calls per LLM step when an answer cannot be used (tags, JSON, code)"
+    )
+    min_llm_time_s: float = Field(
+        default=5.0, ge=0, description="during the game, no LLM call starts with less time left than this"
+    )
+    quick_fail_s: float = Field(
+        default=3.0, ge=0, description='a run that errors within this many seconds "failed at once" (not good code)'
+    )
+    restart_pause_s: float = Field(
+        default=1.0, ge=0, description="wait before re-running code that ended within this many seconds"
+    )
+    max_llm_failures: int = Field(
+        default=3, ge=1, description="per player and episode: failed code requests before it stops asking"
+    )
+    max_chat_lines: int = Field(default=60, ge=0, description="chat lines shown in a prompt (after deduplication)")
+    max_tactics: int = Field(default=6, ge=1, description="numbered tactics items kept")
+    keep_messages: bool = Field(default=True, description="write the prompts into tacticrafter.json")
+
+    @field_validator("roles")
+    @classmethod
+    def _known_roles(cls, roles: dict[str, dict[str, Any] | None]) -> dict[str, dict[str, Any] | None]:
+        unknown = sorted(set(roles) - set(ROLES))
+        if unknown:
+            raise ValueError(f"tacticrafter: unknown role(s) {unknown}; valid: {list(ROLES)}")
+        RoleLLM(None, {k: v or {} for k, v in roles.items()})  # validates the keys of each role
+        return roles
+
+
 class TactiCrafter(Team):
     name = "tacticrafter"
     uses_llm = True
+    Options = TactiCrafterOptions
 
-    def __init__(
-        self,
-        iterations: int = 10,
-        causal: bool = True,
-        opponent: bool = True,
-        preset_tactics: str | None = None,
-        update_tactics: bool = True,
-        checkpoint: str | None = None,
-        roles: dict | None = None,
-        attempts: int = 3,
-        min_llm_time_s: float = 5.0,
-        quick_fail_s: float = 3.0,
-        restart_pause_s: float = 1.0,
-        max_llm_failures: int = 3,
-        max_chat_lines: int = 60,
-        max_tactics: int = 6,
-        keep_messages: bool = True,
-        enable_causal: bool | None = None,
-        enable_opponent: bool | None = None,
-        **options: Any,
-    ):
+    def __init__(self, **options: Any):
         super().__init__(**options)
-        self.max_iterations = max(1, int(iterations))
-        self.causal_enabled = bool(causal if enable_causal is None else enable_causal)
-        self.opponent_enabled = bool(opponent if enable_opponent is None else enable_opponent)
-        self.preset_tactics = (
-            preset_tactics.strip() if isinstance(preset_tactics, str) and preset_tactics.strip() else None
-        )
-        self.update_tactics = bool(update_tactics)
-        self.roles = {k: dict(v or {}) for k, v in (roles or {}).items()}
-        unknown = sorted(set(self.roles) - set(ROLES))
-        if unknown:
-            raise ValueError(f"tacticrafter: unknown role(s) {unknown}; valid: {list(ROLES)}")
-        RoleLLM(None, self.roles)  # validates the keys of each role
-        self.attempts = max(1, int(attempts))
-        self.min_llm_time_s, self.quick_fail_s = float(min_llm_time_s), float(quick_fail_s)
-        self.restart_pause_s, self.max_llm_failures = float(restart_pause_s), max(1, int(max_llm_failures))
-        self.max_chat_lines, self.max_tactics = int(max_chat_lines), max(1, int(max_tactics))
-        self.keep_messages = bool(keep_messages)
+        o = TactiCrafterOptions.model_validate(options)
+        self.max_iterations = o.iterations
+        self.causal_enabled = o.causal if o.enable_causal is None else o.enable_causal
+        self.opponent_enabled = o.opponent if o.enable_opponent is None else o.enable_opponent
+        self.preset_tactics = o.preset_tactics.strip() if o.preset_tactics and o.preset_tactics.strip() else None
+        self.update_tactics = o.update_tactics
+        self.roles = {k: dict(v or {}) for k, v in o.roles.items()}
+        self.attempts = o.attempts
+        self.min_llm_time_s, self.quick_fail_s = o.min_llm_time_s, o.quick_fail_s
+        self.restart_pause_s, self.max_llm_failures = o.restart_pause_s, o.max_llm_failures
+        self.max_chat_lines, self.max_tactics = o.max_chat_lines, o.max_tactics
+        self.keep_messages = o.keep_messages
         self.memory = Memory()
         self.agents: list[BaseAgent] = []
         self.agent_names: list[str] = []
@@ -97,8 +130,8 @@ class TactiCrafter(Team):
         self.llm_off: str | None = None  # why LLM calls stopped for this episode
         self.latency: dict[str, list[float]] = {}
         self.record: dict[str, Any] = {}
-        if checkpoint:
-            self.load_checkpoint(Path(checkpoint))
+        if o.checkpoint:
+            self.load_checkpoint(Path(o.checkpoint))
 
     # --- helpers ---------------------------------------------------------------------------------
 
