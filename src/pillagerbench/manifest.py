@@ -6,7 +6,6 @@ Written by a plain `pillagerbench run` (run.py) and by every series of an experi
 
 from __future__ import annotations
 
-import json
 import platform
 import subprocess
 import time
@@ -16,6 +15,7 @@ from typing import Any
 from omegaconf import OmegaConf
 
 from pillagerbench import __version__
+from pillagerbench.rundir import RunDir
 
 
 def git_revision() -> str | None:
@@ -48,4 +48,4 @@ def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
         "seed": cfg.seed,
         "git_revision": git_revision(),
     }
-    (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
+    RunDir(run_dir).write_manifest(manifest)

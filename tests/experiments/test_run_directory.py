@@ -22,7 +22,11 @@ from tests.support.cli import run_cli
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
 FIXTURE = Path(__file__).parent / "fixtures" / "run_6198d49"
 SERIES = "000_mushroom_war_do_nothing_vs_passive"
-NAMES = re.compile(r"episodes\.jsonl|llm_calls\.jsonl|live\.json|^episode_$|^episode_\d|^/?episode_[{\[*]")
+# a path literal of the run directory (a message may name a file; a path is the name alone or its tail)
+NAMES = re.compile(
+    r"^/?(episodes\.jsonl|llm_calls\.jsonl|live\.json|experiment\.json|manifest\.json|series\.json)$"
+    r"|^/?episode_($|\d|[{\[*])"
+)
 
 
 def literals(path: Path) -> list[tuple[int, str]]:

@@ -63,7 +63,7 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
         "overrides": list(argv),
         "series": [s.to_dict() for s in specs],
     }
-    (run_dir / "experiment.json").write_text(json.dumps(data, indent=1, default=str))
+    RunDir(run_dir).experiment_path.write_text(json.dumps(data, indent=1, default=str))
     manifest = {
         "created": data["created"],
         "config": top,
@@ -71,17 +71,17 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
         "git_revision": git_revision(),
         "experiment": cfg.experiment.name,
     }
-    (run_dir / "manifest.json").write_text(json.dumps(manifest, indent=1, default=str))
+    RunDir(run_dir).write_manifest(manifest)
 
 
 def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Path]]:
     """The series of a run directory: an experiment's, or the one series of a plain `pillagerbench run`."""
-    if (run_dir / "experiment.json").exists():
+    if RunDir(run_dir).is_experiment():
         data = read_experiment(run_dir)
         specs = [SeriesSpec.from_dict(s) for s in data["series"]]
-        return data["name"], specs, {s.id: run_dir / "series" / s.id for s in specs}
-    if (run_dir / "manifest.json").exists():
-        config = json.loads((run_dir / "manifest.json").read_text())["config"]
+        return data["name"], specs, {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
+    if RunDir(run_dir).manifest_path.exists():
+        config = RunDir(run_dir).manifest()["config"]
         for k in RUNNER_KEYS:
             config.pop(k, None)
         spec = SeriesSpec(
@@ -278,7 +278,7 @@ def main_experiment(cfg, argv: list[str]) -> int:
         specs = build_series(cfg, argv)
         check_series(specs)
         run_dir = make_experiment_dir(cfg)
-        if (run_dir / "experiment.json").exists():
+        if RunDir(run_dir).is_experiment():
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
         write_experiment(run_dir, cfg, argv, specs)
         if cfg.get("calibration"):

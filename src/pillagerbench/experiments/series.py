@@ -83,7 +83,7 @@ async def run_series(
         else:
             for side, ref in (spec.checkpoint or {}).items():
                 teams[side].load_checkpoint(resolve_checkpoint(ref, side, run_dir))
-        if not (rundir.path / "manifest.json").exists():
+        if not rundir.manifest_path.exists():
             write_manifest(rundir.path, cfg, scenario)
         else:
             _append_line(

@@ -17,6 +17,7 @@ from pillagerbench.experiments.spec import SeriesSpec, slug
 from pillagerbench.league.compose import match_config
 from pillagerbench.league.schedule import Pairing
 from pillagerbench.league.spec import League
+from pillagerbench.rundir import RunDir
 
 MATCHES = "matches"
 STAMP = "league.json"
@@ -24,7 +25,7 @@ STAMP = "league.json"
 
 def round_dirs(league_dir: Path) -> list[Path]:
     """The rounds written so far, in order."""
-    return sorted(d for d in (Path(league_dir) / MATCHES).glob("round_*") if (d / "experiment.json").exists())
+    return sorted(d for d in (Path(league_dir) / MATCHES).glob("round_*") if RunDir(d).is_experiment())
 
 
 def check_stamps(league_dir: Path, league: League, game: tuple[str, ...] | None) -> None:

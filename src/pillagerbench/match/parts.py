@@ -185,7 +185,7 @@ async def bot_lag(players: dict[str, Any], *, reset: bool = False) -> dict[str, 
 
 
 class LagMeter(Part):
-    """Was the game played under lag (pillagerbench/load.py): the server's ticks per second and each
+    """Was the game played under lag (pillagerbench/machine.py): the server's ticks per second and each
     bot's physics-tick lag over the game, and the verdict, in the record."""
 
     def __init__(self) -> None:

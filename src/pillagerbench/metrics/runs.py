@@ -78,12 +78,12 @@ def _series_of(run: Path) -> list[SeriesInfo]:
             **extra,
         )
 
-    if (run / "experiment.json").exists():
+    if RunDir(run).is_experiment():
         data = read_experiment(run)  # whichever version wrote it
         out = []
         for s in data["series"]:
-            d = run / "series" / s["id"]
-            manifest = json.loads((d / "manifest.json").read_text()) if (d / "manifest.json").exists() else {}
+            d = RunDir(run).series_dir(s["id"])
+            manifest = RunDir(d).manifest()
             out.append(
                 info(
                     d,
@@ -104,8 +104,8 @@ def _series_of(run: Path) -> list[SeriesInfo]:
                 )
             )
         return out
-    if (run / "manifest.json").exists():
-        manifest = json.loads((run / "manifest.json").read_text())
+    if RunDir(run).manifest_path.exists():
+        manifest = RunDir(run).manifest()
         cfg = manifest["config"]
         red = cfg["red"]["name"]
         return [

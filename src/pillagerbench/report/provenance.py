@@ -4,11 +4,10 @@ planned, the LLM teams' models, scoring and protocol. Distinct values are joined
 
 from __future__ import annotations
 
-import json
-
 import pandas as pd
 
 from pillagerbench.metrics.runs import Runs, SeriesInfo
+from pillagerbench.rundir import RunDir
 from pillagerbench.teams import TEAMS
 
 COLUMNS = [
@@ -58,7 +57,7 @@ def provenance(runs: Runs) -> pd.DataFrame:
     df = runs.episodes
     rows = []
     for run in runs.runs:
-        top = json.loads((run / "manifest.json").read_text()) if (run / "manifest.json").exists() else {}
+        top = RunDir(run).manifest()
         series = [s for s in runs.series if s.run == run]
         used = int((df["run"] == str(run)).sum()) if len(df) else 0
         rows.append(

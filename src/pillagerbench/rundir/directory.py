@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
+from pillagerbench.rundir.experiment import EXPERIMENT
 
 EPISODES = "episodes.jsonl"
 LEDGER = "llm_calls.jsonl"
@@ -74,6 +75,30 @@ class RunDir:
     @property
     def series_path(self) -> Path:
         return self.path / "series.json"
+
+    @property
+    def manifest_path(self) -> Path:
+        return self.path / "manifest.json"
+
+    @property
+    def experiment_path(self) -> Path:
+        """An experiment's top: experiment.json (read it with `read_experiment`)."""
+        return self.path / EXPERIMENT
+
+    def series_dir(self, series_id: str) -> Path:
+        """One series of an experiment."""
+        return self.path / "series" / series_id
+
+    def is_experiment(self) -> bool:
+        return self.experiment_path.exists()
+
+    def manifest(self) -> dict[str, Any]:
+        """manifest.json ({} when the run has not written one yet)."""
+        return json.loads(self.manifest_path.read_text()) if self.manifest_path.exists() else {}
+
+    def write_manifest(self, manifest: dict[str, Any]) -> None:
+        self.path.mkdir(parents=True, exist_ok=True)
+        self.manifest_path.write_text(json.dumps(manifest, indent=1, default=str))
 
     def episode(self, index: int) -> Path:
         return self.path / f"{_EPISODE}{index:03d}"
