@@ -92,14 +92,15 @@ class RunConfig(BaseModel):
     display: Literal["auto", "live", "plain"]
     scoring: Literal["clean", "upstream"] = "clean"  # runs from before these keys: the defaults
     protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
+    paper: bool = False  # sets scoring and protocol to upstream's (config.PAPER)
     watch: int | None = Field(None, ge=0, le=65535)
     parallel: int | None = Field(ge=1)
     launcher: Literal["local", "ray"]
     ray_address: str | None
     resume: str | None
     calibration: str | None
-
     plan: bool = False  # runs from before this key: the default
+
 
 def _where(prefix: str, loc: tuple) -> str:
     return ".".join([prefix, *map(str, loc)] if prefix else map(str, loc))
