@@ -18,8 +18,8 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
+from pillagerbench import upstream
 from pillagerbench.control import Server
-from pillagerbench.match import upstream
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import Game, LagMeter, LiveView, Part, Progress, Replay, WorldLog
 from pillagerbench.match.player import RecordedPlayer

@@ -18,7 +18,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.match.upstream import UPSTREAM_WAIT_S
+from pillagerbench.upstream import UPSTREAM_WAIT_S
 
 
 class CleanScoring:

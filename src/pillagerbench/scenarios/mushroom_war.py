@@ -15,6 +15,7 @@ from typing import Any, ClassVar
 
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
+from pillagerbench.upstream import UPSTREAM_STEPS
 
 Y = GROUND_Y + 1  # the layer players stand in
 WASTE_CUTOFF = 7  # a team's mushrooms regrow only while its area holds at most this many slime blocks
@@ -173,7 +174,7 @@ class MushroomWarMaster(GameMaster):
     async def upstream_scores(self, runs: dict[str, int]) -> dict[str, float]:
         """Upstream's quirk: each code run of a player started a counter that adds what it holds (from
         0) and never stops, so a player counts what it holds once per run started (once at least:
-        upstream's do_nothing ran one step; at most UPSTREAM_MAX_STEPS times)."""
+        upstream's do_nothing ran one step; at most UPSTREAM_STEPS times)."""
         held = await self.held()
         return {
             side.key: float(sum(held[n] * upstream_multiplier(runs, n) for n in side.player_names))
@@ -184,9 +185,8 @@ class MushroomWarMaster(GameMaster):
 # upstream capped every team at 10 steps per player and episode (scripted, CoT and Random runners;
 # TactiCrafter's iteration cap in the paper's configs). Our teams may start more runs (Random runs
 # one action per run), so the multiplier is capped there.
-UPSTREAM_MAX_STEPS = 10
 
 
 def upstream_multiplier(runs: dict[str, int], player: str) -> int:
     """How many of upstream's score counters a player had running: one per run started, 1 to 10."""
-    return min(UPSTREAM_MAX_STEPS, max(1, runs.get(player, 0)))
+    return min(UPSTREAM_STEPS, max(1, runs.get(player, 0)))

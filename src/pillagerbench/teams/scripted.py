@@ -12,6 +12,7 @@ from typing import ClassVar
 
 from pillagerbench.players import events as ev
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.upstream import UPSTREAM_STEPS
 
 SCRIPTS = Path(__file__).parent / "scripts"
 
@@ -26,7 +27,7 @@ class ScriptedTeam(Team):
 
     scripts: ClassVar[tuple[str, ...]] = ()
     parts: ClassVar[tuple[tuple[str, ...], ...]] = ()
-    max_runs: ClassVar[int] = 10  # upstream's runner: at most 10 steps per player
+    max_runs: ClassVar[int] = UPSTREAM_STEPS  # upstream's runner: at most 10 steps per player
 
     def code_for(self, ctx: TeamContext, index: int) -> str:
         folder = SCRIPTS / ctx.scenario.key

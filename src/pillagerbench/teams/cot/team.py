@@ -28,10 +28,10 @@ from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
+from pillagerbench.upstream import UPSTREAM_ATTEMPTS, UPSTREAM_STEPS
 
 PROMPTS = load_prompts(Path(__file__).parent)
 ROLE = "cot"
-UPSTREAM_STEPS = 10  # upstream ran a CoT player's program at most this many times per episode
 
 
 def task_text(ctx: TeamContext) -> str:
@@ -168,7 +168,7 @@ class ChainOfThought(Team):
             kw["temperature"] = float(self.temperature)
         if self.max_tokens is not None:
             kw["max_tokens"] = int(self.max_tokens)
-        attempts = 1 if ctx.upstream_protocol else self.attempts
+        attempts = UPSTREAM_ATTEMPTS if ctx.upstream_protocol else self.attempts
         best: ProgramsResult | None = None
         for attempt in range(attempts):
             t0 = time.monotonic()

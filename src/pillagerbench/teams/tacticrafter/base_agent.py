@@ -33,6 +33,7 @@ from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
 from pillagerbench.teams.base import TeamContext
+from pillagerbench.upstream import UPSTREAM_ATTEMPTS
 
 from .events import DedupStats, dedupe, last_observation, tail
 from .memory import Memory
@@ -225,7 +226,7 @@ class BaseAgent:
             self.action_messages(ctx),
             role=ACTION,
             parse=lambda a: parse_code(a.text, ctx.scenario.primitives),
-            attempts=1 if ctx.upstream_protocol else self.team.attempts,
+            attempts=UPSTREAM_ATTEMPTS if ctx.upstream_protocol else self.team.attempts,
             deadline=ctx.deadline,
             retry=lambda p: PROMPTS["code_retry"].render(problem=p),
         )
