@@ -30,7 +30,7 @@ from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RunDir, read_experiment
+from pillagerbench.rundir import RunDir, read_series
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
 
@@ -76,29 +76,11 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
 
 def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Path]]:
     """The series of a run directory: an experiment's, or the one series of a plain `pillagerbench run`."""
-    if RunDir(run_dir).is_experiment():
-        data = read_experiment(run_dir)
-        specs = [SeriesSpec.from_dict(s) for s in data["series"]]
-        return data["name"], specs, {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
-    if RunDir(run_dir).manifest_path.exists():
-        config = RunDir(run_dir).manifest()["config"]
-        for k in RUNNER_KEYS:
-            config.pop(k, None)
-        spec = SeriesSpec(
-            id=run_dir.name,
-            index=0,
-            design="run",
-            scenario=config["scenario"]["name"],
-            red=config["red"]["name"],
-            blue=config["blue"]["name"],
-            red_team=config["red"]["name"],
-            blue_team=config["blue"]["name"],
-            episodes=int(config["episodes"]),
-            seed=int(config["seed"]),
-            config=config,
-        )
-        return "run", [spec], {spec.id: run_dir}
-    raise ConfigError(f"resume={run_dir}: not a run directory (no experiment.json or manifest.json)")
+    found = read_series(run_dir, RUNNER_KEYS)
+    if found is None:
+        raise ConfigError(f"resume={run_dir}: not a run directory (no experiment.json or manifest.json)")
+    name, series = found
+    return name, [s for s, _ in series], {s.id: d for s, d in series}
 
 
 def _comparable(spec: SeriesSpec) -> dict:

@@ -20,59 +20,19 @@ Designs (conf/experiment/*.yaml, key `design`):
 from __future__ import annotations
 
 import re
-from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
 from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.rundir import RunDir, read_experiment
+from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
 
 DESIGNS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
 SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario")
-
-
-@dataclass
-class SeriesSpec:
-    id: str  # unique in the experiment, also the series' directory name
-    index: int
-    design: str  # the experiment's design (DESIGNS; "run" for a plain run, "league" for a league round)
-    scenario: str
-    red: str  # the red row label (team name or variant label)
-    blue: str  # the blue column label
-    red_team: str
-    blue_team: str
-    episodes: int
-    seed: int
-    config: dict[str, Any]  # full resolved config for this match
-    checkpoint: dict[str, Any] = field(default_factory=dict)  # side -> {"series": id, "episode": k} | {"path": p}
-    checkpoint_every: int | None = None  # keep checkpoints after episodes every, 2·every, ... (1-based count)
-    checkpoint_at: list[int] = field(default_factory=list)  # keep checkpoints after these episode indices
-    variant: str | None = None
-    repetition: int = 0
-    group: str | None = None  # e.g. "same"/"different" (adaptation), "after 5" (self-play evaluation)
-    group_x: float | None = None  # a number for the group (episodes of experience), for plots
-    episode_offset: int = 0  # episodes of experience before this series (learning curves)
-
-    @property
-    def after(self) -> list[str]:
-        """Series that must finish first (their checkpoints are this one's start)."""
-        return sorted({c["series"] for c in self.checkpoint.values() if "series" in c})
-
-    def keeps_checkpoint(self, episode: int) -> bool:
-        every = self.checkpoint_every
-        return episode in self.checkpoint_at or bool(every and (episode + 1) % every == 0)
-
-    def to_dict(self) -> dict:
-        return asdict(self)
-
-    @classmethod
-    def from_dict(cls, d: dict) -> SeriesSpec:
-        return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
 
 
 def builtin_teams(scenario: str) -> list[str]:
@@ -386,7 +346,7 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
             blue,
             repetition,
         ) and spec.group is None:
-            path = RunDir(run_dir / "series" / spec.id).checkpoint(episode, "red")
+            path = RunDir(RunDir(run_dir).series_dir(spec.id)).checkpoint(episode, "red")
             if (path / "team.json").exists():
                 return path.resolve()
             raise ConfigError(

@@ -12,7 +12,7 @@ episodes of a killed run, series that did not finish). Runs of different version
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
@@ -21,7 +21,7 @@ import pandas as pd
 
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.formulas import SCORE_SCALE
-from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, read_experiment
+from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, SeriesSpec, read_series
 
 # the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
 # and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
@@ -32,25 +32,13 @@ class ReportError(ValueError):
 
 
 @dataclass
-class SeriesInfo:
-    run: Path
-    dir: Path
-    id: str
-    scenario: str
-    version: str
-    episode_length: float
-    red: str
-    blue: str
-    red_team: str
-    blue_team: str
-    episodes: int
-    design: str = "run"  # the experiment's design (experiments/spec.py DESIGNS), "run" for a plain run
-    variant: str | None = None
-    repetition: int = 0
-    group: str | None = None
-    group_x: float | None = None
-    episode_offset: int = 0
-    config: dict = field(default_factory=dict)  # the match's resolved config
+class SeriesInfo(SeriesSpec):
+    """A series as a reader of its run sees it: its spec, where it is, and what its manifest says."""
+
+    run: Path = field(default_factory=Path)  # the run directory given to the reader
+    dir: Path = field(default_factory=Path)  # the series' own directory
+    version: str = "?"  # the scenario's version (its manifest)
+    episode_length: float = 120.0
     manifest: dict = field(default_factory=dict)  # the series' manifest.json ({} when not started)
 
 
@@ -65,63 +53,23 @@ class Runs:
 
 
 def _series_of(run: Path) -> list[SeriesInfo]:
-    def info(series_dir: Path, cfg: dict, manifest: dict, **extra) -> SeriesInfo:
-        sc = manifest.get("scenario", {})
-        return SeriesInfo(
-            run=run,
-            dir=series_dir,
-            scenario=cfg["scenario"]["name"],
-            version=str(sc.get("version", "?")),
-            episode_length=float(cfg.get("episode_length", 120)),
-            config=cfg,
-            manifest=manifest,
-            **extra,
+    found = read_series(run)
+    if found is None:
+        raise ReportError(f"{run}: not a run directory (no experiment.json or manifest.json)")
+    out = []
+    for spec, series_dir in found[1]:
+        manifest = RunDir(series_dir).manifest()
+        out.append(
+            SeriesInfo(
+                **{f.name: getattr(spec, f.name) for f in fields(SeriesSpec)},
+                run=run,
+                dir=series_dir,
+                version=str(manifest.get("scenario", {}).get("version", "?")),
+                episode_length=float(spec.config.get("episode_length", 120)),
+                manifest=manifest,
+            )
         )
-
-    if RunDir(run).is_experiment():
-        data = read_experiment(run)  # whichever version wrote it
-        out = []
-        for s in data["series"]:
-            d = RunDir(run).series_dir(s["id"])
-            manifest = RunDir(d).manifest()
-            out.append(
-                info(
-                    d,
-                    s["config"],
-                    manifest,
-                    id=s["id"],
-                    red=s["red"],
-                    blue=s["blue"],
-                    red_team=s["red_team"],
-                    blue_team=s["blue_team"],
-                    episodes=int(s["episodes"]),
-                    design=s["design"],
-                    variant=s.get("variant"),
-                    repetition=int(s.get("repetition", 0)),
-                    group=s.get("group"),
-                    group_x=s.get("group_x"),
-                    episode_offset=int(s.get("episode_offset", 0)),
-                )
-            )
-        return out
-    if RunDir(run).manifest_path.exists():
-        manifest = RunDir(run).manifest()
-        cfg = manifest["config"]
-        red = cfg["red"]["name"]
-        return [
-            info(
-                run,
-                cfg,
-                manifest,
-                id=run.name,
-                red=red,
-                blue=cfg["blue"]["name"],
-                red_team=red,
-                blue_team=cfg["blue"]["name"],
-                episodes=int(cfg.get("episodes", 1)),
-            )
-        ]
-    raise ReportError(f"{run}: not a run directory (no experiment.json or manifest.json)")
+    return out
 
 
 def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:

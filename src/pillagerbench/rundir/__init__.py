@@ -10,6 +10,7 @@ directories goes through this package.
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, winner_of
 from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
+from pillagerbench.rundir.series import SeriesSpec, read_series
 
 __all__ = [
     "EPISODES",
@@ -18,7 +19,9 @@ __all__ = [
     "EpisodeRecord",
     "LastEpisode",
     "RunDir",
+    "SeriesSpec",
     "episode_index",
     "read_experiment",
+    "read_series",
     "winner_of",
 ]

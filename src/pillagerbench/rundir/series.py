@@ -1,0 +1,82 @@
+"""A series (one match of consecutive episodes) as its run directory records it: its spec, and the
+series of any run directory, an experiment's or a plain `pillagerbench run`'s."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pillagerbench.rundir.directory import RunDir
+from pillagerbench.rundir.experiment import read_experiment
+
+
+@dataclass
+class SeriesSpec:
+    id: str  # unique in the experiment, also the series' directory name
+    index: int
+    design: (
+        str  # the experiment's design (experiments/spec.py DESIGNS; "run" for a plain run, "league" for a league round)
+    )
+    scenario: str
+    red: str  # the red row label (team name or variant label)
+    blue: str  # the blue column label
+    red_team: str
+    blue_team: str
+    episodes: int
+    seed: int
+    config: dict[str, Any]  # full resolved config for this match
+    checkpoint: dict[str, Any] = field(default_factory=dict)  # side -> {"series": id, "episode": k} | {"path": p}
+    checkpoint_every: int | None = None  # keep checkpoints after episodes every, 2·every, ... (1-based count)
+    checkpoint_at: list[int] = field(default_factory=list)  # keep checkpoints after these episode indices
+    variant: str | None = None
+    repetition: int = 0
+    group: str | None = None  # e.g. "same"/"different" (adaptation), "after 5" (self-play evaluation)
+    group_x: float | None = None  # a number for the group (episodes of experience), for plots
+    episode_offset: int = 0  # episodes of experience before this series (learning curves)
+
+    @property
+    def after(self) -> list[str]:
+        """Series that must finish first (their checkpoints are this one's start)."""
+        return sorted({c["series"] for c in self.checkpoint.values() if "series" in c})
+
+    def keeps_checkpoint(self, episode: int) -> bool:
+        every = self.checkpoint_every
+        return episode in self.checkpoint_at or bool(every and (episode + 1) % every == 0)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> SeriesSpec:
+        return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
+
+
+def read_series(
+    run_dir: str | Path, runner_keys: tuple[str, ...] = ()
+) -> tuple[str, list[tuple[SeriesSpec, Path]]] | None:
+    """The name and the series (spec and directory) of a run directory: an experiment's, or the one
+    series of a plain run (its config without `runner_keys`); None for a directory that is not a run."""
+    rundir = RunDir(run_dir)
+    if rundir.is_experiment():
+        data = read_experiment(rundir.path)  # whichever version wrote it
+        specs = [SeriesSpec.from_dict(s) for s in data["series"]]
+        return data["name"], [(s, rundir.series_dir(s.id)) for s in specs]
+    if not rundir.manifest_path.exists():
+        return None
+    config = {k: v for k, v in rundir.manifest()["config"].items() if k not in runner_keys}
+    red, blue = config["red"]["name"], config["blue"]["name"]
+    spec = SeriesSpec(
+        id=rundir.path.name,
+        index=0,
+        design="run",
+        scenario=config["scenario"]["name"],
+        red=red,
+        blue=blue,
+        red_team=red,
+        blue_team=blue,
+        episodes=int(config.get("episodes", 1)),
+        seed=int(config.get("seed", 0)),
+        config=config,
+    )
+    return "run", [(spec, rundir.path)]
