@@ -50,7 +50,7 @@ async def play_match(
     everything closed. `last`: what each side saw of its last episode (a resumed series)."""
     from pillagerbench.llm.presets import make_llms
 
-    server = ArenaServer.from_config(cfg.server, log_path=log_path or rundir.path / "server.log", watch=watch)
+    server = ArenaServer.from_config(cfg.server, log_path=log_path or rundir.free_server_log(), watch=watch)
     await server.start()
     if server.watch_url:
         print(f"live view: {server.watch_url}", flush=True)

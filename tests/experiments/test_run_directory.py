@@ -24,7 +24,7 @@ FIXTURE = Path(__file__).parent / "fixtures" / "run_6198d49"
 SERIES = "000_mushroom_war_do_nothing_vs_passive"
 # a path literal of the run directory (a message may name a file; a path is the name alone or its tail)
 NAMES = re.compile(
-    r"^/?(episodes\.jsonl|llm_calls\.jsonl|live\.json|experiment\.json|manifest\.json|series\.json)$"
+    r"^/?(episodes\.jsonl|llm_calls\.jsonl|live\.json|experiment\.json|manifest\.json|series\.json|resumes\.jsonl)$"
     r"|^/?episode_($|\d|[{\[*])"
 )
 

@@ -33,6 +33,7 @@ from typing import Any
 from omegaconf import OmegaConf
 
 from pillagerbench.experiments.spec import SeriesSpec, build_series
+from pillagerbench.llm.tokens import count_tokens
 
 # Measured by `python benchmarks/plan_accuracy.py --overheads` (do_nothing vs do_nothing, one series of
 # two 20 s episodes per scenario, parallel=1), twice, on the 2-core development machine at load average 4-5
@@ -46,10 +47,6 @@ OUTPUT_TOKENS_PER_S = 50.0  # the high end's latency: the output cap at this rat
 LOW_OUTPUT_SHARE = 0.25  # the low end's answers use this share of the output cap
 CHAT_LINE_TOKENS = 20  # a chat line shown in a prompt (the high end's dynamic part)
 SHOW_SERIES = 40  # series listed one per line; the rest are counted
-
-
-def tokens(text: str) -> int:
-    return (len(text) + 3) // 4
 
 
 @dataclass
@@ -124,7 +121,11 @@ def _scenario_texts(scenario: str) -> tuple[int, int, int]:
     from pillagerbench.scenarios import make_scenario
 
     sc = make_scenario(scenario)
-    return tokens(sc.description()), tokens(prim.docs([*sc.primitives, "mineflayer"])), len(sc.sides[0].players)
+    return (
+        count_tokens(sc.description()),
+        count_tokens(prim.docs([*sc.primitives, "mineflayer"])),
+        len(sc.sides[0].players),
+    )
 
 
 @functools.lru_cache(maxsize=64)
@@ -136,7 +137,7 @@ def _template_tokens(team: str, names: tuple[str, ...]) -> tuple[int, bool, bool
         from pillagerbench.teams.tacticrafter.templates import PROMPTS
     texts = [PROMPTS[n] for n in names]
     return (
-        sum(tokens(t.text) for t in texts),
+        sum(count_tokens(t.text) for t in texts),
         any("scenario" in t.placeholders for t in texts),
         any("primitives" in t.placeholders for t in texts),
     )

@@ -63,7 +63,7 @@ class ExperimentProgress:
 
     # -- reading the run directory --------------------------------------------------------------
     def series_dir(self, spec) -> Path:
-        return self.dirs.get(spec.id) or self.run_dir / "series" / spec.id
+        return self.dirs.get(spec.id) or RunDir(self.run_dir).series_dir(spec.id)
 
     def finished(self, spec) -> dict:
         path = RunDir(self.series_dir(spec)).episodes_path

@@ -265,7 +265,7 @@ def main_experiment(cfg, argv: list[str]) -> int:
         write_experiment(run_dir, cfg, argv, specs)
         if cfg.get("calibration"):
             shutil.copyfile(cfg.calibration, run_dir / "calibration.json")
-        title, dirs = str(cfg.experiment.name), {s.id: run_dir / "series" / s.id for s in specs}
+        title, dirs = str(cfg.experiment.name), {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
     print(f"run directory: {run_dir}", flush=True)
     try:
         results = asyncio.run(execute(run_dir, title, specs, dirs, cfg))

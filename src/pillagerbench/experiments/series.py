@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import shutil
-import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -35,19 +34,7 @@ def resolve_checkpoint(ref: dict, side: str, run_dir: Path | None) -> Path:
         return Path(ref["path"])
     if run_dir is None:
         raise ValueError(f"checkpoint {ref} names a series but the run directory is unknown")
-    return RunDir(Path(run_dir) / "series" / ref["series"]).checkpoint(int(ref["episode"]), ref.get("side", side))
-
-
-def _append_line(path: Path, record: dict) -> None:
-    with open(path, "a") as f:
-        f.write(json.dumps(record) + "\n")
-
-
-def _free_log_path(series_dir: Path) -> Path:
-    path, n = series_dir / "server.log", 1
-    while path.exists():
-        path, n = series_dir / f"server.{n}.log", n + 1
-    return path
+    return RunDir(RunDir(run_dir).series_dir(ref["series"])).checkpoint(int(ref["episode"]), ref.get("side", side))
 
 
 async def run_series(
@@ -86,10 +73,7 @@ async def run_series(
         if not rundir.manifest_path.exists():
             write_manifest(rundir.path, cfg, scenario)
         else:
-            _append_line(
-                rundir.path / "resumes.jsonl",
-                {"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "finished": sorted(finished), "discarded": discarded},
-            )
+            rundir.note_resume(sorted(finished), discarded)
         await _play(spec, cfg, rundir, scenario, teams, finished, remaining, on_episode, on_tick)
         summary["played"] = len(remaining)
     finished = rundir.finished()
@@ -139,7 +123,7 @@ async def _play(
 
     try:
         await play_match(
-            cfg, rundir, scenario, teams, remaining, done, on_tick=tick, last=last, log_path=_free_log_path(rundir.path)
+            cfg, rundir, scenario, teams, remaining, done, on_tick=tick, last=last, log_path=rundir.free_server_log()
         )
     finally:
         rundir.live_path.unlink(missing_ok=True)

@@ -62,7 +62,7 @@ def ledger(runs: Runs) -> pd.DataFrame:
 def spent(league_dir: Path) -> Spent:
     out = Spent()
     for d in round_dirs(league_dir):
-        for series in (d / "series").glob("*"):
+        for series in RunDir(d).all_series():
             finished = RunDir(series).finished().values()
             out.episodes += len(finished)
             out.hours += sum(float(r.get("duration_s") or 0.0) for r in finished) / 3600

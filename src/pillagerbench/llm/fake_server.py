@@ -37,11 +37,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
 from pillagerbench.llm.protocol import ROLE_HEADER, TEAM_HEADER
-
-
-def count_tokens(text: str) -> int:
-    """Rough token count (about 4 characters per token), at least 1 for a non-empty text."""
-    return (len(text) + 3) // 4
+from pillagerbench.llm.tokens import count_tokens
 
 
 @dataclass

@@ -89,6 +89,10 @@ class RunDir:
         """One series of an experiment."""
         return self.path / "series" / series_id
 
+    def all_series(self) -> list[Path]:
+        """Every series directory of an experiment (written so far)."""
+        return sorted(p for p in (self.path / "series").glob("*") if p.is_dir())
+
     def is_experiment(self) -> bool:
         return self.experiment_path.exists()
 
@@ -189,6 +193,22 @@ class RunDir:
             "timeline": timeline,
             "chat": chat.read_text().splitlines() if chat.exists() else [],
         }
+
+    def free_server_log(self) -> Path:
+        """A server log that does not overwrite an earlier one (server.log, server.1.log, ...): a
+        resumed series keeps the log of the run that was killed."""
+        path, n = self.path / "server.log", 1
+        while path.exists():
+            path, n = self.path / f"server.{n}.log", n + 1
+        return path
+
+    def note_resume(self, finished: list[int], discarded: list[str]) -> None:
+        """One line in resumes.jsonl: when the series was resumed, what it had finished, what it discarded."""
+        with open(self.path / "resumes.jsonl", "a") as f:
+            f.write(
+                json.dumps({"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "finished": finished, "discarded": discarded})
+                + "\n"
+            )
 
     def write_live(self, status: dict[str, Any]) -> None:
         _write_json_atomic(self.live_path, {**status, "ts": time.time()})

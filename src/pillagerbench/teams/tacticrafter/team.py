@@ -300,6 +300,16 @@ class TactiCrafter(Team):
             mem.tactics_source = "kept"
             self._module_record("tactics", None, step="kept")
 
+    def _brief(self, ctx: TeamContext, graph_text: str) -> dict[str, Any]:
+        """What both tactics prompts are told: the team, its players, its objective, the scenario, the graph."""
+        return {
+            "team_name": ctx.side.team_name,
+            "players": ctx.side.player_names,
+            "objective": self.objective(ctx),
+            "scenario": ctx.scenario.description(),
+            "graph": graph_text,
+        }
+
     async def _initial_tactics(self, ctx: TeamContext, graph_text: str) -> None:
         mem = self.memory
         if not self._llm_ok():
@@ -307,11 +317,7 @@ class TactiCrafter(Team):
             return
         asked = await tactics.initial(
             self.llm,
-            team_name=ctx.side.team_name,
-            players=ctx.side.player_names,
-            objective=self.objective(ctx),
-            scenario=ctx.scenario.description(),
-            graph=graph_text,
+            **self._brief(ctx, graph_text),
             attempts=self.attempts,
             max_items=self.max_tactics,
         )
@@ -329,11 +335,7 @@ class TactiCrafter(Team):
             return
         asked = await tactics.update(
             self.llm,
-            team_name=ctx.side.team_name,
-            players=ctx.side.player_names,
-            objective=self.objective(ctx),
-            scenario=ctx.scenario.description(),
-            graph=graph_text,
+            **self._brief(ctx, graph_text),
             chat_log=tail(longest_chat(digests), self.max_chat_lines),
             nearby_blocks=nearby_blocks_text(digests),
             inventories=inventories_text(digests),
