@@ -29,12 +29,15 @@ MENTIONS = {
     "try": ["scenario", "player", "code", "timeout", "inventory"],
     "llm-ping": ["llm=openai_compatible", "llm.base_url=", "llm.api_key_env=null", "llm.timeout=60"],
     "teams": ["keys: none"],
-    "league": ["init", "add", "play", "board", "team=TEAM"],
+    "league": ["init", "add", "play", "board", "team=TEAM", "mix_suites=true"],
     "replay": ["RUN_DIR/episode"],
-    "report": ["--out", "--calibration", "reference", "--no-replays"],
-    "symmetry": ["runs"],
-    "fidelity": ["--calibration"],
-    "calibrate": ["--out", "parallel=null", "episode_length=120", "experiment.episodes=20"],
+    "report": ["--out", "--calibration", "reference", "--no-replays", "--mix-suites"],
+    "symmetry": ["runs", "--mix-suites"],
+    "fidelity": ["--calibration", "--mix-suites"],
+    "calibrate": ["--out", "parallel=null", "episode_length=120", "experiment.episodes=20", "--mix-suites"],
+    "suite": ["--hash", "--record"],
+    "export": ["--out", "--replays"],
+    "verify": ["bundle"],
 }
 
 
@@ -121,7 +124,12 @@ def test_the_examples_compose(capsys, command):
 
 
 def test_version(capsys):
-    assert helped(capsys, "--version") == f"pillagerbench {metadata.version('pillagerbench')}\n"
+    from pillagerbench.suite import current
+
+    out = helped(capsys, "--version")
+    assert (
+        out == f"pillagerbench {metadata.version('pillagerbench')}\n{current()['name']} sha256:{current()['sha256']}\n"
+    )
 
 
 def test_top_level_help_points_to_command_help(capsys):

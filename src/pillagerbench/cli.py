@@ -35,6 +35,18 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "pillagerbench.metrics.calibration:main",
         "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)",
     ),
+    "suite": (
+        "pillagerbench.suite:main",
+        "the suite version: its name and the hash of every file that can move a score",
+    ),
+    "export": (
+        "pillagerbench.bundle.export:main",
+        "one results bundle (an archive with checksums) from run directories",
+    ),
+    "verify": (
+        "pillagerbench.bundle.verify:main",
+        "check a results bundle: checksums, suite version, scores against their timelines",
+    ),
 }
 
 
@@ -68,7 +80,7 @@ def usage() -> str:
     lines = ["usage: pillagerbench <command> [key=value ...]", "", "commands:"]
     lines += [f"  {name:<10} {help_}" for name, (_, help_) in COMMANDS.items()]
     lines += ["", "pillagerbench <command> --help: its keys, their defaults and choices, and examples", ""]
-    lines += ["pillagerbench --version: the installed version"]
+    lines += ["pillagerbench --version: the installed version and its suite version"]
     return "\n".join(lines)
 
 
@@ -81,8 +93,9 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if argv[0] in ("-V", "--version"):
         from pillagerbench.cli_help import version
+        from pillagerbench.suite import current
 
-        print(f"pillagerbench {version()}")
+        print(f"pillagerbench {version()}\n{current()['name']} sha256:{current()['sha256']}")
         return 0
     name, rest = argv[0], argv[1:]
     if name not in COMMANDS:

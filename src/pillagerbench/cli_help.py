@@ -140,6 +140,20 @@ HELP: dict[str, CommandHelp] = {
             "pillagerbench calibrate runs/ROUND_ROBIN_RUN --out calibration.json",
         ),
     ),
+    "suite": CommandHelp(
+        usage=(),
+        argparse=True,
+        examples=("pillagerbench suite", "pillagerbench suite --record 'suite 1.1'"),
+    ),
+    "export": CommandHelp(
+        usage=(),
+        argparse=True,
+        examples=(
+            "pillagerbench export runs/RUN --out results.tar.gz",
+            "pillagerbench export runs/RUN_A runs/RUN_B --out results.tar.gz --replays",
+        ),
+    ),
+    "verify": CommandHelp(usage=(), argparse=True, examples=("pillagerbench verify results.tar.gz",)),
 }
 
 # config groups as keys: what the key chooses (the options are listed under "choices")

@@ -1,4 +1,4 @@
-"""The manifest of a run directory (`manifest.json`): config, versions, seed and git revision.
+"""The manifest of a run directory (`manifest.json`): config, versions, seed, git revision and suite.
 
 Written by a plain `pillagerbench run` (run.py) and by every series of an experiment
 (experiments/series.py); the experiment's own top-level manifest uses `git_revision` too.
@@ -16,6 +16,7 @@ from omegaconf import OmegaConf
 
 from pillagerbench import __version__
 from pillagerbench.rundir import RunDir
+from pillagerbench.suite import current
 
 
 def git_revision() -> str | None:
@@ -47,5 +48,6 @@ def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
         },
         "seed": cfg.seed,
         "git_revision": git_revision(),
+        "suite": current(),
     }
     RunDir(run_dir).write_manifest(manifest)

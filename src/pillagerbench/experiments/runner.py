@@ -53,6 +53,7 @@ def make_experiment_dir(cfg) -> Path:
 def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec]) -> None:
     from pillagerbench import __version__
     from pillagerbench.manifest import git_revision
+    from pillagerbench.suite import current
 
     run_dir.mkdir(parents=True, exist_ok=True)
     top = to_dict(cfg)
@@ -69,6 +70,7 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
         "config": top,
         "versions": {"pillagerbench": __version__},
         "git_revision": git_revision(),
+        "suite": current(),
         "experiment": cfg.experiment.name,
     }
     RunDir(run_dir).write_manifest(manifest)

@@ -22,6 +22,7 @@ from pillagerbench.league.ratings import ANCHOR, Rating, ranked, ranks
 from pillagerbench.league.spec import League
 from pillagerbench.league.standings import boards, overall
 from pillagerbench.metrics.formulas import Estimate, mean_ci, mean_of_estimates, sabotage, win_rate
+from pillagerbench.metrics.runs import mixed_notes, mixed_title
 from pillagerbench.report.html import page
 from pillagerbench.report.tables import to_markdown
 
@@ -121,25 +122,27 @@ def head_to_head(league: League, runs: results.Runs, scenario: str) -> pd.DataFr
 
 
 def write_board(league_dir: Path, league: League) -> list[Path]:
-    runs = results.load(league_dir)
+    runs = results.load(league_dir, league.mix_suites)
     main = leaderboard(league, runs)
     h2h = {sc: head_to_head(league, runs, sc) for sc in league.scenarios}
     notes = [
         f"{len(runs.episodes)} episodes in {len(runs.runs)} rounds; rating ± its {league.confidence:.0%} interval "
         f"(openskill Plackett–Luce, do_nothing = 0); conservative = mu − 3σ",
         f"{len(runs.skipped)} items skipped (unfinished or failed episodes)",
+        *mixed_notes(runs),
     ]
     unpriced = int(results.ledger(runs)["cost"].isna().sum())
     if unpriced:
         notes.append(f"LLM cost unknown (left blank) where {unpriced} calls had no price for their model (docs/llm.md)")
     out = Path(league_dir)
     main.to_csv(out / "leaderboard.csv", index=False)
-    md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", "## Leaderboard", "", to_markdown(main)]
+    mixed = mixed_title(runs)  # mixed suite versions: every table says so
+    md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", f"## Leaderboard{mixed}", "", to_markdown(main)]
     for sc, t in h2h.items():
-        md += ["", f"## Head to head, {sc} (row's win rate against column, episodes)", "", to_markdown(t)]
+        md += ["", f"## Head to head, {sc} (row's win rate against column, episodes){mixed}", "", to_markdown(t)]
     (out / "leaderboard.md").write_text("\n".join(md) + "\n")
-    sections = [("Leaderboard", "table", main)] + [
-        (f"Head to head, {sc} (row's win rate against column, episodes)", "table", t) for sc, t in h2h.items()
+    sections = [(f"Leaderboard{mixed}", "table", main)] + [
+        (f"Head to head, {sc} (row's win rate against column, episodes){mixed}", "table", t) for sc, t in h2h.items()
     ]
     (out / "leaderboard.html").write_text(page(f"League {out.name}", runs.runs, notes, sections, runs_label="Rounds"))
     return [out / f for f in FILES]

@@ -3,7 +3,9 @@
 init  [scenarios=[a,b]] [episodes_per_match=N] [KEY=VALUE]   a new league with the built-in opponents
 add   NAME team=TEAM [llm=PRESET] [OPTION=VALUE] [llm.KEY=VALUE]   a new entrant (creates the league if needed)
 play  [league keys, e.g. budget.episodes=4] [run overrides, e.g. episode_length=20] [parallel=N]
-board                                                       leaderboard.md, .csv, .html
+board [mix_suites=true]                                     leaderboard.md, .csv, .html
+
+Rounds of different suite versions are refused unless mix_suites=true (then the board says so).
 """
 
 from __future__ import annotations
@@ -112,8 +114,10 @@ def main(argv: list[str]) -> int:
         return 0
     league = load_league(league_dir)
     if command == "board":
-        if rest:
-            raise ConfigError("board takes no arguments")
+        ours, other = _league_keys(_pairs(rest))
+        if other:
+            raise ConfigError(f"board: {next(iter(other))!r} is not a league key (e.g. mix_suites=true)")
+        league = with_overrides(league, ours)
         check_stamps(league_dir, league, None)
         for path in write_board(league_dir, league):
             print(path)

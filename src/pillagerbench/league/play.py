@@ -59,7 +59,7 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) 
         if over := spent.over(league.budget):
             print(f"league stopped: budget spent ({over})")
             return 0
-        outs = results.outcomes(results.load(league_dir))
+        outs = results.outcomes(results.load(league_dir, league.mix_suites))
         pairings = next_round(boards(league, outs), outs, league.confidence, league.matches_per_round)
         if not pairings:
             print(f"league settled: every adjacent pair is separated at confidence {league.confidence:g}")

@@ -32,8 +32,8 @@ class Spent:
         return None
 
 
-def load(league_dir: Path) -> Runs:
-    return load_runs(list[str | Path](round_dirs(league_dir)))
+def load(league_dir: Path, mix_suites: bool = False) -> Runs:
+    return load_runs(list[str | Path](round_dirs(league_dir)), mix_suites)
 
 
 def outcomes(runs: Runs) -> list[Outcome]:

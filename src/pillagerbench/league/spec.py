@@ -9,7 +9,10 @@
     entrants:
       - {name: do_nothing, team: do_nothing, options: {}, llm: null, llm_options: {}}
 
-`play` may override any of these keys for one invocation (`budget.episodes=4`, `scenarios=[...]`).
+    mix_suites: false           # true: rate rounds of different suite versions together (the board says so)
+
+`play` and `board` may override any of these keys for one invocation (`budget.episodes=4`, `scenarios=[...]`,
+`mix_suites=true`).
 """
 
 from __future__ import annotations
@@ -55,6 +58,7 @@ class League:
         default_factory=lambda: {"episodes": 400.0} | dict.fromkeys(BUDGET_KEYS[1:])
     )
     entrants: list[Entrant] = field(default_factory=list)
+    mix_suites: bool = False  # rate episodes of different suite versions together (the board says so)
 
     def entrant(self, name: str) -> Entrant | None:
         return next((e for e in self.entrants if e.name == name), None)

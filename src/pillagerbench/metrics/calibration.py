@@ -3,7 +3,8 @@ when the red team is do_nothing, from real episodes stored with the results.
 
     pillagerbench calibrate [key=value ...]        play experiment=calibration, write its calibration.json
     pillagerbench calibrate RUN_DIR... [--out F]   compute it from runs that have do_nothing-red series
-                                                   (e.g. a round robin), write RUN_DIR/calibration.json
+                                                   (e.g. a round robin), write RUN_DIR/calibration.json;
+                                                   --mix-suites allows runs of different suite versions
 
 calibration.json: {"created", "sources": [run dirs], "scenarios": {scenario: {"version", "episode_length",
 "opponents": {team: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them).
@@ -23,7 +24,7 @@ import pandas as pd
 
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
-from pillagerbench.metrics.runs import ReportError, Runs, load_runs
+from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_notes
 
 CALIBRATION = "calibration.json"
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
@@ -74,6 +75,7 @@ def calibration_from_runs(runs: Runs) -> dict:
     return {
         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         "sources": [str(r) for r in runs.runs],
+        "suites": runs.suites,  # more than one only with --mix-suites
         "scenarios": scenarios,
     }
 
@@ -185,8 +187,9 @@ def main(argv: list[str]) -> int:
         p = argparse.ArgumentParser(prog="pillagerbench calibrate")
         p.add_argument("runs", nargs="+")
         p.add_argument("--out", default=None, help="file to write (default: FIRST_RUN/calibration.json)")
+        mix_switch(p)
         a = p.parse_args(argv)
-        runs = load_runs(a.runs)
+        runs = load_runs(a.runs, a.mix_suites)
         out = Path(a.out) if a.out else Path(a.runs[0]) / CALIBRATION
     else:  # play the calibration experiment first
         from pillagerbench.config import load_config
@@ -209,6 +212,8 @@ def main(argv: list[str]) -> int:
     if not cal["scenarios"]:
         raise ReportError("no finished do_nothing-red episodes in these runs: nothing to calibrate")
     out.write_text(json.dumps(cal, indent=1))
+    for note in mixed_notes(runs):
+        print(note)
     for scenario, entry in cal["scenarios"].items():
         for team, o in entry["opponents"].items():
             print(f"{scenario:<14} {team:<14} σ_blue = {o['sigma_blue']:.2f} (n={o['n']})")

@@ -6,7 +6,11 @@ reaches the episode length. An episode scored as upstream (scoring=upstream) is 
 analysis read it: its score over time is upstream's samples (timeline_upstream.json, line i as
 second i). Everything else is listed in `skipped` (failed episodes, half-written
 episodes of a killed run, series that did not finish). Runs of different versions of a scenario
-(or different episode lengths) are refused: their scores do not compare.
+(or different episode lengths) are refused: their scores do not compare. So are episodes of different
+suite versions (suite.py; records from before it read "unversioned") unless `mix_suites` asks for them,
+and then `mixed_notes` says so. A results bundle (rundir/bundle.py) is read as the run directories in it,
+named by the paths they were exported from. Every finished episode's faults (metrics/faults.py: ours or
+the team's) are in `faults`.
 """
 
 from __future__ import annotations
@@ -20,8 +24,10 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.match import SCORINGS
+from pillagerbench.metrics.faults import faults
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, SeriesSpec, read_series
+from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
 
 # the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
 # and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
@@ -35,7 +41,8 @@ class ReportError(ValueError):
 class SeriesInfo(SeriesSpec):
     """A series as a reader of its run sees it: its spec, where it is, and what its manifest says."""
 
-    run: Path = field(default_factory=Path)  # the run directory given to the reader
+    run: Path = field(default_factory=Path)  # the run directory given to the reader (its name in a bundle)
+    root: Path = field(default_factory=Path)  # that run directory on disk
     dir: Path = field(default_factory=Path)  # the series' own directory
     version: str = "?"  # the scenario's version (its manifest)
     episode_length: float = 120.0
@@ -49,12 +56,52 @@ class Runs:
     ledger: list[dict]  # red-team LLM calls, each with "label" (row) and "scenario"
     skipped: list[tuple[str, str]] = field(default_factory=list)  # (where, why)
     calibration_files: list[Path] = field(default_factory=list)
-    runs: list[Path] = field(default_factory=list)
+    runs: list[Path] = field(default_factory=list)  # every run's name (a bundle's: the paths exported)
+    roots: dict[Path, Path] = field(default_factory=dict)  # a run's name -> its directory on disk
+    faults: list[dict] = field(default_factory=list)  # every finished episode's faults (metrics/faults.py)
+    suites: list[str] = field(default_factory=list)  # the suite versions of the episodes used
+    bundles: list[Path] = field(default_factory=list)  # results bundles among the inputs
 
 
-def _series_of(run: Path) -> list[SeriesInfo]:
+def mixed_notes(runs: Runs) -> list[str]:
+    """What every table of mixed suite versions says: one line, or none when the episodes share one."""
+    if len(runs.suites) < 2:
+        return []
+    return [f"mixed suite versions: {', '.join(runs.suites)} (scores may not compare)"]
+
+
+def mixed_title(runs: Runs) -> str:
+    """The mark a table's title gets when suite versions are mixed ('' when not)."""
+    return "".join(f" [{n}]" for n in mixed_notes(runs))
+
+
+def mix_switch(parser: Any) -> None:
+    """--mix-suites on a command that reads runs (argparse): allow episodes of different suite versions."""
+    parser.add_argument(
+        "--mix-suites", action="store_true", help="allow episodes of different suite versions (every table says so)"
+    )
+
+
+def _inputs(paths: list[Path]) -> list[tuple[Path, Path]]:
+    """(directory to read, the run's name) of every input: a run directory is itself; a bundle gives
+    its runs, named by the paths they were exported from."""
+    out = []
+    for path in paths:
+        if is_bundle(path):
+            try:
+                out += [(disk, Path(source)) for disk, source in bundle_runs(path)]
+            except BundleError as exc:
+                raise ReportError(str(exc)) from None
+        else:
+            out.append((path, path))
+    return out
+
+
+def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
     found = read_series(run)
     if found is None:
+        if not run.exists():
+            raise ReportError(f"{run}: not a run directory or bundle (no such path)")
         raise ReportError(f"{run}: not a run directory (no experiment.json or manifest.json)")
     out = []
     for spec, series_dir in found[1]:
@@ -62,7 +109,8 @@ def _series_of(run: Path) -> list[SeriesInfo]:
         out.append(
             SeriesInfo(
                 **{f.name: getattr(spec, f.name) for f in fields(SeriesSpec)},
-                run=run,
+                run=name,
+                root=run,
                 dir=series_dir,
                 version=str(manifest.get("scenario", {}).get("version", "?")),
                 episode_length=float(spec.config.get("episode_length", 120)),
@@ -72,11 +120,12 @@ def _series_of(run: Path) -> list[SeriesInfo]:
     return out
 
 
-def _load_series(s: SeriesInfo, rows: list, skipped: list) -> None:
+def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list) -> None:
     finished = _finished_episodes(s, skipped)
     scale = SCORE_SCALE.get(s.scenario, 1.0)
     for i in sorted(finished):
         rec = finished[i]
+        found += [{"run": str(s.run), "series": s.id, "episode": i, **f} for f in faults(rec)]
         ep = RunDir(s.dir).episode(i)
         timeline = _timeline(s, rec, ep, skipped)
         if timeline is not None:
@@ -163,6 +212,7 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "red_score": float(rec.red_score or 0.0) * scale,
         "blue_score": float(rec.blue_score or 0.0) * scale,
         "scoring": rec.scoring,
+        "suite": rec.suite,
         **alternatives,
         "team_protocol": rec.protocol,
         "iterations": float(np.mean(red_it)) if red_it else np.nan,
@@ -191,20 +241,45 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
                 )
 
 
-def load_runs(paths: list[str | Path]) -> Runs:
+def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
+    """The suite versions of the episodes, in order; more than one is refused unless `mix_suites`."""
+    where: dict[str, list[str]] = {}
+    for r in rows:
+        runs = where.setdefault(r["suite"], [])
+        if r["run"] not in runs:
+            runs.append(r["run"])
+    if len(where) > 1 and not mix_suites:
+        detail = "; ".join(f"{suite} in {', '.join(runs)}" for suite, runs in where.items())
+        raise ReportError(
+            f"refusing to mix suite versions: {detail}. Their scores may not compare; report them "
+            "separately, or ask to mix them (--mix-suites; league: mix_suites=true)"
+        )
+    return list(where)
+
+
+def _named(where: str, roots: dict[Path, Path]) -> str:
+    for name, root in roots.items():
+        if name != root and where.startswith(str(root)):
+            return str(name) + where[len(str(root)) :]
+    return where
+
+
+def load_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     series: list[Any] = []
     skipped: list[Any] = []
     rows: list[Any] = []
     ledger: list[Any] = []
     cals: list[Any] = []
-    runs = [Path(p) for p in paths]
-    for run in runs:
-        series += _series_of(run)
+    found: list[Any] = []
+    inputs = [Path(p) for p in paths]
+    roots = {name: run for run, name in _inputs(inputs)}
+    for name, run in roots.items():
+        series += _series_of(run, name)
         if (run / "calibration.json").exists():
             cals.append(run / "calibration.json")
     _check_comparable(series)
     for s in series:
-        _load_series(s, rows, skipped)
+        _load_series(s, rows, skipped, found)
         path = RunDir(s.dir).ledger_path
         if path.exists():
             from pillagerbench.llm.ledger import read_ledger
@@ -214,5 +289,18 @@ def load_runs(paths: list[str | Path]) -> Runs:
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
+    suites = _suites(rows, mix_suites)
+    skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
     df = pd.DataFrame(rows)
-    return Runs(episodes=df, series=series, ledger=ledger, skipped=skipped, calibration_files=cals, runs=runs)
+    return Runs(
+        episodes=df,
+        series=series,
+        ledger=ledger,
+        skipped=skipped,
+        calibration_files=cals,
+        runs=list(roots),
+        roots=roots,
+        faults=found,
+        suites=suites,
+        bundles=[r for r in inputs if is_bundle(r)],
+    )

@@ -24,7 +24,8 @@ from typing import Any
 import pandas as pd
 
 from pillagerbench.metrics import calibration as calib
-from pillagerbench.metrics.runs import ReportError, Runs, load_runs
+from pillagerbench.metrics.faults import fault_note, faults_table
+from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_notes, mixed_title
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.fidelity import fidelity_sections
@@ -57,9 +58,13 @@ def figure(title: str, path: Path, caption: str, episodes: int) -> Section:
 
 
 def build_report(
-    run_dirs: list[str | Path], out: Path, calibration: Path | None = None, with_replays: bool = True
+    run_dirs: list[str | Path],
+    out: Path,
+    calibration: Path | None = None,
+    with_replays: bool = True,
+    mix_suites: bool = False,
 ) -> dict:
-    runs = load_runs(run_dirs)
+    runs = load_runs(run_dirs, mix_suites)
     origin: dict = {}
     sigma, notes = calib.resolve(runs, calibration, origin, fallback=True)
     out.mkdir(parents=True, exist_ok=True)
@@ -94,13 +99,19 @@ def build_report(
         table("learning_curve", "Points difference per episode index", curve),
         table("calibration", "σ_blue used for the sabotage metric", tables.calibration(sigma)),
         table("lagged", "Played under lag (used; scores may be low: see docs/performance.md)", lag),
+        table("faults", "Failures: ours (the harness) apart from the teams' own", faults_table(runs.faults)),
         table("skipped", "Skipped", tables.skipped(runs.skipped)),
     ]
+    for s in sections:  # mixed suite versions: every table says so (its .md file too)
+        s.title += mixed_title(runs)
     notes = [
+        *mixed_notes(runs),
         f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
         "± is the 95 % confidence interval",
         *notes,
         *more_notes(runs, sigma, pairs, fidelity_notes),
+        *fault_note(runs.faults),
+        *[f"read from the results bundle {b} (pillagerbench verify checks it)" for b in runs.bundles],
         *lag_notes(lag, one_order),
     ]
     files: list[Path] = []
@@ -233,9 +244,14 @@ def modes(df) -> list[str]:
     return out
 
 
+def default_out(first: Path) -> Path:
+    """FIRST_RUN/report, or beside a bundle: BUNDLE_report."""
+    return first.with_name(first.name.split(".")[0] + "_report") if first.is_file() else first / "report"
+
+
 def main(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="pillagerbench report", description=__doc__.split("\n\n")[0])
-    p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs)")
+    p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs) or results bundles")
     p.add_argument("--out", default=None, help="output directory (default: FIRST_RUN/report)")
     p.add_argument(
         "--calibration",
@@ -243,10 +259,12 @@ def main(argv: list[str]) -> int:
         help="a calibration.json (pillagerbench calibrate), or `reference`: upstream's reference scores",
     )
     p.add_argument("--no-replays", action="store_true", help="do not write the episodes' replay pages")
+    mix_switch(p)
     a = p.parse_args(argv)
-    out = Path(a.out) if a.out else Path(a.runs[0]) / "report"
+    out = Path(a.out) if a.out else default_out(Path(a.runs[0]))
     try:
-        result = build_report(a.runs, out, Path(a.calibration) if a.calibration else None, not a.no_replays)
+        calibration = Path(a.calibration) if a.calibration else None
+        result = build_report(a.runs, out, calibration, not a.no_replays, a.mix_suites)
     except ReportError as exc:
         print(f"pillagerbench report: {exc}", file=sys.stderr)
         return 2

@@ -12,7 +12,7 @@ import pandas as pd
 
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.fidelity import claims_table, fidelity_table
-from pillagerbench.metrics.runs import ReportError, Runs, load_runs
+from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_title
 from pillagerbench.report.tables import to_markdown
 
 SIGMA_FROM_RUNS_NOTE = (
@@ -50,23 +50,25 @@ def main(argv: list[str]) -> int:
         default=None,
         help="a calibration.json for σ_blue (sabotage claims), or `reference`: upstream's reference scores",
     )
+    mix_switch(p)
     a = p.parse_args(argv)
     try:
-        runs = load_runs([Path(r) for r in a.runs])
+        runs = load_runs([Path(r) for r in a.runs], a.mix_suites)
         origin: dict = {}
         sigma, _ = calib.resolve(runs, Path(a.calibration) if a.calibration else None, origin)
     except ReportError as exc:
         print(f"pillagerbench fidelity: {exc}", file=sys.stderr)
         return 2
     table, claims, notes = fidelity_sections(runs, sigma, origin)
+    mixed = mixed_title(runs)
     for note in notes:
         print(note)
     if len(table):
-        print("\nBuilt-in opponents against do_nothing (Dash & Dine ×0.1; ± is the 95 % interval)\n")
+        print(f"\nBuilt-in opponents against do_nothing (Dash & Dine ×0.1; ± is the 95 % interval){mixed}\n")
         print(to_markdown(table), end="")
         print(f"{len(table)} row(s): {tally(table, 'within_25pct')} (within ±25 % of upstream's reference)")
     if len(claims):
-        print("\nThe paper's Benchmark Analysis claims\n")
+        print(f"\nThe paper's Benchmark Analysis claims{mixed}\n")
         print(to_markdown(claims), end="")
         print(f"{len(claims)} claim(s): {tally(claims, 'holds')}")
     if len(runs.skipped):

@@ -57,7 +57,7 @@ def provenance(runs: Runs) -> pd.DataFrame:
     df = runs.episodes
     rows = []
     for run in runs.runs:
-        top = RunDir(run).manifest()
+        top = RunDir(runs.roots.get(run, run)).manifest()
         series = [s for s in runs.series if s.run == run]
         used = int((df["run"] == str(run)).sum()) if len(df) else 0
         rows.append(

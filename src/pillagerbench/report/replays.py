@@ -42,7 +42,7 @@ def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
             except (OSError, ValueError):
                 row["score"] = "unfinished"
             try:
-                where = out / REPLAYS / folders[Path(s.run)] / ep.relative_to(s.run)
+                where = out / REPLAYS / folders[Path(s.run)] / ep.relative_to(s.root)
                 page, replay = write_replay(ep, where.with_name(ep.name + ".html"))
             except ReplayError as exc:
                 row["note"] = str(exc).split(": ", 1)[-1] if "no replay recording" in str(exc) else str(exc)

@@ -7,22 +7,25 @@ import argparse
 import sys
 from pathlib import Path
 
-from pillagerbench.metrics.runs import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError, load_runs, mix_switch, mixed_notes
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report.tables import to_markdown
 
 
 def main(argv: list[str]) -> int:
     p = argparse.ArgumentParser(prog="pillagerbench symmetry", description=__doc__.split("\n\n")[0])
-    p.add_argument("runs", nargs="+", help="run directories (experiment=symmetry, round robins, plain runs)")
+    p.add_argument(
+        "runs", nargs="+", help="run directories (experiment=symmetry, round robins, plain runs) or results bundles"
+    )
+    mix_switch(p)
     a = p.parse_args(argv)
     try:
-        runs = load_runs([Path(r) for r in a.runs])
+        runs = load_runs([Path(r) for r in a.runs], a.mix_suites)
     except ReportError as exc:
         print(f"pillagerbench symmetry: {exc}", file=sys.stderr)
         return 2
     table, notes = side_symmetry(runs.episodes)
-    for note in notes:
+    for note in mixed_notes(runs) + notes:
         print(note)
     if len(table):
         print(to_markdown(table), end="")

@@ -3,8 +3,9 @@
 `RunDir` knows every path of a plain run or an experiment's series directory, appends and reads the
 episode records, tells what is finished and makes a directory consistent after a crash; `EpisodeRecord`
 is an episode's record (its line in episodes.jsonl) and `LastEpisode` what a team sees of its last
-episode; `read_experiment` reads an experiment's experiment.json. Every writer and reader of run
-directories goes through this package.
+episode; `read_experiment` reads an experiment's experiment.json; `bundle` writes and unpacks results
+bundles (run directories in one archive). Every writer and reader of run directories goes through this
+package.
 """
 
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index

@@ -107,6 +107,14 @@ class RunDir:
     def episode(self, index: int) -> Path:
         return self.path / f"{_EPISODE}{index:03d}"
 
+    def record_path(self, index: int) -> Path:
+        """An episode's record beside its files (episode.json)."""
+        return self.episode(index) / "episode.json"
+
+    def timeline_path(self, index: int, scoring: str = "clean") -> Path:
+        """An episode's score each second: timeline.json, or timeline_<scoring>.json for another scoring's."""
+        return self.episode(index) / ("timeline.json" if scoring == "clean" else f"timeline_{scoring}.json")
+
     def state(self, index: int) -> Path:
         return self.path / "state" / f"{_EPISODE}{index:03d}"
 

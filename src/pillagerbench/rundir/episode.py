@@ -6,6 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 from typing import Any, TypedDict
 
+from pillagerbench.suite import UNVERSIONED, current
+
 
 @dataclass
 class EpisodeRecord:
@@ -35,17 +37,21 @@ class EpisodeRecord:
     scores: dict[str, dict[str, float]] = field(default_factory=dict)  # scoring -> side -> final score
     protocol: str = "pillagerbench"  # the LLM teams' loop (config `protocol`)
     runs: dict[str, int] = field(default_factory=dict)  # code runs started per player (upstream's steps)
+    suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite.py)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
         """A record read back, whichever version wrote it: the one place that knows earlier versions.
         Keys added since take their defaults (records before scoring modes were clean-scored, before
-        protocols played ours), `scores` is filled from red_score/blue_score where it was not
-        recorded, null lists and maps are empty; unknown keys are dropped."""
+        protocols played ours), a record before suite versions is "unversioned", `scores` is filled from
+        red_score/blue_score where it was not recorded, null lists and maps are empty; unknown keys are
+        dropped."""
         known = {f.name for f in fields(cls)}
         rec = cls(**{k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE})
         if not rec.scores and rec.red_score is not None and rec.blue_score is not None:
             rec.scores = {rec.scoring: {"red": rec.red_score, "blue": rec.blue_score}}
+        if not data.get("suite"):
+            rec.suite = UNVERSIONED
         return rec
 
 

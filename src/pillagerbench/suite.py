@@ -1,0 +1,136 @@
+"""The suite version: a human name (`suite 1.0`) and a sha256 over every file that can move a score.
+
+`SCORE_FILES` (data, globs under the package) says which files count: the scenarios (arenas, layouts,
+game masters), the built-in opponents (their team modules and scripts), the bots' primitives and code,
+the server's plugins and tables, scoring, the clock and upstream's step waits (the team-loop timings),
+and the npm lock. The hash is sha256 over one line per file, `path\\0sha256(content)`, in path order
+(caches and compiled files left out), so it moves exactly when one of those files does.
+
+`suite_versions.json` (beside this module) records each released version's hash; a test fails when the
+files no longer hash to the newest recorded one (docs/suite-versions.md says what to do). The suite a
+run is played under is that version's name when the hash is recorded, else the newest name + "+dev".
+`pillagerbench suite` prints it; `pillagerbench suite --record` records today's hash.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+from functools import lru_cache
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parent
+VERSIONS = PACKAGE / "suite_versions.json"
+UNVERSIONED = "unversioned"  # what a run written before suite versions reads as
+
+SCORE_FILES: tuple[str, ...] = (
+    "scenarios/**/*",  # scenarios, arenas, layouts, game masters
+    "teams/scripts/**/*",  # the built-in opponents' scripts
+    "teams/mushroom_war.py",
+    "teams/dash_and_dine.py",
+    "teams/scripted.py",
+    "js/bot/**/*",  # primitives (and their LLM documentation), the bot, the sandbox
+    "js/server/**/*",  # plugins and tables
+    "js/package-lock.json",  # the pinned server and bot packages
+    "match/scoring.py",
+    "match/game.py",  # the clock, the game master's period, the whistle
+    "match/player.py",  # upstream's step waits around each run (the team-loop timings)
+    "upstream.py",
+)
+_SKIP_PARTS = {"__pycache__", "node_modules"}
+_SKIP_SUFFIXES = {".pyc", ".pyo"}
+
+
+def score_files(root: Path = PACKAGE, patterns: tuple[str, ...] = SCORE_FILES) -> list[Path]:
+    """Every file the globs match under `root`, sorted, without caches and compiled files."""
+    found = {p for pattern in patterns for p in root.glob(pattern) if p.is_file()}
+    return sorted(
+        (p for p in found if not _SKIP_PARTS & set(p.relative_to(root).parts) and p.suffix not in _SKIP_SUFFIXES),
+        key=lambda p: p.relative_to(root).as_posix(),
+    )
+
+
+def suite_hash(root: Path = PACKAGE, patterns: tuple[str, ...] = SCORE_FILES) -> str:
+    """sha256 (hex) over the score files' paths and contents."""
+    outer = hashlib.sha256()
+    for path in score_files(root, patterns):
+        inner = hashlib.sha256(path.read_bytes()).hexdigest()
+        outer.update(f"{path.relative_to(root).as_posix()}\0{inner}\n".encode())
+    return outer.hexdigest()
+
+
+def recorded(path: Path = VERSIONS) -> dict[str, str]:
+    """Released versions in order: name -> hash."""
+    return {v["name"]: v["sha256"] for v in json.loads(path.read_text())["versions"]}
+
+
+def label(name: str, digest: str) -> str:
+    """How a suite is written in records and tables: `suite 1.0@<first 16 hex>`."""
+    return f"{name}@{digest[:16]}"
+
+
+def name_of(digest: str, versions: dict[str, str]) -> str:
+    by_hash = {h: n for n, h in versions.items()}
+    return by_hash.get(digest) or f"{list(versions)[-1]}+dev"
+
+
+@lru_cache(maxsize=1)
+def current() -> dict[str, str]:
+    """This installation's suite: {"name", "sha256", "label"} (computed once per process)."""
+    digest = suite_hash()
+    name = name_of(digest, recorded())
+    return {"name": name, "sha256": digest, "label": label(name, digest)}
+
+
+def stale_message(expected: str, actual: str, name: str) -> str:
+    """The one line a changed score file gets (tests/test_suite.py)."""
+    return (
+        f"files that can move scores changed without a new suite version ({name} recorded {expected[:16]}, "
+        f"now {actual[:16]}): scores may move. Bump the version (pillagerbench suite --record 'suite X.Y'), "
+        "re-measure the reference figures (experiment=fidelity; reference_figures.json) and add an entry "
+        "to docs/suite-versions.md"
+    )
+
+
+def record(name: str | None, path: Path = VERSIONS) -> str:
+    """Record today's hash under `name` (a new version), or under the newest name when None (the same
+    version, re-recorded); returns the line to print."""
+    data = json.loads(path.read_text())
+    digest = suite_hash()
+    if name is None or name == data["versions"][-1]["name"]:
+        data["versions"][-1]["sha256"] = digest
+        name = data["versions"][-1]["name"]
+    elif name in recorded(path):
+        raise ValueError(f"{name!r} is an earlier version; name a new one or leave the name out")
+    else:
+        data["versions"].append({"name": name, "sha256": digest})
+    path.write_text(json.dumps(data, indent=1) + "\n")
+    current.cache_clear()
+    return f"recorded {label(name, digest)} in {path.name}"
+
+
+def main(argv: list[str]) -> int:
+    p = argparse.ArgumentParser(prog="pillagerbench suite", description=__doc__.split("\n\n")[0])
+    p.add_argument("--hash", action="store_true", help="print the hash only")
+    p.add_argument("--files", action="store_true", help="list the files the hash covers")
+    p.add_argument(
+        "--record",
+        nargs="?",
+        const="",
+        metavar="NAME",
+        help="record today's hash: under a new version NAME, or (no NAME) re-record the newest version",
+    )
+    a = p.parse_args(argv)
+    if a.record is not None:
+        print(record(a.record or None))
+        return 0
+    suite = current()
+    if a.hash:
+        print(suite["sha256"])
+        return 0
+    if a.files:
+        print("\n".join(p.relative_to(PACKAGE).as_posix() for p in score_files()))
+        return 0
+    print(f"{suite['name']} sha256:{suite['sha256']} ({len(score_files())} files)")
+    return 0
