@@ -111,9 +111,11 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     module_name, func_name = COMMANDS[name][0].split(":")
     from pillagerbench.arena.server import ArenaServerError
+    from pillagerbench.args import UsageError
     from pillagerbench.config import ConfigError
     from pillagerbench.metrics.runs import ReportError
     from pillagerbench.node import NodeSetupError
+    from pillagerbench.rundir.bundle import BundleError
 
     try:
         func = getattr(importlib.import_module(module_name), func_name)
@@ -126,6 +128,8 @@ def main(argv: list[str] | None = None) -> int:
         NodeSetupError,
         ReportError,
         ArenaServerError,
+        UsageError,
+        BundleError,
         FileNotFoundError,
         PermissionError,
         IsADirectoryError,

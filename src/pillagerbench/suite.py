@@ -14,11 +14,13 @@ run is played under is that version's name when the hash is recorded, else the n
 
 from __future__ import annotations
 
-import argparse
 import hashlib
 import json
+import sys
 from functools import lru_cache
 from pathlib import Path
+
+from pillagerbench.args import Parser
 
 PACKAGE = Path(__file__).resolve().parent
 VERSIONS = PACKAGE / "suite_versions.json"
@@ -83,21 +85,26 @@ def current() -> dict[str, str]:
     return {"name": name, "sha256": digest, "label": label(name, digest)}
 
 
-def stale_message(expected: str, actual: str, name: str) -> str:
-    """The one line a changed score file gets (tests/test_suite.py)."""
+def check(root: Path = PACKAGE, path: Path = VERSIONS) -> str | None:
+    """None when the score files hash to the newest recorded version, else the one line saying that
+    scores may move and what to do (tests/test_suite.py fails with it)."""
+    name, expected = list(recorded(path).items())[-1]
+    actual = suite_hash(root)
+    if actual == expected:
+        return None
     return (
         f"files that can move scores changed without a new suite version ({name} recorded {expected[:16]}, "
-        f"now {actual[:16]}): scores may move. Bump the version (pillagerbench suite --record 'suite X.Y'), "
-        "re-measure the reference figures (experiment=fidelity; reference_figures.json) and add an entry "
-        "to docs/suite-versions.md"
+        f"now {actual[:16]}): scores may move. Bump the version (pillagerbench suite --record 'suite X.Y'; "
+        "--record alone re-records the same version for a change that moves no score), re-measure the "
+        "reference figures (reference_figures.json) and add an entry to docs/suite-versions.md"
     )
 
 
-def record(name: str | None, path: Path = VERSIONS) -> str:
+def record(name: str | None, path: Path = VERSIONS, root: Path = PACKAGE) -> str:
     """Record today's hash under `name` (a new version), or under the newest name when None (the same
     version, re-recorded); returns the line to print."""
     data = json.loads(path.read_text())
-    digest = suite_hash()
+    digest = suite_hash(root)
     if name is None or name == data["versions"][-1]["name"]:
         data["versions"][-1]["sha256"] = digest
         name = data["versions"][-1]["name"]
@@ -111,7 +118,7 @@ def record(name: str | None, path: Path = VERSIONS) -> str:
 
 
 def main(argv: list[str]) -> int:
-    p = argparse.ArgumentParser(prog="pillagerbench suite", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="pillagerbench suite", description=__doc__.split("\n\n")[0])
     p.add_argument("--hash", action="store_true", help="print the hash only")
     p.add_argument("--files", action="store_true", help="list the files the hash covers")
     p.add_argument(
@@ -123,7 +130,11 @@ def main(argv: list[str]) -> int:
     )
     a = p.parse_args(argv)
     if a.record is not None:
-        print(record(a.record or None))
+        try:
+            print(record(a.record or None))
+        except ValueError as exc:
+            print(f"pillagerbench suite: {exc}", file=sys.stderr)
+            return 2
         return 0
     suite = current()
     if a.hash:

@@ -19,10 +19,15 @@ def write_run(
     first_points: list[int] | None = None,
     upstream: list[tuple[float, float]] | None = None,
     lagged: dict[int, str] | None = None,
+    suite: str | None = None,
+    failed: dict[int, str] | None = None,
+    problems: dict[int, dict[str, list[str]]] | None = None,
 ) -> Path:
     """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
     it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream);
-    `lagged[i]`: episode i was played under lag, for that reason."""
+    `lagged[i]`: episode i was played under lag, for that reason; `suite`: the suite version every
+    record names (none: a record from before suite versions); `failed[i]`: episode i failed with that
+    error; `problems[i]`: episode i's problems by side."""
     run.mkdir(parents=True)
     config = {
         "scenario": {"name": scenario},
@@ -55,6 +60,12 @@ def write_run(
                 "status": "ok",
                 "iterations": {"red": iterations or [1, 1], "blue": [1, 1]},
             }
+            if suite:
+                rec["suite"] = suite
+            if failed and i in failed:
+                rec.update(status="failed", error=failed[i], red_score=None, blue_score=None)
+            if problems and i in problems:
+                rec["problems"] = problems[i]
             if lagged and i in lagged:
                 rec.update(lagged=True, lag_reason=lagged[i], server_tps=12.5)
             if upstream:

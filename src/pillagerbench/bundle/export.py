@@ -6,9 +6,9 @@ every harness failure kept apart from the teams' own (rundir/bundle.py has the l
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
+from pillagerbench.args import Parser
 from pillagerbench.metrics.faults import tally
 from pillagerbench.metrics.runs import load_runs
 from pillagerbench.rundir.bundle import write_bundle
@@ -25,7 +25,7 @@ def summary(runs) -> dict:
 
 
 def main(argv: list[str]) -> int:
-    p = argparse.ArgumentParser(prog="pillagerbench export", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="pillagerbench export", description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs) or bundles")
     p.add_argument("--out", required=True, help="the bundle to write (FILE.tar.gz)")
     p.add_argument("--replays", action="store_true", help="include the episodes' replay recordings")

@@ -8,11 +8,11 @@ agree, 1 when something disagrees, 2 when the file is not a readable bundle."""
 
 from __future__ import annotations
 
-import argparse
 import json
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.args import Parser
 from pillagerbench.bundle.export import summary
 from pillagerbench.metrics.runs import Runs, load_runs
 from pillagerbench.rundir import RunDir, winner_of
@@ -111,7 +111,7 @@ def _short(value: Any) -> str:
 
 
 def main(argv: list[str]) -> int:
-    p = argparse.ArgumentParser(prog="pillagerbench verify", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="pillagerbench verify", description=__doc__.split("\n\n")[0])
     p.add_argument("bundle", help="a results bundle (pillagerbench export)")
     a = p.parse_args(argv)
     problems, facts = verify(Path(a.bundle))

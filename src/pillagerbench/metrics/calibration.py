@@ -13,7 +13,6 @@ calibration.json: {"created", "sources": [run dirs], "scenarios": {scenario: {"v
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import time
@@ -22,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pillagerbench.args import Parser
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
 from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_notes
@@ -184,7 +184,7 @@ def _use(where, cal: dict, strict: bool, want: dict, table: dict, notes: list[st
 def main(argv: list[str]) -> int:
     dirs = [a for a in argv if "=" not in a and not a.startswith("-")]
     if dirs:
-        p = argparse.ArgumentParser(prog="pillagerbench calibrate")
+        p = Parser(prog="pillagerbench calibrate")
         p.add_argument("runs", nargs="+")
         p.add_argument("--out", default=None, help="file to write (default: FIRST_RUN/calibration.json)")
         mix_switch(p)

@@ -15,7 +15,6 @@ scenario versions are refused.
 
 from __future__ import annotations
 
-import argparse
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,6 +22,7 @@ from typing import Any
 
 import pandas as pd
 
+from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.faults import fault_note, faults_table
 from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_notes, mixed_title
@@ -250,7 +250,7 @@ def default_out(first: Path) -> Path:
 
 
 def main(argv: list[str]) -> int:
-    p = argparse.ArgumentParser(prog="pillagerbench report", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="pillagerbench report", description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs) or results bundles")
     p.add_argument("--out", default=None, help="output directory (default: FIRST_RUN/report)")
     p.add_argument(

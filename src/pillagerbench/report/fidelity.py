@@ -4,12 +4,12 @@ checked on a round robin (metrics/fidelity.py has the maths and the data)."""
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 import pandas as pd
 
+from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.fidelity import claims_table, fidelity_table
 from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_title
@@ -43,7 +43,7 @@ def tally(frame: pd.DataFrame, column: str) -> str:
 
 
 def main(argv: list[str]) -> int:
-    p = argparse.ArgumentParser(prog="pillagerbench fidelity", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="pillagerbench fidelity", description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="run directories (experiment=fidelity, calibration, round robins)")
     p.add_argument(
         "--calibration",

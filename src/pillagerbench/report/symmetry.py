@@ -3,17 +3,17 @@
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
+from pillagerbench.args import Parser
 from pillagerbench.metrics.runs import ReportError, load_runs, mix_switch, mixed_notes
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report.tables import to_markdown
 
 
 def main(argv: list[str]) -> int:
-    p = argparse.ArgumentParser(prog="pillagerbench symmetry", description=__doc__.split("\n\n")[0])
+    p = Parser(prog="pillagerbench symmetry", description=__doc__.split("\n\n")[0])
     p.add_argument(
         "runs", nargs="+", help="run directories (experiment=symmetry, round robins, plain runs) or results bundles"
     )

@@ -1,0 +1,70 @@
+"""The suite version (pillagerbench/suite.py): the files that can move a score hash to the newest
+recorded version, or this suite fails with one line saying what to do; a change to one built-in
+opponent's script (on a copy of the package's score files) moves the hash, a file that moves no score
+does not; re-recording is one command; `pillagerbench suite` prints it."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from pillagerbench import cli, suite
+
+
+def test_the_files_that_can_move_a_score_hash_to_the_recorded_suite_version():
+    problem = suite.check()
+    if problem:  # one line: what changed and what to do
+        pytest.fail(problem, pytrace=False)
+
+
+@pytest.fixture
+def copy(tmp_path: Path) -> tuple[Path, Path]:
+    """The package's score files (and one file that moves no score) copied, with a versions file
+    recording their hash as 'suite 1.0'."""
+    root = tmp_path / "pillagerbench"
+    for path in suite.score_files() + [suite.PACKAGE / "teams" / "cot" / "team.py"]:
+        target = root / path.relative_to(suite.PACKAGE)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(path, target)
+    versions = tmp_path / "suite_versions.json"
+    versions.write_text(json.dumps({"versions": [{"name": "suite 1.0", "sha256": suite.suite_hash(root)}]}))
+    return root, versions
+
+
+def test_changing_one_opponents_script_without_a_new_version_fails_the_check(copy):
+    root, versions = copy
+    assert suite.check(root, versions) is None
+    script = sorted((root / "teams" / "scripts" / "mushroom_war").glob("*"))[0]
+    script.write_text(script.read_text() + "\n// one more line\n")
+    problem = suite.check(root, versions)
+    assert problem is not None and "\n" not in problem
+    assert problem.startswith("files that can move scores changed without a new suite version (suite 1.0 recorded")
+    assert "scores may move" in problem and "docs/suite-versions.md" in problem and "--record" in problem
+    assert suite.record("suite 1.1", versions, root).startswith("recorded suite 1.1@")
+    assert suite.check(root, versions) is None and list(suite.recorded(versions)) == ["suite 1.0", "suite 1.1"]
+
+
+def test_a_new_layout_file_under_scenarios_moves_the_hash_and_a_team_that_is_not_an_opponent_does_not(copy):
+    root, versions = copy
+    (root / "teams" / "cot" / "team.py").write_text("# moves no built-in opponent's score\n")
+    assert suite.check(root, versions) is None
+    (root / "scenarios" / "layouts").mkdir(exist_ok=True)
+    (root / "scenarios" / "layouts" / "new.yaml").write_text("seed: 7\n")
+    assert suite.check(root, versions) is not None
+
+
+def test_the_suite_is_named_by_its_recorded_hash_else_the_newest_name_plus_dev():
+    versions = {"suite 1.0": "a" * 64, "suite 1.1": "b" * 64}
+    assert suite.name_of("a" * 64, versions) == "suite 1.0"
+    assert suite.name_of("c" * 64, versions) == "suite 1.1+dev"
+    assert suite.label("suite 1.0", "a" * 64) == "suite 1.0@" + "a" * 16
+
+
+def test_the_command_prints_the_name_and_hash(capsys):
+    assert cli.main(["suite", "--hash"]) == 0
+    assert capsys.readouterr().out.strip() == suite.suite_hash()
+    assert cli.main(["suite"]) == 0
+    assert capsys.readouterr().out.startswith(f"{suite.current()['name']} sha256:{suite.suite_hash()}")
