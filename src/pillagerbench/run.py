@@ -22,6 +22,7 @@ from pillagerbench.manifest import write_manifest
 from pillagerbench.match import Match
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
+from pillagerbench.scenarios.layout import PAPER, parse_layout
 from pillagerbench.teams import Team, team_from_config
 
 
@@ -64,6 +65,7 @@ async def play_match(
         seed=cfg.seed,
         scoring=cfg.get("scoring", "clean"),  # runs from before these keys: the defaults
         protocol=cfg.get("protocol", "pillagerbench"),
+        split=cfg.get("split"),
         on_tick=on_tick,
         llms=llms,
     )
@@ -78,8 +80,17 @@ async def play_match(
             await llm.aclose()
 
 
+def scenario_from_config(cfg) -> Scenario:
+    """The scenario a config plays, on its `layout=` (`split=` chooses each episode's in the match)."""
+    return make_scenario(
+        cfg.scenario.name,
+        layout=parse_layout(cfg.get("layout", PAPER)),
+        crop_growth_chance=float(cfg.scenario.crop_growth_chance),
+    )
+
+
 async def play(cfg, run_dir: Path) -> list:
-    scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
+    scenario = scenario_from_config(cfg)
     teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
     write_manifest(run_dir, cfg, scenario)
     rundir = RunDir(run_dir)

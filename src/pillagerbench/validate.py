@@ -17,6 +17,7 @@ from pillagerbench.config_schema import LLMConfig, check, problems, top_level_pr
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
 from pillagerbench.scenarios import SCENARIOS
+from pillagerbench.scenarios.layout import PAPER, LayoutError, parse_layout, parse_split
 from pillagerbench.teams import TEAMS, find_team
 from pillagerbench.teams.options import defaults, options_model
 
@@ -75,6 +76,22 @@ def team_problems(cfg: Any) -> list[str]:
     return found
 
 
+def layout_problems(cfg: Any) -> list[str]:
+    """`layout=` and `split=`: a known value, one or the other, and a layout of the chosen scenario."""
+    layout, split = cfg.get("layout", PAPER), cfg.get("split")
+    try:
+        parse_split(split)
+        key = parse_layout(layout)
+        if split is not None and key != PAPER:
+            return [f"split={split} plays each episode on a layout of its own; drop layout={layout} or split={split}"]
+        scenario = str(cfg.scenario.name)
+        if scenario in SCENARIOS and not isinstance(key, int):  # a seed's layout is valid by construction
+            SCENARIOS[scenario].layouts.make(key)
+    except LayoutError as exc:
+        return [str(exc)]
+    return []
+
+
 def check_run_config(cfg: Any, *, teams: bool = True) -> None:
     """Raise one ConfigError listing every problem of the config (one line each). With
     teams=False (experiments choose teams themselves, see experiments/runner.check_series) only
@@ -83,4 +100,4 @@ def check_run_config(cfg: Any, *, teams: bool = True) -> None:
     watch = [] if any(line.startswith("watch=") for line in top) else watch_problems(cfg)
     if not teams and cfg.get("watch") is not None:  # an experiment: many servers at once
         watch = [f"watch={cfg.get('watch')}: the live view shows one match; experiments play many series at once"]
-    check(top + watch + (team_problems(cfg) if teams else []))
+    check(top + watch + layout_problems(cfg) + (team_problems(cfg) if teams else []))

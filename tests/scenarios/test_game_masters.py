@@ -3,10 +3,17 @@
 from __future__ import annotations
 
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.scenarios.dash_and_dine import EGG_CHEST, REWARDS, SIDES, Y, upstream_round
-from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, RED, caps, slime, upstream_multiplier
+from pillagerbench.scenarios.dash_and_dine import REWARDS, Y, upstream_round
+from pillagerbench.scenarios.dash_and_dine_layout import FACING as SIDES
+from pillagerbench.scenarios.dash_and_dine_layout import PAPER_LAYOUT as DD_PAPER
+from pillagerbench.scenarios.mushroom_war import AREA_RADIUS, caps, slime, upstream_multiplier
+from pillagerbench.scenarios.mushroom_war_layout import PAPER_LAYOUT as MW_PAPER
 from tests.scenarios.conftest import Always
 from tests.support.bots import TestBot
+
+RED = MW_PAPER.red
+RED_CENTER = (RED.center[0], Y, RED.center[1])
+EGG_CHEST = DD_PAPER.poi("egg_chest")
 
 
 async def blocks_named(server, name, center):
@@ -25,7 +32,7 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     # 15 slime blocks in the red area: too dirty, nothing regrows (slime respawn is a no-op: all present);
     # as upstream's, the game master starts with both teams dirty, so it says nothing about it
     await gm.step()
-    assert len(await blocks_named(server, "red_mushroom_block", RED["center"])) == 10
+    assert len(await blocks_named(server, "red_mushroom_block", RED_CENTER)) == 10
     assert gm.log[0] == {"chat": "starting cleanup scenario..."}
     assert not any("dirty" in e.get("chat", "") or "clean!" in e.get("chat", "") for e in gm.log)
     # clean 8 of them: 7 left, the area counts as clean and every missing cap regrows
@@ -33,14 +40,14 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     await gm_clean.start()
     await server.request("set_blocks", blocks=[[*p, "air"] for p in slime(RED)[:8]])
     await gm_clean.step()
-    assert len(await blocks_named(server, "slime_block", RED["center"])) == 7
-    assert len(await blocks_named(server, "red_mushroom_block", RED["center"])) == 10  # p=0.99 draws: no regrowth
+    assert len(await blocks_named(server, "slime_block", RED_CENTER)) == 7
+    assert len(await blocks_named(server, "red_mushroom_block", RED_CENTER)) == 10  # p=0.99 draws: no regrowth
     gm_sure = sc.game_master(server, Always(0.05))  # below P_REGROW (0.1), above P_SLIME (0.02)
     await gm_sure.start()
     await gm_sure.step()
     assert {"chat": "Team 0 is clean!"} in gm_sure.log  # upstream's naming: red 0, blue 1
-    assert await blocks_named(server, "red_mushroom_block", RED["center"]) == set(red_caps)
-    assert len(await blocks_named(server, "slime_block", RED["center"])) == 7  # 0.05 > P_SLIME: no respawn
+    assert await blocks_named(server, "red_mushroom_block", RED_CENTER) == set(red_caps)
+    assert len(await blocks_named(server, "slime_block", RED_CENTER)) == 7  # 0.05 > P_SLIME: no respawn
     await server.request("set_blocks", blocks=[[*p, "slime_block"] for p in slime(RED)])
     await gm_sure.step()
     assert gm_sure.log[-1] == {"chat": "Team 0 is too dirty!"}
@@ -53,7 +60,7 @@ async def test_slime_respawns_at_its_original_positions(server):
     gm = sc.game_master(server, Always(0.01))  # below P_SLIME
     await gm.start()
     await gm.step()
-    assert await blocks_named(server, "slime_block", RED["center"]) == set(slime(RED))
+    assert await blocks_named(server, "slime_block", RED_CENTER) == set(slime(RED))
 
 
 async def test_mushroom_war_score_is_own_colour_mushrooms_held(server):

@@ -48,7 +48,7 @@ async def run_series(
 ) -> dict:
     """Play the unfinished episodes of a series. Returns {"id", "finished", "failed", "played"}."""
     from pillagerbench.manifest import write_manifest
-    from pillagerbench.scenarios import make_scenario
+    from pillagerbench.run import scenario_from_config
     from pillagerbench.teams import team_from_config
 
     rundir = RunDir(series_dir)
@@ -62,7 +62,7 @@ async def run_series(
     remaining = [i for i in range(spec.episodes) if i not in finished]
     summary = {"id": spec.id, "played": 0}
     if remaining:
-        scenario = make_scenario(cfg.scenario.name, crop_growth_chance=float(cfg.scenario.crop_growth_chance))
+        scenario = scenario_from_config(cfg)
         teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
         if finished:
             _restore(rundir, teams, max(finished))

@@ -27,6 +27,7 @@ from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.scenarios import Scenario
+from pillagerbench.scenarios.layout import episode_layout
 from pillagerbench.teams import Team, TeamContext
 from pillagerbench.teams.base import PlayerHandle
 
@@ -46,6 +47,7 @@ class Match:
         scoring: str = "clean",
         protocol: str = "pillagerbench",
         step_wait_s: float | None = None,
+        split: str | None = None,
     ):
         if scoring not in SCORINGS:
             raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
@@ -59,6 +61,7 @@ class Match:
         self.players: dict[str, Player] = {}
         self.rundir = RunDir(run_dir)  # every path and record of the run directory
         self.last_records: dict[str, LastEpisode] = {}
+        self.layout, self.split = scenario.layout_key, split  # split: each episode on a layout of its own
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -114,15 +117,21 @@ class Match:
         return replay, parts
 
     async def play_episode(self, episode: int) -> EpisodeRecord:
+        seed = self.seed * 1000 + episode
+        key = episode_layout(self.layout, self.split, seed)
+        if key != self.scenario.layout_key:  # the episode's own arena (players keep their names)
+            self.scenario = self.scenario.with_layout(key)
         sc = self.scenario
         rec = EpisodeRecord(
             sc.key,
             self.teams["red"].name,
             self.teams["blue"].name,
             episode,
-            seed=self.seed * 1000 + episode,
+            seed=seed,
             scoring=self.scoring,
             protocol=self.protocol,
+            layout=sc.layout_key,
+            split=sc.split,
         )
         out = self.rundir.episode(episode)
         (out / "events").mkdir(parents=True, exist_ok=True)

@@ -37,6 +37,8 @@ class EpisodeRecord:
     scores: dict[str, dict[str, float]] = field(default_factory=dict)  # scoring -> side -> final score
     protocol: str = "pillagerbench"  # the LLM teams' loop (config `protocol`)
     runs: dict[str, int] = field(default_factory=dict)  # code runs started per player (upstream's steps)
+    layout: str | int = "paper"  # the arena's layout: "paper", a seed, or a layout file (docs/layouts.md)
+    split: str = "paper"  # paper | dev | test | custom (scenarios/layout.py split_of)
     suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite.py)
 
     @classmethod

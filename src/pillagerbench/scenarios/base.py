@@ -5,11 +5,12 @@ from __future__ import annotations
 
 import random
 from abc import ABC, abstractmethod
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, ClassVar
 
 from pillagerbench.control import Control
 from pillagerbench.scenarios.arena import Arena
+from pillagerbench.scenarios.layout import LayoutKey, LayoutRules, split_of
 
 
 @dataclass(frozen=True)
@@ -74,7 +75,25 @@ class Scenario(ABC):
     # 0: crops grow by vanilla's random ticks at `random_tick_speed`; > 0: a fixed chance per crop per second
     crop_growth_chance: float = 0.0
     random_tick_speed: ClassVar[int] = 0  # vanilla's gamerule randomTickSpeed in the reference's world
+    layouts: ClassVar[LayoutRules]  # the scenario's layouts (docs/layouts.md)
     options: dict[str, Any] = field(default_factory=dict)
+    layout: Any = None  # where everything is (the scenario's layout model); None: the paper's
+
+    def __post_init__(self) -> None:
+        if self.layout is None:
+            self.layout = self.layouts.paper
+
+    def with_layout(self, key: LayoutKey) -> Scenario:
+        """The same scenario on another layout ("paper", a seed, or a layout file)."""
+        return replace(self, layout=self.layouts.make(key))
+
+    @property
+    def layout_key(self) -> LayoutKey:
+        return self.layout.key
+
+    @property
+    def split(self) -> str:
+        return split_of(self.layout.key)
 
     @property
     @abstractmethod

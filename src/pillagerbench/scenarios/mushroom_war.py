@@ -1,9 +1,8 @@
 """Mushroom War: two teams harvest giant mushrooms of their colour in their own area, which regrow
 only while the area holds few slime blocks; slime keeps coming back; sabotage is allowed.
 
-Layout (upstream's exact positions, y + 64): each side has three giant mushrooms (a 2-high stem,
-4 cap blocks around its top and 1 above) and three plus-shaped patches of 5 slime blocks. Blue is
-red mirrored across z = -2.
+Where the areas, mushrooms, slime patches and spawns are is the layout's (mushroom_war_layout.py:
+upstream's exact positions for `layout=paper`, or a generated variant).
 """
 
 from __future__ import annotations
@@ -11,56 +10,29 @@ from __future__ import annotations
 import asyncio
 import random
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import ClassVar
 
+from pillagerbench.scenarios import mushroom_war_layout as L
 from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
+from pillagerbench.scenarios.layout import LayoutRules
 from pillagerbench.upstream import UPSTREAM_STEPS
 
-Y = GROUND_Y + 1  # the layer players stand in
+Y = L.Y  # the layer players stand in
 WASTE_CUTOFF = 7  # a team's mushrooms regrow only while its area holds at most this many slime blocks
-AREA_RADIUS = 7
+AREA_RADIUS = L.RADIUS
 P_REGROW = 0.1  # per missing cap block per second, while clean
 P_SLIME = 0.02  # per original slime position per second, always
-
-RED: dict[str, Any] = {
-    "cap": "red_mushroom_block",
-    "item": "red_mushroom",
-    "center": (-9, Y, -10),
-    "mushrooms": [(-13, -8), (-5, -8), (-9, -12)],
-    "slime": [(-9, -8), (-13, -12), (-5, -12)],
-    "players": [("Ryn", (-7, Y, -10)), ("Raze", (-11, Y, -10))],
-}
+# per side: its mushroom blocks, the item they drop (its score), its players
+CAP = {"red": "red_mushroom_block", "blue": "brown_mushroom_block"}
+ITEM = {"red": "red_mushroom", "blue": "brown_mushroom"}
+NAMES = {"red": ("Ryn", "Raze"), "blue": ("Byte", "Blink")}
+LAYOUTS = LayoutRules("mushroom_war", L.MushroomWarLayout, L.PAPER_LAYOUT, L.generate, L.problems)
+caps, slime, stems = L.caps, L.slime, L.stems
 
 
-def mirror(z: float) -> float:
-    return -4 - z
-
-
-BLUE: dict[str, Any] = {
-    "cap": "brown_mushroom_block",
-    "item": "brown_mushroom",
-    "center": (-9, Y, mirror(-10)),
-    "mushrooms": [(x, mirror(z)) for x, z in RED["mushrooms"]],
-    "slime": [(x, mirror(z)) for x, z in RED["slime"]],
-    "players": [("Byte", (-11, Y, mirror(-10))), ("Blink", (-7, Y, mirror(-10)))],
-}
-TEAMS = {"red": RED, "blue": BLUE}
-PLUS = [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)]
-
-
-def stems(data) -> list[tuple]:
-    return [(x, y, z) for x, z in data["mushrooms"] for y in (Y, Y + 1)]
-
-
-def caps(data) -> list[tuple]:
-    return [(x + dx, Y + 1, z + dz) for x, z in data["mushrooms"] for dx, dz in PLUS[1:]] + [
-        (x, Y + 2, z) for x, z in data["mushrooms"]
-    ]
-
-
-def slime(data) -> list[tuple]:
-    return [(x + dx, Y, z + dz) for x, z in data["slime"] for dx, dz in PLUS]
+def at(cell, y: int = Y) -> tuple[int, int, int]:
+    return (cell[0], y, cell[1])
 
 
 @dataclass
@@ -69,31 +41,40 @@ class MushroomWar(Scenario):
     title = "Mushroom War"
     primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
     random_tick_speed: ClassVar[int] = 3
+    layouts: ClassVar[LayoutRules] = LAYOUTS
 
     @property
     def sides(self) -> tuple[Side, ...]:
         return tuple(
-            Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in d["players"]), d["center"])
-            for key, d in TEAMS.items()
+            Side(
+                key,
+                f"{key}_team",
+                key,
+                tuple(PlayerSpec(n, at(p)) for n, p in zip(NAMES[key], self.layout.area(key).players)),
+                at(self.layout.area(key).center),
+            )
+            for key in ("red", "blue")
         )
 
     @property
     def arena(self) -> Arena:
         blocks = []
-        for d in TEAMS.values():
-            blocks += [(*p, "mushroom_stem") for p in stems(d)]
-            blocks += [(*p, d["cap"]) for p in caps(d)]
-            blocks += [(*p, "slime_block") for p in slime(d)]
-        return Arena(box=((-24, 1, -24), (6, Y + 8, 20)), blocks=blocks)
+        for key in ("red", "blue"):
+            area = self.layout.area(key)
+            blocks += [(*p, "mushroom_stem") for p in stems(area)]
+            blocks += [(*p, CAP[key]) for p in caps(area)]
+            blocks += [(*p, "slime_block") for p in slime(area)]
+        return Arena(box=L.BOX, blocks=blocks)
 
     def placeholders(self, key: str) -> dict:
         out = super().placeholders(key)
         other = "blue" if key == "red" else "red"
-        out.update(team_block=TEAMS[key]["cap"], opponent_block=TEAMS[other]["cap"], area_radius=AREA_RADIUS)
+        out.update(team_block=CAP[key], opponent_block=CAP[other], area_radius=AREA_RADIUS)
         return out
 
     def description(self) -> str:
         r, b = self.sides
+        red = self.layout.red
         return "\n".join(
             [
                 f"Mushroom War: two teams of two compete. The red team is {' and '.join(r.player_names)}; "
@@ -102,7 +83,7 @@ class MushroomWar(Scenario):
                 f"The ground is flat; its top layer is at y = {GROUND_Y}, so players stand at y = {Y}.",
                 f"A team's area is every block within {AREA_RADIUS} blocks of its centre. Both areas are "
                 "polluted with slime blocks.",
-                f"The red area holds {len(RED['mushrooms'])} giant mushrooms made of {len(caps(RED)) // len(RED['mushrooms'])} "
+                f"The red area holds {len(red.mushrooms)} giant mushrooms made of {len(caps(red)) // len(red.mushrooms)} "
                 f"red_mushroom_block each; the blue area holds the same made of brown_mushroom_block.",
                 "Mining a mushroom block gives 0 to 2 mushrooms, most often none.",
                 f"Mined mushroom blocks grow back only while the team's area contains {WASTE_CUTOFF} slime blocks "
@@ -125,30 +106,30 @@ class MushroomWarMaster(GameMaster):
     async def start(self) -> None:
         # as upstream's: both teams start "dirty" (their areas start with more slime than the cutoff), so the
         # first announcement is a change; teams are named by index, red 0 and blue 1
-        self.clean: dict[str, bool] = {key: False for key in TEAMS}
-        self.original_slime = [p for d in TEAMS.values() for p in slime(d)]
+        self.areas = {key: self.scenario.layout.area(key) for key in ("red", "blue")}
+        self.clean: dict[str, bool] = {key: False for key in self.areas}
+        self.original_slime = [p for area in self.areas.values() for p in slime(area)]
         await self.say("starting cleanup scenario...")
 
     async def step(self) -> None:
-        for key, d in TEAMS.items():
-            waste = await self.server.request(
-                "find_blocks", names=["slime_block"], center=list(d["center"]), radius=AREA_RADIUS
-            )
+        for key, area in self.areas.items():
+            center = list(at(area.center))
+            waste = await self.server.request("find_blocks", names=["slime_block"], center=center, radius=AREA_RADIUS)
             clean = len(waste) <= WASTE_CUTOFF
             if clean != self.clean[key]:
                 self.clean[key] = clean
-                index = list(TEAMS).index(key)
+                index = list(self.areas).index(key)
                 await self.say(f"Team {index} is clean!" if clean else f"Team {index} is too dirty!")
             if clean:
                 present = {
                     tuple(b[:3])
                     for b in await self.server.request(
-                        "find_blocks", names=[d["cap"]], center=list(d["center"]), radius=AREA_RADIUS
+                        "find_blocks", names=[CAP[key]], center=center, radius=AREA_RADIUS
                     )
                 }
-                regrow = [p for p in caps(d) if p not in present and self.rng.random() < P_REGROW]
+                regrow = [p for p in caps(area) if p not in present and self.rng.random() < P_REGROW]
                 if regrow:
-                    await self.server.request("set_blocks", blocks=[[*p, d["cap"]] for p in regrow])
+                    await self.server.request("set_blocks", blocks=[[*p, CAP[key]] for p in regrow])
                     self.log.append({"regrow": key, "blocks": len(regrow)})
         respawn = [p for p in self.original_slime if self.rng.random() < P_SLIME]
         if respawn:
@@ -163,7 +144,7 @@ class MushroomWarMaster(GameMaster):
             *(self.server.request("inventory", player=n) for n in names), return_exceptions=True
         )
         return {
-            n: 0 if isinstance(r, BaseException) else sum(s["count"] for s in r if s["name"] == TEAMS[key]["item"])
+            n: 0 if isinstance(r, BaseException) else sum(s["count"] for s in r if s["name"] == ITEM[key])
             for (n, key), r in zip(names.items(), replies)
         }  # offline: nothing
 
