@@ -3,7 +3,9 @@ Analysis claims hold on our runs?
 
 1. Against do_nothing (experiment=fidelity, or the do_nothing rows of a calibration or round robin):
    per opponent and side its mean points ± 95 % interval, upstream's reference value, the ratio and
-   ✓ when the ratio is within ±25 % (REFERENCE_SCORES, Dash & Dine ×0.1 like every reported score).
+   ✓ when the ratio is within ±25 % (REFERENCE_SCORES, Dash & Dine ×0.1 like every reported score);
+   beside it the suite's own reference (reference_figures.json) and ✓ in `vs_suite` when the two
+   means differ by no more than their combined 95 % intervals (sqrt(ci² + ci_ref²)).
    Episodes that recorded both scorings (scoring=upstream) give a row per scoring.
 2. From a round robin (experiment=round_robin_mushroom_war / round_robin_dash_and_dine): each
    claim of CLAIMS with the numbers behind it and ✓/✗. A claim is data: a kind (one checking
@@ -29,7 +31,7 @@ from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
 from pillagerbench.metrics.formulas import Estimate, mean_ci, over_opponents, welch_half_width
-from pillagerbench.metrics.reference import REFERENCE_SCORES
+from pillagerbench.metrics.reference import REFERENCE_SCORES, suite_reference
 
 TOLERANCE = 0.25  # ✓ when mean / reference is within 1 ± TOLERANCE
 MIN_EPISODES = 10  # per opponent and side (the fidelity check's default)
@@ -48,6 +50,9 @@ FIDELITY_COLUMNS = [
     "reference",
     "ratio",
     "within_25pct",
+    "suite_reference",
+    "suite_reference_ci",
+    "vs_suite",
 ]
 CLAIM_COLUMNS = ["scenario", "claim", "evidence", "holds"]
 
@@ -82,6 +87,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
                         "reference": reference if reference is not None else math.nan,
                         "ratio": ratio,
                         "within_25pct": "–" if math.isnan(ratio) else "✓" if abs(ratio - 1) <= TOLERANCE else "✗",
+                        **beside_suite(scenario, team, scoring, e),
                     }
                 )
                 if e.n < MIN_EPISODES and f"{scenario} {team} ({side}): {e.n}" not in few:  # once, not per scoring
@@ -98,6 +104,12 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
             + (f" and {len(few) - 5} more" if len(few) > 5 else "")
         )
     table = pd.DataFrame(rows, columns=FIDELITY_COLUMNS)
+    if len(table) and table["suite_reference"].notna().any():
+        figures = suite_reference()
+        notes.append(
+            f"fidelity: vs_suite compares with {figures['suite']}'s own reference (reference_figures.json; "
+            f"{figures['status'].split(':')[0]})"
+        )
     unknown = sorted(set(table["scenario"]) - set(REFERENCE_SCORES)) if len(table) else []
     if unknown:
         notes.append(
@@ -105,6 +117,17 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
             f"{', '.join(REFERENCE_SCORES)} only): listed without a ratio"
         )
     return table, notes
+
+
+def beside_suite(scenario: str, team: str, scoring: str, e) -> dict:
+    """The suite's own figure for this opponent and scoring, and ✓ when the run's mean agrees with
+    it within the two intervals combined (– without a figure or an interval)."""
+    ref = suite_reference()["scenarios"].get(scenario, {}).get(team, {}).get(scoring)
+    if ref is None:
+        return {"suite_reference": math.nan, "suite_reference_ci": math.nan, "vs_suite": "–"}
+    spread = math.hypot(e.ci, ref["ci"])
+    mark = "–" if math.isnan(spread) else "✓" if abs(e.mean - ref["mean"]) <= spread else "✗"
+    return {"suite_reference": ref["mean"], "suite_reference_ci": ref["ci"], "vs_suite": mark}
 
 
 # -- the paper's Benchmark Analysis claims ------------------------------------------------------------
