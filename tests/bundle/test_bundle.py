@@ -173,3 +173,25 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys, args, says):
     assert cli.main([a.format(tmp=tmp_path) for a in args]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"pillagerbench {args[0]}: ") and says in err, err
+
+
+def test_a_league_reads_a_round_handed_over_as_a_bundle(tmp_path, capsys):
+    from pillagerbench.league.rounds import MATCHES, STAMP
+    from pillagerbench.league.spec import Entrant, League, save_league
+
+    league = League(entrants=[Entrant(t, t) for t in ("do_nothing", "passive", "balanced")])
+    save_league(tmp_path / "league", league)
+    played = write_run(tmp_path / "round_elsewhere", "mushroom_war", "passive", "balanced", [(20, 10)] * 3)
+    stamp = {"entrants": {e.name: e.fingerprint() for e in league.entrants[1:]}, "game": []}
+    (played / STAMP).write_text(json.dumps(stamp))
+    bundle = tmp_path / "league" / MATCHES / "elsewhere.tar.gz"
+    assert cli.main(["export", str(played), "--out", str(bundle)]) == 0
+    assert cli.main(["league", str(tmp_path / "league"), "board"]) == 0
+    board = (tmp_path / "league" / "leaderboard.md").read_text()
+    assert "3 episodes in 1 rounds" in board
+    (played / STAMP).write_text(json.dumps({**stamp, "entrants": {"passive": "another team"}}))
+    bundle.unlink()
+    assert cli.main(["export", str(played), "--out", str(bundle)]) == 0
+    capsys.readouterr()
+    assert cli.main(["league", str(tmp_path / "league"), "board"]) == 2
+    assert "entrant 'passive' was another team" in capsys.readouterr().err

@@ -31,7 +31,11 @@ def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
     # the suite's own reference (reference_figures.json): passive 28.10 ± 4.74 agrees with 25.0 ± 0.75,
     # slimy 23.70 ± 5.28 does not with 11 ± 0
     assert (rows["passive"].suite_reference, rows["passive"].vs_suite) == (28.10, "✓")
-    assert (rows["slimy"].suite_reference, rows["slimy"].suite_reference_ci, rows["slimy"].vs_suite) == (23.70, 5.28, "✗")
+    assert (rows["slimy"].suite_reference, rows["slimy"].suite_reference_ci, rows["slimy"].vs_suite) == (
+        23.70,
+        5.28,
+        "✗",
+    )
     assert rows["passive"].ratio == pytest.approx(25 / 25.23) and rows["passive"].within_25pct == "✓"
     assert rows["passive"].points_ci > 0 and rows["passive"].episodes == TEN and rows["passive"].side == "blue"
     assert rows["slimy"].within_25pct == "✗" and rows["slimy"].do_nothing == 1

@@ -75,7 +75,7 @@ def test_the_league_refuses_mixed_rounds_unless_asked(two, tmp_path, monkeypatch
     league.mix_suites = True
     write_board(tmp_path, league)
     board = (tmp_path / "leaderboard.md").read_text()
-    assert f"## Leaderboard [{MARK}" in board and f"Head to head, mushroom_war (row's" in board
+    assert f"## Leaderboard [{MARK}" in board and "Head to head, mushroom_war (row's" in board
     assert all(MARK in line for line in board.splitlines() if line.startswith("## "))
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pandas as pd
 
 from pillagerbench.league.ratings import Outcome
-from pillagerbench.league.rounds import round_dirs
+from pillagerbench.league.rounds import handed_over, round_dirs
 from pillagerbench.llm.ledger import read_ledger
 from pillagerbench.metrics.runs import Runs, load_runs
 from pillagerbench.rundir import LEDGER, RunDir
@@ -33,7 +33,7 @@ class Spent:
 
 
 def load(league_dir: Path, mix_suites: bool = False) -> Runs:
-    return load_runs(list[str | Path](round_dirs(league_dir)), mix_suites)
+    return load_runs([*round_dirs(league_dir), *handed_over(league_dir)], mix_suites)
 
 
 def outcomes(runs: Runs) -> list[Outcome]:

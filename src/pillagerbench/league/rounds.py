@@ -2,7 +2,10 @@
 (experiment.json, series/<id>/ ... as any experiment, so parallel play, Ray and resume work
 unchanged), plus `league.json`: the game overrides the round was played with and a fingerprint of
 each entrant it involved (team, options, model). A round whose stamp disagrees with league.yaml
-belongs to another league and is refused, never overwritten."""
+belongs to another league and is refused, never overwritten. Rounds played elsewhere can be handed
+over as results bundles (`pillagerbench export ROUND_DIR --out LEAGUE_DIR/matches/NAME.tar.gz`): the
+board and the scheduler read them as rounds, their stamps checked the same; the budget counts only
+what was played here."""
 
 from __future__ import annotations
 
@@ -18,6 +21,7 @@ from pillagerbench.league.compose import match_config
 from pillagerbench.league.schedule import Pairing
 from pillagerbench.league.spec import League
 from pillagerbench.rundir import RunDir
+from pillagerbench.rundir.bundle import bundle_runs
 
 MATCHES = "matches"
 STAMP = "league.json"
@@ -28,10 +32,16 @@ def round_dirs(league_dir: Path) -> list[Path]:
     return sorted(d for d in (Path(league_dir) / MATCHES).glob("round_*") if RunDir(d).is_experiment())
 
 
+def handed_over(league_dir: Path) -> list[Path]:
+    """Rounds handed over as results bundles (matches/*.tar.gz), in order."""
+    return sorted((Path(league_dir) / MATCHES).glob("*.tar.gz"))
+
+
 def check_stamps(league_dir: Path, league: League, game: tuple[str, ...] | None) -> None:
     """ConfigError when a round was played by another definition of an entrant (or, with `game`,
-    other game overrides) than league.yaml / this command gives."""
-    for d in round_dirs(league_dir):
+    other game overrides) than league.yaml / this command gives; handed-over rounds too."""
+    unpacked = [disk for bundle in handed_over(league_dir) for disk, _ in bundle_runs(bundle)]
+    for d in round_dirs(league_dir) + unpacked:
         if not (d / STAMP).exists():
             raise ConfigError(f"{d}: no {STAMP}; not a round of a league (move it out of {MATCHES}/)")
         stamp = json.loads((d / STAMP).read_text())

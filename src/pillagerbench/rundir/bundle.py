@@ -89,15 +89,17 @@ def _add(tar: tarfile.TarFile, name: str, data: bytes) -> None:
     tar.addfile(member, io.BytesIO(data))
 
 
-_opened: dict[Path, tuple[Path, dict]] = {}
+_opened: dict[tuple[Path, int, int], tuple[Path, dict]] = {}
 
 
 def unpack(bundle: Path) -> tuple[Path, dict[str, Any]]:
-    """The bundle unpacked into a temporary directory (once per process) and its bundle.json."""
-    key = bundle.resolve()
+    """The bundle unpacked into a temporary directory (once per process and version of the file) and
+    its bundle.json."""
+    if not bundle.exists():
+        raise FileNotFoundError(f"{bundle}: no such bundle or run directory")
+    stat = bundle.stat()
+    key = (bundle.resolve(), stat.st_mtime_ns, stat.st_size)
     if key not in _opened:
-        if not bundle.exists():
-            raise FileNotFoundError(f"{bundle}: no such bundle or run directory")
         root = Path(tempfile.mkdtemp(prefix="pillagerbench-bundle-"))
         atexit.register(shutil.rmtree, root, True)
         try:
