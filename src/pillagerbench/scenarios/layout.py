@@ -109,6 +109,10 @@ class LayoutRules:
         if isinstance(key, int):
             return self.generate(key)
         data = read_layout_file(key)
+        if "scenario" not in data:
+            raise LayoutError(
+                f"layout={key}: not a layout file (it names no scenario; `pillagerbench layout show` writes one)"
+            )
         if data.get("scenario") != self.scenario:
             raise LayoutError(f"layout={key}: a layout of {data.get('scenario')!r}, not of {self.scenario}")
         try:
