@@ -195,3 +195,13 @@ def test_a_league_reads_a_round_handed_over_as_a_bundle(tmp_path, capsys):
     capsys.readouterr()
     assert cli.main(["league", str(tmp_path / "league"), "board"]) == 2
     assert "entrant 'passive' was another team" in capsys.readouterr().err
+
+
+def test_report_and_calibrate_write_beside_a_bundle_by_default(tmp_path):
+    calm = write_run(tmp_path / "calm", "mushroom_war", "do_nothing", "passive", [(0, 20), (0, 24)], suite=SUITE)
+    bundle = export(tmp_path, calm)
+    assert cli.main(["report", str(bundle), "--no-replays"]) == 0
+    assert (tmp_path / "bundle_report" / "report.html").exists()
+    assert cli.main(["calibrate", str(bundle)]) == 0
+    cal = json.loads((tmp_path / "bundle_calibration.json").read_text())
+    assert cal["suites"] == [SUITE] and cal["sources"] == [str(calm)]

@@ -24,7 +24,7 @@ import pandas as pd
 from pillagerbench.args import Parser
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
-from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_notes
+from pillagerbench.metrics.runs import ReportError, Runs, beside, load_runs, mix_switch, mixed_notes
 
 CALIBRATION = "calibration.json"
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
@@ -186,11 +186,15 @@ def main(argv: list[str]) -> int:
     if dirs:
         p = Parser(prog="pillagerbench calibrate")
         p.add_argument("runs", nargs="+")
-        p.add_argument("--out", default=None, help="file to write (default: FIRST_RUN/calibration.json)")
+        p.add_argument(
+            "--out",
+            default=None,
+            help="file to write (default: FIRST_RUN/calibration.json; beside a bundle: BUNDLE_calibration.json)",
+        )
         mix_switch(p)
         a = p.parse_args(argv)
         runs = load_runs(a.runs, a.mix_suites)
-        out = Path(a.out) if a.out else Path(a.runs[0]) / CALIBRATION
+        out = Path(a.out) if a.out else beside(Path(a.runs[0]), CALIBRATION)
     else:  # play the calibration experiment first
         from pillagerbench.config import load_config
         from pillagerbench.experiments.runner import main_experiment, make_experiment_dir

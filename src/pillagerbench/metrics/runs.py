@@ -82,6 +82,11 @@ def mix_switch(parser: Any) -> None:
     )
 
 
+def beside(first: Path, name: str) -> Path:
+    """Where a command writes by default: FIRST_RUN/name, or for a bundle BUNDLE_name beside it."""
+    return first.with_name(f"{first.name.split('.')[0]}_{name}") if first.is_file() else first / name
+
+
 def _inputs(paths: list[Path]) -> list[tuple[Path, Path]]:
     """(directory to read, the run's name) of every input: a run directory is itself; a bundle gives
     its runs, named by the paths they were exported from."""

@@ -25,7 +25,7 @@ import pandas as pd
 from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.faults import fault_note, faults_table
-from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_notes, mixed_title
+from pillagerbench.metrics.runs import ReportError, Runs, beside, load_runs, mix_switch, mixed_notes, mixed_title
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.fidelity import fidelity_sections
@@ -90,7 +90,8 @@ def build_report(
         ),
         table(
             "fidelity",
-            "Fidelity: built-in opponents against do_nothing beside upstream's reference (✓: within ±25 %)",
+            "Fidelity: built-in opponents against do_nothing beside upstream's reference (✓: within ±25 %) "
+            "and the suite's own (vs_suite)",
             fidelity,
         ),
         table("claims", "Fidelity: the paper's Benchmark Analysis claims on this round robin", claims),
@@ -244,15 +245,12 @@ def modes(df) -> list[str]:
     return out
 
 
-def default_out(first: Path) -> Path:
-    """FIRST_RUN/report, or beside a bundle: BUNDLE_report."""
-    return first.with_name(first.name.split(".")[0] + "_report") if first.is_file() else first / "report"
-
-
 def main(argv: list[str]) -> int:
     p = Parser(prog="pillagerbench report", description=__doc__.split("\n\n")[0])
     p.add_argument("runs", nargs="+", help="run directories (experiments or plain runs) or results bundles")
-    p.add_argument("--out", default=None, help="output directory (default: FIRST_RUN/report)")
+    p.add_argument(
+        "--out", default=None, help="output directory (default: FIRST_RUN/report; beside a bundle: BUNDLE_report)"
+    )
     p.add_argument(
         "--calibration",
         default=None,
@@ -261,7 +259,7 @@ def main(argv: list[str]) -> int:
     p.add_argument("--no-replays", action="store_true", help="do not write the episodes' replay pages")
     mix_switch(p)
     a = p.parse_args(argv)
-    out = Path(a.out) if a.out else default_out(Path(a.runs[0]))
+    out = Path(a.out) if a.out else beside(Path(a.runs[0]), "report")
     try:
         calibration = Path(a.calibration) if a.calibration else None
         result = build_report(a.runs, out, calibration, not a.no_replays, a.mix_suites)
