@@ -31,6 +31,7 @@ MENTIONS = {
     "teams": ["keys: none"],
     "league": ["init", "add", "play", "board", "team=TEAM", "mix_suites=true"],
     "replay": ["RUN_DIR/episode"],
+    "layout": ["show", "SEED|paper|FILE.json", "--out", "--json", "mushroom_war"],
     "report": ["--out", "--calibration", "reference", "--no-replays", "--mix-suites"],
     "symmetry": ["runs", "--mix-suites"],
     "fidelity": ["--calibration", "--mix-suites"],

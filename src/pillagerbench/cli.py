@@ -22,6 +22,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "a league: add entrants, play scheduled matches, write the leaderboard",
     ),
     "replay": ("pillagerbench.replay.page:main", "write an episode's replay page (replay.html) from its recording"),
+    "layout": ("pillagerbench.layout_show:main", "show a layout's map (a page), or write the layout as JSON"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": (
         "pillagerbench.report.symmetry:main",

@@ -107,6 +107,15 @@ HELP: dict[str, CommandHelp] = {
         doc=True,
         examples=("pillagerbench replay runs/2026-11-23_10-00-00_mushroom_war_passive_vs_balanced/episode_000",),
     ),
+    "layout": CommandHelp(
+        usage=(),
+        argparse=True,
+        examples=(
+            "pillagerbench layout show mushroom_war 42",
+            "pillagerbench layout show dash_and_dine paper --out map.html",
+            "pillagerbench layout show mushroom_war 42 --json --out my_layout.json",
+        ),
+    ),
     "report": CommandHelp(
         usage=(),
         argparse=True,

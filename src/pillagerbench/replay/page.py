@@ -151,8 +151,16 @@ def page_data(replay: Replay) -> dict:
     }
 
 
-def script() -> str:
-    return resources.files("pillagerbench").joinpath("js/replay/page.js").read_text()
+def script(*names: str) -> str:
+    """The page's script: the map (js/replay/map.js), then the page's own files (js/replay/NAME)."""
+    folder = resources.files("pillagerbench").joinpath("js/replay")
+    return "\n".join(folder.joinpath(name).read_text() for name in ("map.js", *names))
+
+
+def embedded(data: dict) -> str:
+    """The page's data, as the script reads it (a JSON script element that no text can close early)."""
+    blob = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+    return f"<script id='replay-data' type='application/json'>{blob}</script>"
 
 
 def render(replay: Replay, where: str = "") -> str:
@@ -164,13 +172,12 @@ def render(replay: Replay, where: str = "") -> str:
         f"{sum(len(v) for v in data['tracks'].values())} player positions · {len(data['feed'])} feed lines"
     )
     warning = f"<p class='warn'>{html.escape(replay.problem)}</p>" if replay.problem else ""
-    blob = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
     return (
         f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
         f"<style>{STYLE}</style></head><body>"
         + BODY.format(title=html.escape(title), subtitle=html.escape(subtitle), warning=warning)
-        + f"<script id='replay-data' type='application/json'>{blob}</script>"
-        + f"<script>{script()}</script></body></html>"
+        + embedded(data)
+        + f"<script>{script('page.js')}</script></body></html>"
     )
 
 

@@ -44,7 +44,7 @@ poll()
 
 const app = express()
 app.get('/', (req, res) => res.type('html').send(PAGE))
-app.get('/state.json', (req, res) => res.json(state))
+app.get('/state.json', (req, res) => res.json({ ...state, center })) // center: where the camera looks
 app.use('/', express.static(path.join(path.dirname(require.resolve('prismarine-viewer/package.json')), 'public')))
 const server = http.createServer(app)
 const io = require('socket.io')(server, { path: '/socket.io' })
