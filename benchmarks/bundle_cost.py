@@ -24,10 +24,11 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from pillagerbench.rundir import RunDir
 from tests.metrics.fake_runs import write_run
+
+ROOT = Path(__file__).resolve().parents[1]
 
 EPISODES, LENGTH, REPEAT, REPLAY_BYTES = 150, 120, 24, 37_000
 REAL = RunDir(next((ROOT / "tests/experiments/fixtures/run_6198d49/series").iterdir())).episode(0)
