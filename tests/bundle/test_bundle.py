@@ -128,7 +128,7 @@ def test_verify_passes_an_untouched_bundle(run, tmp_path, capsys):
     assert cli.main(["verify", str(export(tmp_path, run))]) == 0
     out = capsys.readouterr().out
     assert out.splitlines()[-1].endswith(": verified")
-    assert f"suite {SUITE}: not a released version" in out
+    assert f"\n{SUITE}: not a released version" in "\n" + out
 
 
 def test_verify_names_a_tampered_score_even_with_forged_checksums(run, tmp_path, capsys):

@@ -36,7 +36,7 @@ def main(argv: list[str]) -> int:
     files = write_bundle([(runs.roots[name], name) for name in runs.runs], out, info, a.replays)
     harness = info["faults"]["harness_episodes"]
     print(
-        f"{out}: {len(runs.runs)} run(s), {files} files, {len(runs.episodes)} episode(s) used, suite "
+        f"{out}: {len(runs.runs)} run(s), {files} files, {len(runs.episodes)} episode(s) used, played under "
         f"{', '.join(runs.suites) or '–'}; {harness} episode(s) with harness failures; "
         f"{out.stat().st_size / 1e6:.1f} MB"
     )

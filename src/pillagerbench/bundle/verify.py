@@ -82,7 +82,7 @@ def suite_lines(suites: list[str]) -> list[str]:
     mine = current()["label"]
     what = {UNVERSIONED: "played before suite versions"} | dict.fromkeys(released, "a released version")
     return [
-        f"suite {s}: {what.get(s, 'not a released version (files changed since one)')}"
+        f"{s}: {what.get(s, 'not a released version (files changed since one)')}"
         f"{'; this installation plays it' if s == mine else f'; this installation plays {mine}'}"
         for s in suites
     ]
