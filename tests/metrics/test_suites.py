@@ -104,3 +104,10 @@ def test_every_manifest_names_the_suite(tmp_path):
     write_experiment(tmp_path / "exp", OmegaConf.create({"experiment": {"name": "x"}}), [], [])
     for run in ("run", "exp"):
         assert RunDir(tmp_path / run).manifest()["suite"] == current()
+
+
+def test_the_same_files_named_before_and_after_their_hash_was_recorded_are_one_version(tmp_path):
+    dev, released = "suite 1.0+dev@cccccccccccccccc", "suite 1.0@cccccccccccccccc"
+    write_run(tmp_path / "a", "mushroom_war", "do_nothing", "passive", [(0, 20)], suite=dev)
+    write_run(tmp_path / "b", "mushroom_war", "do_nothing", "passive", [(0, 22)], suite=released)
+    assert load_runs([tmp_path / "a", tmp_path / "b"]).suites == [f"{dev} = {released}"]

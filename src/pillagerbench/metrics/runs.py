@@ -247,19 +247,24 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
 
 
 def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
-    """The suite versions of the episodes, in order; more than one is refused unless `mix_suites`."""
+    """The suite versions of the episodes, in order; more than one is refused unless `mix_suites`.
+    A version is its hash: the same files named before and after their hash was recorded
+    (`suite 1.0+dev@H`, `suite 1.0@H`) are one version, written with both names."""
+    names: dict[str, list[str]] = {}
     where: dict[str, list[str]] = {}
     for r in rows:
-        runs = where.setdefault(r["suite"], [])
-        if r["run"] not in runs:
-            runs.append(r["run"])
+        key = r["suite"].rpartition("@")[2]
+        for seen, item in ((names, r["suite"]), (where, r["run"])):
+            if item not in seen.setdefault(key, []):
+                seen[key].append(item)
+    labels = {key: " = ".join(found) for key, found in names.items()}
     if len(where) > 1 and not mix_suites:
-        detail = "; ".join(f"{suite} in {', '.join(runs)}" for suite, runs in where.items())
+        detail = "; ".join(f"{labels[key]} in {', '.join(runs)}" for key, runs in where.items())
         raise ReportError(
             f"refusing to mix suite versions: {detail}. Their scores may not compare; report them "
             "separately, or ask to mix them (--mix-suites; league: mix_suites=true)"
         )
-    return list(where)
+    return list(labels.values())
 
 
 def _named(where: str, roots: dict[Path, Path]) -> str:
