@@ -84,7 +84,7 @@ def suite_lines(suites: list[str]) -> list[str]:
     return [
         f"{s}: {what.get(s, 'not a released version (files changed since one)')}"
         f"{'; this installation plays it' if s == mine else f'; this installation plays {mine}'}"
-        for s in suites
+        for s in (name for entry in suites for name in entry.split(" = "))  # one version, two names
     ]
 
 
