@@ -25,8 +25,16 @@ EPISODE_S = 60
 LENGTH = {"potato_cookie": 120, "cake_beetroot": 90}
 
 
-async def one_episode(scenario_key: str, red: str, blue: str, run_dir, length: float = EPISODE_S, **match_options):
-    sc = make_scenario(scenario_key)  # Dash & Dine's crops grow by vanilla random ticks at speed 200
+async def one_episode(
+    scenario_key: str,
+    red: str,
+    blue: str,
+    run_dir,
+    length: float = EPISODE_S,
+    layout: str | int = "paper",
+    **match_options,
+):
+    sc = make_scenario(scenario_key, layout=layout)  # Dash & Dine's crops grow by vanilla random ticks at speed 200
     teams = {"red": make_team(red, sc.key), "blue": make_team(blue, sc.key)}
     async with ArenaServer(log_path=run_dir / "server.log") as server:
         match = Match(server, sc, teams, run_dir, episode_length=length, seed=1, **match_options)
@@ -97,6 +105,20 @@ async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
         assert any(line.startswith(f"<{p}>") for line in chat for p in red_players)  # the server's chat log
         world = [json.loads(line) for line in open(tmp_path / name / "episode_000" / "world_events.jsonl")]
         assert any(e["event"] == "item_picked_up" for e in world)
+
+
+@pytest.mark.parametrize("pair", [(("aggressive", 1), ("melon_pumpkin", 2))])
+async def test_builtin_opponents_score_on_generated_layouts(tmp_path, pair):
+    """30 s on a generated layout of each scenario (two matches at once): the opponents play the
+    layout's places, not the paper's, and nothing they do is refused."""
+    recs = await asyncio.gather(
+        *(one_episode(OPPONENTS[name], name, "do_nothing", tmp_path / name, 30, layout=seed) for name, seed in pair)
+    )
+    for (name, seed), rec in zip(pair, recs):
+        assert rec.status == "ok", rec.error
+        assert (rec.layout, rec.split) == (seed, "dev")
+        assert rec.red_score > 0, f"{name} scored {rec.red_score} against do_nothing on layout {seed}"
+        assert not rec.refusals, rec.refusals
 
 
 async def test_upstream_scoring_plays_on_to_upstreams_sample_and_records_both_scores(tmp_path):
