@@ -65,6 +65,8 @@ def test_every_table_of_a_mixed_report_says_so(two, tmp_path, capsys):
     for table in tables:
         assert MARK in table.read_text().splitlines()[0], table.name
     assert (out / "report.html").read_text().count(MARK) >= len(tables)
+    provenance = (out / "provenance.csv").read_text()
+    assert f"{A}" in provenance and f"{B}" in provenance  # each run's own suite
 
 
 def test_the_league_refuses_mixed_rounds_unless_asked(two, tmp_path, monkeypatch):

@@ -72,6 +72,7 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
         "what": "run",
         "created": "2026-01-02T03:04:05+0000",
         "revision": REVISION[:12],
+        "suite": "unversioned",  # a record from before suite versions
         "scenarios": "mushroom_war v1",
         "seeds": "7",
         "episode_length": "6 s",

@@ -15,6 +15,7 @@ COLUMNS = [
     "what",
     "created",
     "revision",
+    "suite",
     "scenarios",
     "seeds",
     "episode_length",
@@ -70,6 +71,7 @@ def provenance(runs: Runs) -> pd.DataFrame:
                     for r in [top.get("git_revision")] + [s.manifest.get("git_revision") for s in series]
                     if r
                 ),
+                "suite": _distinct(df.loc[df["run"] == str(run), "suite"]) if len(df) else "–",  # its episodes'
                 "scenarios": _distinct(f"{s.scenario} v{s.version}" for s in series),
                 "seeds": seed_range([int(s.config["seed"]) for s in series if s.config.get("seed") is not None]),
                 "episode_length": _distinct(f"{s.episode_length:g} s" for s in series),
