@@ -54,15 +54,7 @@ def test_the_page_draws_the_layouts_blocks_and_its_players_at_their_spawns(tmp_p
         ("mushroom_war", 999_999_999),
         ("dash_and_dine", 42),
         ("dash_and_dine", "paper"),
-        pytest.param(
-            "mushroom_war",
-            "paper",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="the paper's blue spawns are red's mirrored in another order; a layout file is checked "
-                "for the exact mirror (mushroom_war_layout._fairness), so the paper's file is refused",
-            ),
-        ),
+        ("mushroom_war", "paper"),
     ],
 )
 def test_json_is_a_layout_file_that_plays_back_as_the_same_layout(tmp_path, monkeypatch, capsys, name, key):
