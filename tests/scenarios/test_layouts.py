@@ -232,7 +232,10 @@ def test_bad_layouts_at_the_command_line_are_one_line_and_leave_no_run_directory
             "split=test plays each episode on a layout of its own; drop layout=5 or split=test",
         ),
         ([f"layout={other}"], f"layout={other}: a layout of 'dash_and_dine', not of mushroom_war"),
-        ([f"layout={broken}"], f"layout={broken}: red: 3 mushrooms, 3 slime patches, 1 players; expected 3, 3, 2 (and 1 more)"),
+        (
+            [f"layout={broken}"],
+            f"layout={broken}: red: 3 mushrooms, 3 slime patches, 1 players; expected 3, 3, 2 (and 1 more)",
+        ),
     ]
     for args, says in cases:
         proc = run_cli(tmp_path, "run", *args)

@@ -189,6 +189,7 @@ class DashAndDine(Scenario):
 
 class DashAndDineMaster(GameMaster):
     period_s = SERVER_PERIOD_S
+    scenario: DashAndDine
 
     async def start(self) -> None:
         self.servers = self.scenario.servers

@@ -189,7 +189,7 @@ def problems(layout: MushroomWarLayout) -> list[str]:
 
 
 def _footprints(layout: MushroomWarLayout) -> dict[str, list[Cell]]:
-    out = {}
+    out: dict[str, list[Cell]] = {}
     for side in ("red", "blue"):
         area = layout.area(side)
         out |= {f"{side} mushroom {i}": plus(c) for i, c in enumerate(area.mushrooms)}
@@ -198,7 +198,8 @@ def _footprints(layout: MushroomWarLayout) -> dict[str, list[Cell]]:
 
 
 def _overlaps(layout: MushroomWarLayout) -> list[str]:
-    out, seen = [], {}
+    out: list[str] = []
+    seen: dict[str, list[Cell]] = {}
     for name, cells in _footprints(layout).items():
         clash = [other for other, theirs in seen.items() if not apart(cells, set(theirs), 1)]
         if clash:
