@@ -13,8 +13,8 @@ class UsageError(ValueError):
 
 
 class Parser(argparse.ArgumentParser):
-    def __init__(self, *args, **kw) -> None:
-        super().__init__(*args, allow_abbrev=False, **kw)  # `--mix` is not `--mix-suites`
+    def __init__(self, prog: str, description: str | None = None) -> None:
+        super().__init__(prog=prog, description=description, allow_abbrev=False)  # `--mix` is not `--mix-suites`
 
     def error(self, message: str) -> NoReturn:
         raise UsageError(f"{message} (see {self.prog} --help)")
