@@ -17,6 +17,11 @@ Y_SHIFT = 64  # upstream (1.19.4, ground -61) -> ours (1.16.5, ground 3)
 FILL_LIMIT = 32768
 
 
+def standing(cell: tuple[int, int]) -> Pos:
+    """A floor cell (x, z) as the block position a player stands in."""
+    return (cell[0], GROUND_Y + 1, cell[1])
+
+
 def up64(x: float, y: float, z: float) -> tuple:
     """Upstream coordinates to ours."""
     return (x, y + Y_SHIFT, z)

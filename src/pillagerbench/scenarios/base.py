@@ -138,6 +138,17 @@ class Scenario(ABC):
         return [p for s in self.sides for p in s.players] + list(self.extra_players)
 
 
+PLAYER_NAMES = {"red": ("Ryn", "Raze"), "blue": ("Byte", "Blink")}  # both scenarios', as upstream's
+
+
+def sides_at(spawns: dict[str, list], centers: dict[str, tuple]) -> tuple[Side, ...]:
+    """Red and blue, their players (PLAYER_NAMES) at the given spawns, and their centres."""
+    return tuple(
+        Side(key, f"{key}_team", key, tuple(PlayerSpec(n, p) for n, p in zip(names, spawns[key])), centers[key])
+        for key, names in PLAYER_NAMES.items()
+    )
+
+
 def vec(p) -> str:
     """A position as the argument list of `new Vec3(...)` in a script."""
     return ", ".join(_num(v) for v in p)

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from pillagerbench.scenarios import dash_and_dine_layout as L
-from pillagerbench.scenarios.arena import GROUND_Y, Arena
-from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
+from pillagerbench.scenarios.arena import GROUND_Y, Arena, standing
+from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, sides_at, vec
 from pillagerbench.scenarios.layout import LayoutRules
 
 Y = GROUND_Y + 1
@@ -91,12 +91,7 @@ FOODS = [
 ]
 
 SERVER_NAMES = {"red": "Red_Server", "blue": "Blue_Server"}
-NAMES = {"red": ("Ryn", "Raze"), "blue": ("Byte", "Blink")}
 LAYOUTS = LayoutRules("dash_and_dine", L.DashAndDineLayout, L.PAPER_LAYOUT, L.generate, L.problems)
-
-
-def at(cell) -> tuple[int, int, int]:
-    return (cell[0], Y, cell[1])
 
 
 def build_arena(layout: L.DashAndDineLayout) -> Arena:
@@ -132,19 +127,16 @@ class DashAndDine(Scenario):
     @property
     def servers(self) -> dict[str, PlayerSpec]:
         """Each side's server: a player of the scenario's that receives the food (creative: unkillable)."""
-        return {k: PlayerSpec(n, at(self.layout.base(k).server), gamemode="creative") for k, n in SERVER_NAMES.items()}
+        return {
+            k: PlayerSpec(n, standing(self.layout.base(k).server), gamemode="creative") for k, n in SERVER_NAMES.items()
+        }
 
     @property
     def sides(self) -> tuple[Side, ...]:
-        return tuple(
-            Side(
-                key,
-                f"{key}_team",
-                key,
-                tuple(PlayerSpec(n, at(p)) for n, p in zip(NAMES[key], self.layout.base(key).players)),
-                at(self.layout.base(key).server),
-            )
-            for key in ("red", "blue")
+        bases = {key: self.layout.base(key) for key in ("red", "blue")}
+        return sides_at(
+            {k: [standing(p) for p in b.players] for k, b in bases.items()},
+            {k: standing(b.server) for k, b in bases.items()},
         )
 
     @property

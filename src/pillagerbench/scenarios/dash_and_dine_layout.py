@@ -16,7 +16,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict
 
 from pillagerbench.scenarios.arena import GROUND_Y
-from pillagerbench.scenarios.layout import PAPER, Cell, Draw, LayoutKey, apart, unreachable
+from pillagerbench.scenarios.layout import PAPER, Cell, Draw, LayoutKey, apart, search, unreachable
 
 Y = GROUND_Y + 1
 BOX = ((-26, 1, -16), (6, Y + 8, 14))
@@ -241,12 +241,7 @@ DISTANCE = (0.6, 1.4)  # a base's mean distance to the stations, as a share of t
 
 def generate(seed: int) -> DashAndDineLayout:
     """The layout of `seed`: the same on every machine (layout.Draw)."""
-    draw = Draw(seed)
-    for _ in range(1000):
-        layout = _attempt(draw, seed)
-        if layout is not None and not problems(layout):
-            return layout
-    raise RuntimeError(f"no Dash & Dine layout found for seed {seed}")  # never seen: a bug of the rules
+    return search(seed, _attempt, problems, "Dash & Dine")
 
 
 def _attempt(draw: Draw, seed: int) -> DashAndDineLayout | None:

@@ -127,6 +127,16 @@ class LayoutRules:
         return layout
 
 
+def search(seed: int, attempt: Callable[[Draw, int], Any], problems: Callable[[Any], list[str]], what: str) -> Any:
+    """The first of a seed's attempts that keeps every rule (`attempt` gives None when it gets stuck)."""
+    draw = Draw(seed)
+    for _ in range(1000):
+        layout = attempt(draw, seed)
+        if layout is not None and not problems(layout):
+            return layout
+    raise RuntimeError(f"no {what} layout found for seed {seed}")  # never seen: a bug of the rules
+
+
 class Draw:
     """Choices from a seed, built on `Random.random()` only: Python guarantees that sequence for an
     integer seed on every version and machine (its other methods may change between versions)."""

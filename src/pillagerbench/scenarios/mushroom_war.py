@@ -13,8 +13,8 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from pillagerbench.scenarios import mushroom_war_layout as L
-from pillagerbench.scenarios.arena import GROUND_Y, Arena
-from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, vec
+from pillagerbench.scenarios.arena import GROUND_Y, Arena, standing
+from pillagerbench.scenarios.base import GameMaster, Scenario, Side, sides_at, vec
 from pillagerbench.scenarios.layout import LayoutRules
 from pillagerbench.upstream import UPSTREAM_STEPS
 
@@ -26,13 +26,8 @@ P_SLIME = 0.02  # per original slime position per second, always
 # per side: its mushroom blocks, the item they drop (its score), its players
 CAP = {"red": "red_mushroom_block", "blue": "brown_mushroom_block"}
 ITEM = {"red": "red_mushroom", "blue": "brown_mushroom"}
-NAMES = {"red": ("Ryn", "Raze"), "blue": ("Byte", "Blink")}
 LAYOUTS = LayoutRules("mushroom_war", L.MushroomWarLayout, L.PAPER_LAYOUT, L.generate, L.problems)
 caps, slime, stems = L.caps, L.slime, L.stems
-
-
-def at(cell, y: int = Y) -> tuple[int, int, int]:
-    return (cell[0], y, cell[1])
 
 
 @dataclass
@@ -45,15 +40,10 @@ class MushroomWar(Scenario):
 
     @property
     def sides(self) -> tuple[Side, ...]:
-        return tuple(
-            Side(
-                key,
-                f"{key}_team",
-                key,
-                tuple(PlayerSpec(n, at(p)) for n, p in zip(NAMES[key], self.layout.area(key).players)),
-                at(self.layout.area(key).center),
-            )
-            for key in ("red", "blue")
+        areas = {key: self.layout.area(key) for key in ("red", "blue")}
+        return sides_at(
+            {k: [standing(p) for p in a.players] for k, a in areas.items()},
+            {k: standing(a.center) for k, a in areas.items()},
         )
 
     @property
@@ -113,7 +103,7 @@ class MushroomWarMaster(GameMaster):
 
     async def step(self) -> None:
         for key, area in self.areas.items():
-            center = list(at(area.center))
+            center = list(standing(area.center))
             waste = await self.server.request("find_blocks", names=["slime_block"], center=center, radius=AREA_RADIUS)
             clean = len(waste) <= WASTE_CUTOFF
             if clean != self.clean[key]:

@@ -15,7 +15,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict
 
 from pillagerbench.scenarios.arena import GROUND_Y
-from pillagerbench.scenarios.layout import PAPER, Cell, Draw, LayoutKey, apart, unreachable
+from pillagerbench.scenarios.layout import PAPER, Cell, Draw, LayoutKey, apart, search, unreachable
 
 Y = GROUND_Y + 1  # the layer players stand in
 BOX = ((-24, 1, -24), (6, Y + 8, 20))
@@ -107,12 +107,7 @@ def plus(cell: Cell) -> list[Cell]:
 
 def generate(seed: int) -> MushroomWarLayout:
     """The layout of `seed`: the same on every machine (layout.Draw)."""
-    draw = Draw(seed)
-    for _ in range(1000):
-        layout = _attempt(draw, seed)
-        if layout is not None and not problems(layout):
-            return layout
-    raise RuntimeError(f"no Mushroom War layout found for seed {seed}")  # never seen: a bug of the rules
+    return search(seed, _attempt, problems, "Mushroom War")
 
 
 def _attempt(draw: Draw, seed: int) -> MushroomWarLayout | None:
