@@ -84,12 +84,28 @@ def test_harness_failures_are_counted_apart_from_the_teams_own(run, tmp_path, ca
         info = json.loads(tar.extractfile(INFO).read())  # type: ignore[union-attr]
     faults = info["faults"]
     assert faults["harness_episodes"] == 3 and faults["team_episodes"] == 1
-    assert faults["harness_by_kind"] == {"lagged": 1, "failed (server or bot)": 1, "provider unreachable": 1}
+    assert faults["harness_by_kind"] == {"lagged": 1, "failed: the server": 1, "provider unreachable": 1}
     assert cli.main(["report", str(bundle), "--out", str(tmp_path / "r"), "--no-replays"]) == 0
     out = capsys.readouterr().out
     assert "failures: ours (the harness) in 3 episode(s)" in out and "the teams' own" in out
     table = (tmp_path / "r" / "faults.csv").read_text().splitlines()
     assert [line.split(",")[0] for line in table[1:]] == ["harness"] * 3 + ["team"]
+
+
+@pytest.mark.parametrize(
+    "error, whose, kind",
+    [
+        ("PlayerError: Ryn's bot process exited", "harness", "failed: a bot"),
+        ("BudgetExceeded: 4/4 calls", "team", "the team's budget spent"),
+        ("ValueError: a team's pre-game raised", "harness", "failed (cause not named)"),
+    ],
+)
+def test_a_failed_episode_is_put_on_whoever_its_error_names(error, whose, kind):
+    from pillagerbench.metrics.faults import faults
+
+    assert faults({"episode": 0, "status": "failed", "error": error}) == [
+        {"whose": whose, "kind": kind, "side": "", "what": error}
+    ]
 
 
 def repack(bundle: Path, tmp_path: Path, change, forge: bool) -> Path:

@@ -2,8 +2,10 @@
 not answer, the machine lagged) or the team's own (its code's errors, its team server's, its budget
 spent). Harness failures are counted apart, so that no team's score carries our faults.
 
-The rules are data: an episode that failed is ours, one played under lag is ours, and a side's
-problem is ours when it starts with one of `HARNESS_PROBLEMS`; every other problem is the team's.
+The rules are data. An episode that failed is ours (its error names what failed, `FAILED`), unless its
+error is a team's budget spent (`BudgetExceeded`): a failed episode is never scored, and one whose cause
+is not named (a team's pre-game raising is one) is not put on the team. An episode played under lag is
+ours. A side's problem is ours when it starts with one of `HARNESS_PROBLEMS`; every other is the team's.
 """
 
 from __future__ import annotations
@@ -16,6 +18,17 @@ HARNESS = "harness"
 TEAM = "team"
 # a recorded problem's start -> the harness failure it is (llm/budget.py: every call of the episode failed)
 HARNESS_PROBLEMS: dict[str, str] = {"llm failed on all": "provider unreachable"}
+# a failed episode's error type -> (whose, kind); any other type: ours, "failed (cause not named)"
+FAILED: dict[str, tuple[str, str]] = {
+    "ArenaServerError": (HARNESS, "failed: the server"),
+    "ControlError": (HARNESS, "failed: the server"),
+    "ChannelClosed": (HARNESS, "failed: the server"),
+    "PlayerError": (HARNESS, "failed: a bot"),
+    "LLMConnectionError": (HARNESS, "provider unreachable"),
+    "LLMTimeout": (HARNESS, "provider unreachable"),
+    "ProviderError": (HARNESS, "provider unreachable"),
+    "BudgetExceeded": (TEAM, "the team's budget spent"),
+}
 
 
 def faults(data: dict[str, Any]) -> list[dict[str, str]]:
@@ -23,7 +36,8 @@ def faults(data: dict[str, Any]) -> list[dict[str, str]]:
     out = []
     if data.get("status", "ok") != "ok":  # a line may hold no more than its status (a killed run's)
         what = str(data.get("error") or data.get("status"))
-        out.append({"whose": HARNESS, "kind": "failed (server or bot)", "side": "", "what": what})
+        whose, kind = FAILED.get(what.partition(":")[0], (HARNESS, "failed (cause not named)"))
+        out.append({"whose": whose, "kind": kind, "side": "", "what": what})
     if data.get("lagged"):
         out.append({"whose": HARNESS, "kind": "lagged", "side": "", "what": str(data.get("lag_reason"))})
     for side, problems in (data.get("problems") or {}).items():
