@@ -4,6 +4,7 @@ every machine, and their descriptions name their own coordinates."""
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -23,6 +24,7 @@ from pillagerbench.scenarios.layout import DEV_SEEDS, PAPER, LayoutError, episod
 FIXTURE = Path(__file__).parent / "fixtures" / "paper_layouts.json"
 SCENARIOS = ("mushroom_war", "dash_and_dine")
 RULES = {"mushroom_war": MW, "dash_and_dine": DD}
+GENERATED = {name: functools.cache(rules.generate) for name, rules in RULES.items()}  # seeds shared by tests
 
 
 def snapshot(sc) -> dict:
@@ -59,7 +61,7 @@ def test_the_paper_layout_is_todays_map_item_for_item(scenario):
 def test_500_generated_layouts_pass_validation(scenario):
     rules = RULES[scenario]
     for seed in range(500):
-        layout = rules.generate(seed)
+        layout = GENERATED[scenario](seed)
         assert layout.key == seed
         assert rules.problems(layout) == [], (seed, rules.problems(layout))
 
@@ -103,7 +105,7 @@ def test_dash_and_dine_stations_keep_their_shapes_and_yields():
         )
 
     for seed in range(50):
-        layout = DD.generate(seed)
+        layout = GENERATED["dash_and_dine"](seed)
         assert list(layout.stations) == list(DD.STATIONS)
         for kind, piece in layout.pieces().items():
             assert relative(piece, layout.stations[kind]) == relative(paper[kind], DD.PAPER_LAYOUT.stations[kind]), kind
@@ -112,7 +114,7 @@ def test_dash_and_dine_stations_keep_their_shapes_and_yields():
 def test_mushroom_war_sides_are_fair_by_construction():
     counts = {"mirror": 0, "half_turn": 0}
     for seed in range(200):
-        layout = MW.generate(seed)
+        layout = GENERATED["mushroom_war"](seed)
         f = MW.SYMMETRIES[layout.symmetry]
         assert layout.blue == MW._mapped(layout.red, f)
         assert len(MW.caps(layout.red)) == len(MW.caps(MW.PAPER_LAYOUT.red)) == 15
