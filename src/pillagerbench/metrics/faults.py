@@ -42,9 +42,9 @@ def faults(data: dict[str, Any]) -> list[dict[str, str]]:
         out.append({"whose": HARNESS, "kind": "lagged", "side": "", "what": str(data.get("lag_reason"))})
     for side, problems in (data.get("problems") or {}).items():
         for problem in problems:
-            kind = next((k for start, k in HARNESS_PROBLEMS.items() if problem.startswith(start)), None)
-            whose = HARNESS if kind else TEAM
-            out.append({"whose": whose, "kind": kind or "the team's own", "side": side, "what": problem})
+            ours = next((k for start, k in HARNESS_PROBLEMS.items() if problem.startswith(start)), None)
+            whose = HARNESS if ours else TEAM
+            out.append({"whose": whose, "kind": ours or "the team's own", "side": side, "what": problem})
     return out
 
 
