@@ -182,10 +182,14 @@ def test_verify_names_a_tampered_missing_and_extra_file(run, tmp_path, capsys):
         (["export", "{tmp}", "--out"], "argument --out: expected one argument"),
         (["verify", "{tmp}/corrupt.tar.gz", "--fast"], "unrecognized arguments: --fast"),
         (["symmetry", "{tmp}", "--mix"], "unrecognized arguments: --mix"),
+        (["verify", "{tmp}/unsummed.tar.gz"], "unsummed.tar.gz: not a results bundle (no checksums.sha256)"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys, args, says):
     (tmp_path / "corrupt.tar.gz").write_bytes(b"\x1f\x8b not really gzip")
+    with tarfile.open(tmp_path / "unsummed.tar.gz", "w:gz") as tar:  # a bundle.json, no checksums
+        (tmp_path / INFO).write_text(json.dumps({"format": 1, "runs": []}))
+        tar.add(tmp_path / INFO, INFO)
     assert cli.main([a.format(tmp=tmp_path) for a in args]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"pillagerbench {args[0]}: ") and says in err, err

@@ -109,6 +109,8 @@ def unpack(bundle: Path) -> tuple[Path, dict[str, Any]]:
         except (tarfile.TarError, EOFError, zlib.error, OSError, ValueError) as exc:
             shutil.rmtree(root, True)
             raise BundleError(f"{bundle}: not a readable results bundle ({type(exc).__name__}: {exc})") from None
+        if not (root / CHECKSUMS).is_file():
+            raise BundleError(f"{bundle}: not a results bundle (no {CHECKSUMS})")
         if info.get("format") != FORMAT:
             raise BundleError(f"{bundle}: bundle format {info.get('format')!r}, this version reads {FORMAT}")
         _opened[key] = (root, info)
