@@ -15,6 +15,9 @@ Designs (conf/experiment/*.yaml, key `design`):
                pairing of a team with itself is one mirror match
 - fidelity:    every built-in opponent of each scenario (or `opponents`) against do_nothing, on each
                side of `sides` (blue: the opponent blue, do_nothing red, as upstream measured)
+- generalization: each variant against every opponent, on each of its `sides`, on each arena of
+               `arenas` (paper: the paper's layout; test: a fresh test layout every episode; dev:
+               seeded dev layouts), one series per (opponent, side, arena)
 """
 
 from __future__ import annotations
@@ -27,8 +30,9 @@ from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config, to_dict
 from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
+from pillagerbench.scenarios.layout import PAPER, SPLITS
 
-DESIGNS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity")
+DESIGNS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity", "generalization")
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
@@ -132,6 +136,32 @@ def _opponents(exp: DictConfig, key: str, scenario: str) -> list[str]:
     return [_known_team(t, f"experiment.{key}") for t in chosen] if chosen else builtin_teams(scenario)
 
 
+def _sides(exp: DictConfig, what: str, default: str) -> list[str]:
+    sides = list(exp.get("sides") or [default])
+    if any(s not in ("blue", "red") for s in sides):
+        raise ConfigError(f"experiment.sides={sides}: each side is blue or red ({what}; e.g. [blue, red])")
+    return sides
+
+
+def _arenas(exp: DictConfig, overrides: list[str]) -> dict[str, int]:
+    """`arenas`: split -> episodes per opponent and side (paper: the paper's layout; dev, test: each
+    episode on a layout of the split). The experiment chooses each series' layout itself."""
+    chosen = [o for o in overrides if override_key(o) in ("layout", "split")]
+    if chosen:
+        raise ConfigError(
+            f"{chosen[0]!r}: experiment {exp.get('name')!r} chooses each series' layout itself; "
+            "use experiment.arenas.SPLIT=EPISODES (splits: " + ", ".join(SPLITS) + ")"
+        )
+    arenas = dict(exp.get("arenas") or {})
+    bad = [k for k, n in arenas.items() if k not in SPLITS or isinstance(n, bool) or not isinstance(n, int) or n < 0]
+    if bad or not any(arenas.values()):
+        raise ConfigError(
+            f"experiment.arenas={arenas}: a split ({', '.join(SPLITS)}) -> episodes (an integer ≥ 0) per "
+            "opponent and side, at least one above 0, e.g. {paper: 3, test: 3}"
+        )
+    return {k: n for k, n in arenas.items() if n}
+
+
 class _Builder:
     def __init__(self, cfg: DictConfig, argv: list[str]):
         self.cfg, self.exp = cfg, cfg.experiment
@@ -150,21 +180,25 @@ class _Builder:
         blue: str | None = None,
         variant: dict | None = None,
         blue_variant: dict | None = None,
+        arena: str | None = None,
         **extra,
     ) -> SeriesSpec:
-        llm = (variant or {}).get("llm")
-        cfg = self.compose(scenario, red_team, blue_team, llm)
-        if variant:
-            cfg.red = OmegaConf.merge(cfg.red, variant.get("team_options") or {})
-            cfg.llm = OmegaConf.merge(cfg.llm, variant.get("llm_options") or {})
-        if blue_variant:
-            cfg.blue = OmegaConf.merge(cfg.blue, blue_variant.get("team_options") or {})
+        own = variant or blue_variant or {}  # the experiment's team: its model is the series' llm
+        cfg = self.compose(scenario, red_team, blue_team, own.get("llm"))
+        for side, v in (("red", variant), ("blue", blue_variant)):
+            if v:
+                cfg[side] = OmegaConf.merge(cfg[side], v.get("team_options") or {})
+        if own:
+            cfg.llm = OmegaConf.merge(cfg.llm, own.get("llm_options") or {})
+        if arena:  # every episode on the paper's layout, or each on a fresh one of the split
+            cfg.layout, cfg.split = PAPER, arena
         extra["variant"] = extra.pop("variant_label", None)
         index = len(self.series)
         red, blue = red or red_team, blue or blue_team
         parts = [f"{index:03d}", scenario, slug(red), "vs", slug(blue)]
-        if extra.get("group"):
-            parts.append(slug(extra["group"]))
+        for tag in (extra.get("group"), arena):
+            if tag:
+                parts.append(slug(tag))
         if int(self.exp.get("repetitions", 1) or 1) > 1:
             parts.append(f"r{extra.get('repetition', 0)}")
         cfg.episodes = int(episodes)
@@ -215,10 +249,7 @@ class _Builder:
                     self.add(p.scenario, red, blue, self.exp.episodes, repetition=rep)
 
     def fidelity(self) -> None:
-        sides = list(self.exp.get("sides") or ["blue"])
-        bad = [s for s in sides if s not in ("blue", "red")]
-        if bad:
-            raise ConfigError(f"experiment.sides={sides}: each side is blue or red (e.g. [blue, red])")
+        sides = _sides(self.exp, "the opponent's side", "blue")
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for sc in self.exp.scenarios:
                 for team in _opponents(self.exp, "opponents", sc):
@@ -227,6 +258,22 @@ class _Builder:
                     for side in sides:
                         red, blue = ("do_nothing", team) if side == "blue" else (team, "do_nothing")
                         self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+
+    def generalization(self) -> None:
+        arenas, sides = _arenas(self.exp, self.compose.overrides), _sides(self.exp, "the team's side", "red")
+        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+            for label, v in _variants(self.exp).items():
+                for sc in self.exp.scenarios:
+                    for opponent in _opponents(self.exp, "opponents", sc):
+                        for side in sides:
+                            red, blue = (v["team"], opponent) if side == "red" else (opponent, v["team"])
+                            team: dict[str, Any] = (
+                                {"red": label, "variant": v} if side == "red" else {"blue": label, "blue_variant": v}
+                            )
+                            for arena, episodes in arenas.items():
+                                self.add(
+                                    sc, red, blue, episodes, **team, arena=arena, variant_label=label, repetition=rep
+                                )
 
     def benchmark(self) -> None:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pillagerbench.league import results
+from pillagerbench.league import results, splits
 from pillagerbench.league.ratings import ANCHOR, Rating, ranked, ranks
 from pillagerbench.league.spec import League
 from pillagerbench.league.standings import boards, overall
@@ -122,13 +122,14 @@ def head_to_head(league: League, runs: results.Runs, scenario: str) -> pd.DataFr
 
 
 def write_board(league_dir: Path, league: League) -> list[Path]:
-    runs = results.load(league_dir, league.mix_suites)
-    main = leaderboard(league, runs)
+    runs, on = splits.on_split(results.load(league_dir, league.mix_suites), league.split)
+    main = leaderboard(league, runs).assign(split=league.split)  # the layouts its ratings are from
     h2h = {sc: head_to_head(league, runs, sc) for sc in league.scenarios}
     notes = [
         f"{len(runs.episodes)} episodes in {len(runs.runs)} rounds; rating ± its {league.confidence:.0%} interval "
         f"(openskill Plackett–Luce, do_nothing = 0); conservative = mu − 3σ",
         f"{len(runs.skipped)} items skipped (unfinished or failed episodes)",
+        *on,
         *mixed_notes(runs),
     ]
     unpriced = int(results.ledger(runs)["cost"].isna().sum())
@@ -136,7 +137,7 @@ def write_board(league_dir: Path, league: League) -> list[Path]:
         notes.append(f"LLM cost unknown (left blank) where {unpriced} calls had no price for their model (docs/llm.md)")
     out = Path(league_dir)
     main.to_csv(out / "leaderboard.csv", index=False)
-    mixed = mixed_title(runs)  # mixed suite versions: every table says so
+    mixed = mixed_title(runs) + splits.title(league.split)  # mixed suite versions, the split: every table says so
     md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", f"## Leaderboard{mixed}", "", to_markdown(main)]
     for sc, t in h2h.items():
         md += ["", f"## Head to head, {sc} (row's win rate against column, episodes){mixed}", "", to_markdown(t)]

@@ -19,6 +19,7 @@ from pillagerbench.league.compose import check_entrant
 from pillagerbench.league.rounds import check_stamps, round_dirs, write_round
 from pillagerbench.league.schedule import next_round
 from pillagerbench.league.spec import League
+from pillagerbench.league.splits import check_game, on_split
 from pillagerbench.league.standings import boards
 from pillagerbench.rundir import RunDir
 
@@ -41,6 +42,7 @@ def _play_round(run_dir: Path, runner: dict) -> bool:
 
 
 def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) -> int:
+    check_game(game)
     for e in league.entrants:
         check_entrant(e, league.scenarios, game)
     check_stamps(league_dir, league, game)
@@ -59,7 +61,7 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) 
         if over := spent.over(league.budget):
             print(f"league stopped: budget spent ({over})")
             return 0
-        outs = results.outcomes(results.load(league_dir, league.mix_suites))
+        outs = results.outcomes(on_split(results.load(league_dir, league.mix_suites), league.split)[0])
         pairings = next_round(boards(league, outs), outs, league.confidence, league.matches_per_round)
         if not pairings:
             print(f"league settled: every adjacent pair is separated at confidence {league.confidence:g}")

@@ -20,6 +20,7 @@ from pillagerbench.experiments.spec import SeriesSpec, slug
 from pillagerbench.league.compose import match_config
 from pillagerbench.league.schedule import Pairing
 from pillagerbench.league.spec import League
+from pillagerbench.league.splits import match_split
 from pillagerbench.rundir import RunDir
 from pillagerbench.rundir.bundle import bundle_runs
 
@@ -70,6 +71,7 @@ def write_round(
         red, blue = league.entrant(p.red), league.entrant(p.blue)
         assert red is not None and blue is not None
         cfg = match_config(p.scenario, red, blue, game)
+        cfg.split = match_split(league.split)  # test: every episode on a fresh test layout
         cfg.episodes, cfg.seed = episodes, index * 1000 + i
         specs.append(
             SeriesSpec(

@@ -10,9 +10,10 @@
       - {name: do_nothing, team: do_nothing, options: {}, llm: null, llm_options: {}}
 
     mix_suites: false           # true: rate rounds of different suite versions together (the board says so)
+    split: paper                # the layouts rated on: paper, test (a fresh layout every episode) or dev
 
 `play` and `board` may override any of these keys for one invocation (`budget.episodes=4`, `scenarios=[...]`,
-`mix_suites=true`).
+`mix_suites=true`, `split=test`).
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from typing import Any
 import yaml  # type: ignore[import-untyped]  # pyyaml ships no stubs
 
 from pillagerbench.config import ConfigError
+from pillagerbench.league.splits import check_split
 
 LEAGUE_FILE = "league.yaml"
 BUDGET_KEYS = ("episodes", "hours", "llm_tokens", "llm_cost_usd")
@@ -59,6 +61,7 @@ class League:
     )
     entrants: list[Entrant] = field(default_factory=list)
     mix_suites: bool = False  # rate episodes of different suite versions together (the board says so)
+    split: str = "paper"  # the layouts its matches are played and rated on (league/splits.py)
 
     def entrant(self, name: str) -> Entrant | None:
         return next((e for e in self.entrants if e.name == name), None)
@@ -89,6 +92,7 @@ def _checked(raw: dict, where: str) -> League:
         league.scenarios = [str(s) for s in league.scenarios]
     except (TypeError, ValueError) as exc:
         raise ConfigError(f"{where}: {exc}") from None
+    league.split = check_split(league.split, where)
     if not 0.5 < league.confidence < 1:
         raise ConfigError(f"{where}: confidence={league.confidence} must be between 0.5 and 1")
     if league.episodes_per_match < 1 or league.matches_per_round < 1:

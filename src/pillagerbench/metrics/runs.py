@@ -218,6 +218,8 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "blue_score": float(rec.blue_score or 0.0) * scale,
         "scoring": rec.scoring,
         "suite": rec.suite,
+        "layout": rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
+        "split": rec.split,
         **alternatives,
         "team_protocol": rec.protocol,
         "iterations": float(np.mean(red_it)) if red_it else np.nan,

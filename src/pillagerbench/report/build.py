@@ -27,6 +27,7 @@ from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.faults import fault_note, faults_table
 from pillagerbench.metrics.runs import ReportError, Runs, beside, load_runs, mix_switch, mixed_notes, mixed_title
 from pillagerbench.metrics.symmetry import side_symmetry
+from pillagerbench.report import generalization as unseen
 from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.fidelity import fidelity_sections
 from pillagerbench.report.provenance import provenance
@@ -74,6 +75,7 @@ def build_report(
     fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma, origin)
     pairs, per_team = tables.pairings(main, sigma), tables.per_team(main, sigma)
     grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(df)
+    arenas = unseen.unseen_arenas(main, sigma)
     sections = [  # the report's one list of sections: its files, its contents and its page
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
         table(
@@ -95,6 +97,7 @@ def build_report(
             fidelity,
         ),
         table("claims", "Fidelity: the paper's Benchmark Analysis claims on this round robin", claims),
+        *([table(unseen.NAME, unseen.TITLE, arenas)] if len(arenas) else []),  # runs on generated layouts only
         *scenario_figures(df, main, pairs, per_team, out),
         *series_figures(df, main, grouped, curve, out),
         table("learning_curve", "Points difference per episode index", curve),
@@ -114,6 +117,7 @@ def build_report(
         *fault_note(runs.faults),
         *[f"read from the results bundle {b} (pillagerbench verify checks it)" for b in runs.bundles],
         *lag_notes(lag, one_order),
+        *unseen.unseen_notes(main),
     ]
     files: list[Path] = []
     if with_replays:
