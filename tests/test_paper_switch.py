@@ -11,7 +11,7 @@ import pytest
 from pillagerbench.config import PAPER, ConfigError, config_options, load_config
 from pillagerbench.experiments.spec import build_series
 
-OURS = {"symmetry"}  # experiments of our own, not the paper's
+OURS = {"symmetry", "generalization"}  # experiments of our own, not the paper's
 
 
 def test_paper_true_sets_upstreams_scoring_and_protocol_and_the_default_is_ours():
