@@ -151,6 +151,20 @@ async def test_a_dig_still_turning_the_head_at_stop_breaks_nothing(server, area,
     assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
 
 
+async def test_a_dig_turning_at_stop_breaks_nothing_in_the_next_run(server, area, make_player):
+    # as above, but the next run has started (the next episode) by the time mineflayer finishes the
+    # turn: the old run's dig must not act for the new one
+    await area.blocks((0, 4, 2, "slime_block"))
+    p = await make_player(area, 0, 0)
+    await p.run(f"await bot.lookAt(new Vec3({area.x0 + 0.5}, 5.6, -20), true)\nawait bot.waitForTicks(5)")
+    run = asyncio.create_task(p.run("await mineBlock(bot, 'slime_block', 1)"))
+    await asyncio.sleep(0.15)
+    await p.stop()
+    await asyncio.wait_for(run, 2)
+    await p.run("await bot.waitForTicks(40)")
+    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
+
+
 async def test_run_timeout(area, make_player):
     p = await make_player(area)
     t0 = time.perf_counter()

@@ -53,7 +53,7 @@ bot.loadPlugin(pathfinder)
 bot.loadPlugin(tool)
 bot.loadPlugin(collectBlock)
 bot.loadPlugin(pvp)
-gate(bot, () => Boolean(current && current.active)) // a stopped run's leftovers cannot act (gate.js)
+gate(bot, () => current) // a stopped run's leftovers cannot act (gate.js)
 // The bots' writes are not batched (batch.js): a dig's finish and the next packet would then reach the
 // server in one read, and flying-squid's asynchronous dig handler lets the next packet (a place against
 // the block just dug) see the block before the dig has changed it (tests/arena/test_fair_play.py).
