@@ -167,14 +167,17 @@ async def test_attack_out_of_reach_is_refused_and_the_cooldown_scales_damage(are
             "await bot.equip(mcData.itemsByName.iron_sword.id, 'hand')\nawait sleep(1000)\n"
             "bot._client.write('use_entity', {target: %d, mouse: 1, sneaking: false})\nawait sleep(200)" % far
         )
-        # a full-strength hit (12.5 ticks after the equip), then one at once: 6, then 6 * (0.2 + 0.8 * 0.04^2)
+        # a full-strength hit (12.5 ticks after the equip), then one at once: 6, then 6 * (0.2 + 0.8 * s^2)
+        # with s = (ticks since the first hit + 0.5) / 12.5: 0.5 / 12.5, or 1.5 / 12.5 when a server tick
+        # falls between the two packets (vanilla's getAttackStrengthScale(0.5))
         await alice.eval(
             "bot._client.write('use_entity', {target: %d, mouse: 1, sneaking: false})\n"
             "bot._client.write('use_entity', {target: %d, mouse: 1, sneaking: false})\nawait sleep(300)" % (near, near)
         )
     mobs = await arena.request("mobs")
     assert health(mobs, far) == 10
-    assert abs(health(mobs, near) - (10 - 6 - 6 * (0.2 + 0.8 * (0.5 / 12.5) ** 2))) < 0.05
+    second = 10 - 6 - health(mobs, near)
+    assert any(abs(second - 6 * (0.2 + 0.8 * ((k + 0.5) / 12.5) ** 2)) < 0.01 for k in (0, 1)), second
     assert len(got) == 1 and got[0]["action"] == "attack" and "too far to attack cow" in got[0]["reason"]
     await arena.request("remove_entities")
 

@@ -206,7 +206,18 @@ async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
 
     (rec,) = scoring
     assert rec.status == "ok", rec.error
-    assert rec.red_score > 0 and rec.blue_score == 0
+    # a red mushroom block drops a mushroom with p = 2/9 (vanilla's loot table), so a slow machine's few
+    # digs may score 0: the test asks for the digs, and for a score that is the mushrooms picked up
+    world = [json.loads(line) for line in (tmp_path / "good" / "episode_000" / "world_events.jsonl").open()]
+    red = ("Ryn", "Raze")
+    dug = [e for e in world if e["event"] == "block_dug" and e["player"] in red]
+    assert {e["block"] for e in dug} == {"slime_block", "red_mushroom_block"}, (dug, rec.bot_lag)
+    picked = sum(
+        e["count"]
+        for e in world
+        if e["event"] == "item_picked_up" and e["item"] == "red_mushroom" and e["player"] in red
+    )
+    assert rec.red_score == picked and rec.blue_score == 0
     ryn, raze = rec.iterations["red"]
     assert ryn >= 1 and raze >= 1
     cot = json.loads((tmp_path / "good" / "episode_000" / "red" / "cot.json").read_text())
