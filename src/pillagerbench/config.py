@@ -163,6 +163,15 @@ def _no_such_key(key: str, overrides: list[str]) -> str:
         from importlib import resources
 
         text = (resources.files("pillagerbench.conf") / "experiment" / f"{experiment}.yaml").read_text()
+        node, path = OmegaConf.create(text), ["experiment"]
+        for part in key.split(".")[1:]:  # down to the deepest key the experiment has
+            if not isinstance(node, DictConfig) or part not in node:
+                break
+            node, path = node[part], [*path, part]
+        if len(path) > 1 and isinstance(node, DictConfig) and len(node):  # a table, given a key it lacks
+            where = ".".join(path)
+            what = "the value names a key it does not take" if where == key else "no such key"
+            return f"{key}: {what} ({where} takes {', '.join(map(str, node))})"
         keys = [str(k) for k in OmegaConf.create(text) if k != "defaults"]
         return f"{key}: no such key (experiment {experiment} has keys {', '.join(keys)})"
     return f"{key}: no such key (conf/config.yaml lists the top-level keys; --help lists them all)"

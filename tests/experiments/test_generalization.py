@@ -47,13 +47,35 @@ def test_every_opponent_both_sides_on_the_papers_and_on_test_layouts():
         (("experiment.arenas.test=-1",), "a split (paper, dev, test) -> episodes (an integer ≥ 0)"),
         (("experiment.arenas.paper=0", "experiment.arenas.test=0"), "at least one above 0"),
         (("experiment.sides=[left]",), "experiment.sides=['left']: each side is blue or red"),
+        (
+            ("experiment.arenas.hidden=2",),
+            "experiment.arenas.hidden: no such key (experiment.arenas takes paper, test, dev)",
+        ),
+        (
+            ("experiment.arenas={paper: 1, hidden: 2}",),
+            "experiment.arenas: the value names a key it does not take (experiment.arenas takes paper, test, dev)",
+        ),
     ],
-    ids=["split", "layout", "negative_episodes", "no_episodes", "bad_side"],
+    ids=[
+        "split",
+        "layout",
+        "negative_episodes",
+        "no_episodes",
+        "bad_side",
+        "unknown_split",
+        "unknown_split_in_a_table",
+    ],
 )
 def test_bad_input_is_one_line(extra, expected):
     with pytest.raises(ConfigError) as exc:
         build(*SMALL, *extra)
     assert expected in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_dev_layouts_are_asked_for_by_their_key():
+    series = build(*SMALL, "experiment.arenas.dev=1")
+    dev = [s for s in series if s.config["split"] == "dev"]
+    assert len(dev) == 20 and all(s.episodes == 1 and s.id.endswith("_dev") for s in dev)
 
 
 def test_plan_prices_the_default_experiment():
