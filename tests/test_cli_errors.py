@@ -144,6 +144,11 @@ def test_an_internal_error_is_one_line_naming_the_traceback_file(tmp_path, monke
         (["calibrate", "nowhere"], "pillagerbench calibrate: nowhere: not a run directory"),
         (["symmetry", "nowhere"], "pillagerbench symmetry: nowhere: not a run directory"),
         (["try", "scenario=mushroom_war", "player=Ryn", "code=none.js"], "pillagerbench try: [Errno 2] No such file"),
+        (["try", "layout=abc", "code=none.js"], "pillagerbench try: layout='abc': valid: paper, a seed"),
+        (
+            ["try", "scenario=flat", "layout=3", "code=none.js"],
+            "pillagerbench try: layout=3: scenario 'flat' has no layouts",
+        ),
         (["nope"], "pillagerbench: unknown command 'nope'; valid commands: run, setup"),
     ],
 )

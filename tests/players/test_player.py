@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import asyncio
 import json
+import math
 import subprocess
 import sys
 import time
 
 from pillagerbench.players import primitives as prim_docs
 from pillagerbench.players.events import chats_by, errors, last_observation
+from pillagerbench.scenarios import make_scenario
 
 STATUS_KEYS = {
     "health",
@@ -220,6 +222,18 @@ def test_try_command(tmp_path):
     assert proc.returncode == 0, proc.stderr
     lines = [json.loads(line) for line in proc.stdout.splitlines()]
     assert lines[-1][0] == "observe" and "<Ryn> done" in [v for k, v in lines if k == "onChat"]
+    # on a generated layout (a dev seed): Ryn starts at that layout's spawn, beside its slime
+    proc = subprocess.run(
+        [sys.executable, "-m", "pillagerbench.cli", "try", "layout=1", "player=Ryn", f"code={good}"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    where = json.loads(proc.stdout.splitlines()[-1])[1]["status"]["position"]
+    spawn = next(p.spawn for p in make_scenario("mushroom_war", layout=1).all_players() if p.name == "Ryn")
+    assert spawn != next(p.spawn for p in make_scenario("mushroom_war").all_players() if p.name == "Ryn")
+    assert math.dist((where["x"], where["z"]), (spawn[0], spawn[2])) < 8, (where, spawn)
     bad = tmp_path / "bad.js"
     bad.write_text("bot.chat('before')\nnotAFunction()\n")
     proc = subprocess.run(

@@ -5,7 +5,8 @@ logs the player in at its spawn, runs the file as that player's code and prints 
 JSON line as it happens, ending with the `observe` event. Exits 1 (with the error on stderr) when
 the code failed, 2 on bad arguments.
 
-Options (key=value): scenario, player, code (a file, or - for stdin), timeout (seconds, default 120),
+Options (key=value): scenario, player, code (a file, or - for stdin), layout (paper, a seed or a
+layout file, as `run` takes it: docs/layouts.md; default paper), timeout (seconds, default 120),
 inventory (JSON object, e.g. inventory='{"bread": 2}'), pos (x,y,z), full=true (print every event's
 whole state, not only the final observe), log_dir.
 """
@@ -18,10 +19,15 @@ import sys
 from pathlib import Path
 
 from pillagerbench.arena import ArenaServer
+from pillagerbench.config import ConfigError
 from pillagerbench.players.player import Player, PlayerError
 from pillagerbench.scenarios import SCENARIOS, Scenario, make_scenario
+from pillagerbench.scenarios.layout import PAPER, LayoutKey, parse_layout
 
-USAGE = "usage: pillagerbench try scenario=mushroom_war player=Ryn code=FILE.js [timeout=120] [inventory='{...}'] [pos=x,y,z] [full=true]"
+USAGE = (
+    "usage: pillagerbench try scenario=mushroom_war player=Ryn code=FILE.js [layout=paper|SEED|FILE.json] "
+    "[timeout=120] [inventory='{...}'] [pos=x,y,z] [full=true]"
+)
 
 
 def parse_args(argv: list[str]) -> dict[str, str]:
@@ -31,7 +37,7 @@ def parse_args(argv: list[str]) -> dict[str, str]:
             raise ValueError(f"expected key=value, got {arg!r}")
         k, v = arg.split("=", 1)
         out[k.strip().lstrip("+")] = v
-    unknown = set(out) - {"scenario", "player", "code", "timeout", "inventory", "pos", "full", "log_dir"}
+    unknown = set(out) - {"scenario", "player", "code", "layout", "timeout", "inventory", "pos", "full", "log_dir"}
     if unknown:
         raise ValueError(f"unknown option(s) {', '.join(sorted(unknown))}")
     if "code" not in out:
@@ -39,12 +45,19 @@ def parse_args(argv: list[str]) -> dict[str, str]:
     return out
 
 
-def load_scenario(key: str) -> Scenario | None:
-    """The registered scenario `key` (scenarios.SCENARIOS), or None when there is none by that name."""
-    return make_scenario(key) if key in SCENARIOS else None
+def load_scenario(key: str, layout: LayoutKey = PAPER) -> Scenario | None:
+    """The registered scenario `key` (scenarios.SCENARIOS) on `layout`, or None when there is none by
+    that name (a layout then has nothing to lay out: ConfigError)."""
+    if key not in SCENARIOS:
+        if layout != PAPER:
+            raise ConfigError(
+                f"layout={layout}: scenario {key!r} has no layouts; valid scenarios: {', '.join(SCENARIOS)}"
+            )
+        return None
+    return make_scenario(key, layout=layout)
 
 
-async def _main(opts: dict[str, str]) -> int:
+async def _main(opts: dict[str, str], scenario: Scenario | None) -> int:
     scenario_key = opts.get("scenario", "mushroom_war")
     player_name = opts.get("player", "Ryn")
     code_arg = opts["code"]
@@ -53,7 +66,6 @@ async def _main(opts: dict[str, str]) -> int:
     inventory = json.loads(opts["inventory"]) if "inventory" in opts else {}
     full = opts.get("full", "false").lower() in ("1", "true", "yes")
 
-    scenario = load_scenario(scenario_key)
     spawn = None
     primitives = None
     if scenario is not None:
@@ -119,7 +131,8 @@ def main(argv: list[str]) -> int:
         print(f"pillagerbench try: {exc}\n{USAGE}", file=sys.stderr)
         return 2
     try:
-        return asyncio.run(_main(opts))
-    except (OSError, json.JSONDecodeError, PlayerError) as exc:
+        scenario = load_scenario(opts.get("scenario", "mushroom_war"), parse_layout(opts.get("layout", PAPER)))
+        return asyncio.run(_main(opts, scenario))
+    except (OSError, json.JSONDecodeError, PlayerError, ConfigError) as exc:
         print(f"pillagerbench try: {exc}", file=sys.stderr)
         return 2
