@@ -4,6 +4,8 @@ whose model never answered is stopped by the preflight, or recorded when the pre
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 
 import pytest
 
@@ -259,3 +261,15 @@ def test_an_experiment_key_without_an_experiment_gets_the_hint(capsys):
     line = refused(capsys, "run", "experiment=main_benchmark", "experiment.tem=cot")
     assert line.startswith("pillagerbench run: experiment.tem: no such key (experiment main_benchmark has keys ")
     assert "team, team_options" in line
+
+
+@pytest.mark.parametrize(
+    "argv", [["suite", "--hash"], ["--version"], ["layout", "show", "mushroom_war", "3", "--out", "OUT"]]
+)
+def test_a_light_command_starts_without_pandas_or_openai(tmp_path, argv):
+    """The error types a command may raise are looked up after it ran (cli._refuse), so `suite`,
+    `--version` and `layout` start in a fraction of a second instead of paying for pandas and openai."""
+    argv = [str(tmp_path / "map.html") if a == "OUT" else a for a in argv]
+    code = f"import sys\nfrom pillagerbench.cli import main\nmain({argv!r})\nprint(sorted({{'pandas', 'openai'}} & set(sys.modules)))"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, cwd=tmp_path)
+    assert proc.returncode == 0 and proc.stdout.splitlines()[-1] == "[]", (proc.stdout, proc.stderr)

@@ -111,42 +111,48 @@ def main(argv: list[str] | None = None) -> int:
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     module_name, func_name = COMMANDS[name][0].split(":")
-    from pillagerbench.arena.server import ArenaServerError
-    from pillagerbench.args import UsageError
-    from pillagerbench.config import ConfigError
-    from pillagerbench.metrics.runs import ReportError
-    from pillagerbench.node import NodeSetupError
-    from pillagerbench.rundir.bundle import BundleError
-
     try:
         func = getattr(importlib.import_module(module_name), func_name)
         return int(func(rest) or 0)
-    except ConfigError as exc:  # a user error: one line per problem, nothing started
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # noqa: BLE001 - a user's error is one line; anything else is a bug of ours
+        return _refuse(name, exc)
+
+
+# The user's errors, by module and class, imported only once a command has run: an error of one of
+# them can only come from a module that was imported, and the start of a light command (suite,
+# layout, --version) does not pay for pandas, openai and Hydra.
+CONFIG_ERRORS = (("pillagerbench.config", "ConfigError"),)  # one line per problem, nothing started
+USER_ERRORS = (
+    ("pillagerbench.node", "NodeSetupError"),
+    ("pillagerbench.metrics.runs", "ReportError"),
+    ("pillagerbench.arena.server", "ArenaServerError"),
+    ("pillagerbench.args", "UsageError"),
+    ("pillagerbench.rundir.bundle", "BundleError"),
+)
+OS_ERRORS = (FileNotFoundError, PermissionError, IsADirectoryError)
+
+
+def _loaded(errors: tuple[tuple[str, str], ...]) -> tuple[type, ...]:
+    return tuple(getattr(sys.modules[module], cls) for module, cls in errors if module in sys.modules)
+
+
+def _refuse(name: str, exc: Exception) -> int:
+    """A user's error in one line (exit 2); a bug of ours in one line and a traceback file (exit 1)."""
+    if isinstance(exc, _loaded(CONFIG_ERRORS)):
         for line in str(exc).splitlines() or [""]:
             print(f"pillagerbench {name}: {line}", file=sys.stderr)
         return 2
-    except (
-        NodeSetupError,
-        ReportError,
-        ArenaServerError,
-        UsageError,
-        BundleError,
-        FileNotFoundError,
-        PermissionError,
-        IsADirectoryError,
-    ) as exc:
+    if isinstance(exc, (*_loaded(USER_ERRORS), *OS_ERRORS)):
         print(f"pillagerbench {name}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        return 130
-    except Exception as exc:  # noqa: BLE001 - a bug of ours: one line, and where the traceback is
-        path = write_traceback(name)
-        print(
-            f"pillagerbench {name}: internal error: {type(exc).__name__}: {exc} (full traceback: {path}; "
-            "please report it)",
-            file=sys.stderr,
-        )
-        return 1
+    path = write_traceback(name)
+    print(
+        f"pillagerbench {name}: internal error: {type(exc).__name__}: {exc} (full traceback: {path}; please report it)",
+        file=sys.stderr,
+    )
+    return 1
 
 
 def write_traceback(command: str) -> Path:
