@@ -210,25 +210,21 @@ def test_primitive_docs_next_to_code():
     assert "bot.findBlocks" in prim_docs.doc("mineflayer")
 
 
+def try_code(*options: str) -> subprocess.CompletedProcess:
+    """`pillagerbench try OPTIONS` in a process of its own."""
+    command = [sys.executable, "-m", "pillagerbench.cli", "try", *options]
+    return subprocess.run(command, capture_output=True, text=True, timeout=120)
+
+
 def test_try_command(tmp_path):
     good = tmp_path / "good.js"
     good.write_text("await mineBlock(bot, 'slime_block', 1)\nbot.chat('done')\n")
-    proc = subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Ryn", f"code={good}"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    proc = try_code("scenario=mushroom_war", "player=Ryn", f"code={good}")
     assert proc.returncode == 0, proc.stderr
     lines = [json.loads(line) for line in proc.stdout.splitlines()]
     assert lines[-1][0] == "observe" and "<Ryn> done" in [v for k, v in lines if k == "onChat"]
     # on a generated layout (a dev seed): Ryn starts at that layout's spawn, beside its slime
-    proc = subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", "try", "layout=1", "player=Ryn", f"code={good}"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    proc = try_code("layout=1", "player=Ryn", f"code={good}")
     assert proc.returncode == 0, proc.stderr
     where = json.loads(proc.stdout.splitlines()[-1])[1]["status"]["position"]
     spawn = next(p.spawn for p in make_scenario("mushroom_war", layout=1).all_players() if p.name == "Ryn")
@@ -236,12 +232,7 @@ def test_try_command(tmp_path):
     assert math.dist((where["x"], where["z"]), (spawn[0], spawn[2])) < 8, (where, spawn)
     bad = tmp_path / "bad.js"
     bad.write_text("bot.chat('before')\nnotAFunction()\n")
-    proc = subprocess.run(
-        [sys.executable, "-m", "pillagerbench.cli", "try", "scenario=mushroom_war", "player=Byte", f"code={bad}"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    proc = try_code("scenario=mushroom_war", "player=Byte", f"code={bad}")
     assert proc.returncode == 1
     assert "at line 2: notAFunction()" in proc.stderr
     kinds = [json.loads(line)[0] for line in proc.stdout.splitlines()]
