@@ -163,7 +163,8 @@ def _no_such_key(key: str, overrides: list[str]) -> str:
         from importlib import resources
 
         text = (resources.files("pillagerbench.conf") / "experiment" / f"{experiment}.yaml").read_text()
-        node, path = OmegaConf.create(text), ["experiment"]
+        experiment_cfg = OmegaConf.create(text)
+        node, path = experiment_cfg, ["experiment"]
         for part in key.split(".")[1:]:  # down to the deepest key the experiment has
             if not isinstance(node, DictConfig) or part not in node:
                 break
@@ -172,7 +173,7 @@ def _no_such_key(key: str, overrides: list[str]) -> str:
             where = ".".join(path)
             what = "the value names a key it does not take" if where == key else "no such key"
             return f"{key}: {what} ({where} takes {', '.join(map(str, node))})"
-        keys = [str(k) for k in OmegaConf.create(text) if k != "defaults"]
+        keys = [str(k) for k in experiment_cfg if k != "defaults"]
         return f"{key}: no such key (experiment {experiment} has keys {', '.join(keys)})"
     return f"{key}: no such key (conf/config.yaml lists the top-level keys; --help lists them all)"
 
