@@ -1,4 +1,5 @@
-"""The manifest of a run directory (`manifest.json`): config, versions, seed, git revision and suite.
+"""The manifest of a run directory (`manifest.json`): config, versions, seed, git revision, suite and
+the rules differing from the suite's defaults (conditions.py).
 
 Written by a plain `pillagerbench run` (run.py) and by every series of an experiment
 (experiments/series.py); the experiment's own top-level manifest uses `git_revision` too.
@@ -15,6 +16,7 @@ from typing import Any
 from omegaconf import OmegaConf
 
 from pillagerbench import __version__
+from pillagerbench.conditions import conditions_of
 from pillagerbench.rundir import RunDir
 from pillagerbench.suite import current
 
@@ -49,5 +51,6 @@ def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
         "seed": cfg.seed,
         "git_revision": git_revision(),
         "suite": current(),
+        "conditions": conditions_of(lambda key: OmegaConf.select(cfg, key), scenario.key),
     }
     RunDir(run_dir).write_manifest(manifest)

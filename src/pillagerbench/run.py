@@ -15,7 +15,10 @@ import time
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
+from omegaconf import OmegaConf
+
 from pillagerbench.arena import ArenaServer
+from pillagerbench.conditions import conditions_of
 from pillagerbench.config import load_config
 from pillagerbench.display import MatchDisplay
 from pillagerbench.manifest import write_manifest
@@ -66,6 +69,7 @@ async def play_match(
         scoring=cfg.get("scoring", "clean"),  # runs from before these keys: the defaults
         protocol=cfg.get("protocol", "pillagerbench"),
         split=cfg.get("split"),
+        conditions=conditions_of(lambda key: OmegaConf.select(cfg, key), scenario.key),
         on_tick=on_tick,
         llms=llms,
     )

@@ -21,6 +21,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from pillagerbench.args import Parser
+from pillagerbench.conditions import defaults_from
 
 PACKAGE = Path(__file__).resolve().parent
 VERSIONS = PACKAGE / "suite_versions.json"
@@ -39,6 +40,7 @@ SCORE_FILES: tuple[str, ...] = (
     "match/game.py",  # the clock, the game master's period, the whistle
     "match/player.py",  # upstream's step waits around each run (the team-loop timings)
     "upstream.py",
+    "metrics/formulas.py",  # P, S, D, W and each scenario's reported scale (Dash & Dine x0.1)
 )
 _SKIP_PARTS = {"__pycache__", "node_modules"}
 _SKIP_SUFFIXES = {".pyc", ".pyo"}
@@ -54,11 +56,14 @@ def score_files(root: Path = PACKAGE, patterns: tuple[str, ...] = SCORE_FILES) -
 
 
 def suite_hash(root: Path = PACKAGE, patterns: tuple[str, ...] = SCORE_FILES) -> str:
-    """sha256 (hex) over the score files' paths and contents."""
+    """sha256 (hex) over the score files' paths and contents, then the defaults of the rules
+    (conditions.py: the tick rate, the episode's length ... as conf/ sets them for each scenario)."""
     outer = hashlib.sha256()
     for path in score_files(root, patterns):
         inner = hashlib.sha256(path.read_bytes()).hexdigest()
         outer.update(f"{path.relative_to(root).as_posix()}\0{inner}\n".encode())
+    for scenario, values in defaults_from(root / "conf").items():
+        outer.update(f"rules\0{scenario}\0{json.dumps(values, sort_keys=True)}\n".encode())
     return outer.hexdigest()
 
 

@@ -25,13 +25,15 @@ def write_run(
     failed: dict[int, str] | None = None,
     problems: dict[int, dict[str, list[str]]] | None = None,
     layouts: list[str | int] | None = None,
+    protocol: str | None = None,
 ) -> Path:
     """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
     it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream);
     `lagged[i]`: episode i was played under lag, for that reason; `suite`: the suite version every
     record names (none: a record from before suite versions); `failed[i]`: episode i failed with that
     error; `problems[i]`: episode i's problems by side; `layouts[i]`: episode i's layout ("paper", a seed
-    or a file; its split follows from it), else none recorded (a record from before layouts)."""
+    or a file; its split follows from it), else none recorded (a record from before layouts); `protocol`:
+    the step protocol every record names (none: a record from before protocols)."""
     run.mkdir(parents=True)
     config = {
         "scenario": {"name": scenario},
@@ -66,6 +68,8 @@ def write_run(
             }
             if suite:
                 rec["suite"] = suite
+            if protocol:
+                rec["protocol"] = protocol
             if layouts:
                 rec.update(layout=layouts[i], split=split_of(layouts[i]))
             if failed and i in failed:

@@ -5,26 +5,28 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pandas as pd
 import pytest
 
 from pillagerbench.metrics.calibration import resolve
 from pillagerbench.metrics.fidelity import CLAIMS, claims_table, fidelity_table
 from pillagerbench.metrics.formulas import Estimate
 from pillagerbench.metrics.reference import REFERENCE_SCORES, suite_reference
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.runs import ReportError, load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.fidelity import main as fidelity_main
 from tests.metrics.fake_runs import write_run
 from tests.support.cli import run_cli
 
 TEN = 10
+AS_REFERENCES = {"length": 120, "protocol": "upstream"}  # the references' conditions (paper=true)
 
 
 def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
     # passive: 25.0 against 25.23 (ratio 0.99 ✓); slimy 11 against 22.18 (0.50 ✗); berries 350 raw = 35.0
-    write_run(tmp_path / "p", "mushroom_war", "do_nothing", "passive", [(0, 24), (0, 26)] * 5)
-    write_run(tmp_path / "s", "mushroom_war", "do_nothing", "slimy", [(1, 11)] * TEN)
-    write_run(tmp_path / "b", "dash_and_dine", "do_nothing", "berries", [(0, 340), (0, 360)] * 5)
+    write_run(tmp_path / "p", "mushroom_war", "do_nothing", "passive", [(0, 24), (0, 26)] * 5, **AS_REFERENCES)
+    write_run(tmp_path / "s", "mushroom_war", "do_nothing", "slimy", [(1, 11)] * TEN, **AS_REFERENCES)
+    write_run(tmp_path / "b", "dash_and_dine", "do_nothing", "berries", [(0, 340), (0, 360)] * 5, **AS_REFERENCES)
     table, notes = fidelity_table(load_runs([tmp_path / x for x in "psb"]).episodes)
     assert len(notes) == 1 and notes[0].startswith("fidelity: vs_suite compares with suite 1.0's own reference")
     rows = {r.opponent: r for r in table.itertuples()}
@@ -47,16 +49,47 @@ def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
 
 
 def test_an_upstream_scored_run_gives_a_row_per_scoring_and_the_red_side_its_own_row(tmp_path):
-    write_run(tmp_path / "u", "mushroom_war", "do_nothing", "aggressive", [(0, 10)] * TEN, upstream=[(0, 20)] * TEN)
-    write_run(tmp_path / "r", "mushroom_war", "aggressive", "do_nothing", [(16, 0)] * TEN)
-    table, _ = fidelity_table(load_runs([tmp_path / "u", tmp_path / "r"]).episodes)
+    write_run(
+        tmp_path / "u",
+        "mushroom_war",
+        "do_nothing",
+        "aggressive",
+        [(0, 10)] * TEN,
+        upstream=[(0, 20)] * TEN,
+        **AS_REFERENCES,
+    )
+    write_run(tmp_path / "r", "mushroom_war", "aggressive", "do_nothing", [(16, 0)] * TEN, **AS_REFERENCES)
+    with pytest.raises(
+        ReportError,
+        match=r"conditions: unversioned \[protocol=upstream, scoring=upstream\] in .*u; unversioned \[protocol=upstream\] in",
+    ):
+        load_runs([tmp_path / "u", tmp_path / "r"])  # upstream's headline scores beside clean ones: asked for only
+    table, _ = fidelity_table(load_runs([tmp_path / "u", tmp_path / "r"], mix_suites=True).episodes)
     got = {(r.side, r.scoring): (r.points, r.within_25pct) for r in table.itertuples()}
     assert got == {("blue", "clean"): (10, "✗"), ("blue", "upstream"): (20, "✓"), ("red", "clean"): (16, "✓")}
 
 
+def test_episodes_played_unlike_the_references_get_no_reference_and_say_what_differs(tmp_path):
+    # 30 s episodes of our own protocol: upstream's 120 s figures under its protocol do not apply
+    write_run(tmp_path / "short", "mushroom_war", "do_nothing", "passive", [(0, 6)] * TEN, length=30)
+    table, notes = fidelity_table(load_runs([tmp_path / "short"]).episodes)
+    (row,) = table.itertuples()
+    assert (row.points, row.within_25pct, row.vs_suite, row.conditions) == (6, "–", "–", "")
+    assert pd.isna(row.reference) and pd.isna(row.ratio) and pd.isna(row.suite_reference)
+    assert notes == [
+        "fidelity: no reference for these conditions (protocol=pillagerbench, episode_length=30): mushroom_war passive "
+        "(blue); the references are 120 s episodes with protocol=upstream on the paper's layout (paper=true)"
+    ]
+    # the same scores under the references' conditions are compared with them
+    write_run(tmp_path / "paper", "mushroom_war", "do_nothing", "passive", [(0, 24)] * TEN, **AS_REFERENCES)
+    table, notes = fidelity_table(load_runs([tmp_path / "paper"]).episodes)
+    assert table.iloc[0].within_25pct == "✓" and table.iloc[0].conditions == "protocol=upstream"
+    assert not [n for n in notes if "no reference" in n]
+
+
 def test_bad_input_is_one_line_each_and_the_rest_is_printed(tmp_path, capsys):
-    write_run(tmp_path / "few", "mushroom_war", "do_nothing", "balanced", [(0, 16), (0, 17)])
-    write_run(tmp_path / "other", "capture_the_flag", "do_nothing", "rusher", [(0, 5)] * TEN)
+    write_run(tmp_path / "few", "mushroom_war", "do_nothing", "balanced", [(0, 16), (0, 17)], **AS_REFERENCES)
+    write_run(tmp_path / "other", "capture_the_flag", "do_nothing", "rusher", [(0, 5)] * TEN, **AS_REFERENCES)
     assert fidelity_main([str(tmp_path / "few"), str(tmp_path / "other")]) == 0
     out = capsys.readouterr().out.splitlines()
     assert [line for line in out if "too few episodes" in line] == [

@@ -21,7 +21,7 @@ from tests.metrics.fake_runs import write_run
 
 OLD_RUN = Path(__file__).resolve().parents[1] / "experiments" / "fixtures" / "run_6198d49"
 A, B = "suite 1.0@aaaaaaaaaaaaaaaa", "suite 1.1@bbbbbbbbbbbbbbbb"
-MARK = f"mixed suite versions: {A}, {B}"
+MARK = f"mixed suite versions or conditions: {A}, {B}"
 
 
 @pytest.fixture
@@ -44,7 +44,9 @@ def test_two_suite_versions_are_refused_in_one_line(two, tmp_path, capsys, comma
     extra = [e.format(out=tmp_path / "out") for e in COMMANDS[command]]
     assert cli.main([command, *map(str, two), *extra]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith(f"pillagerbench {command}: refusing to mix suite versions: ")
+    assert err.count("\n") == 1 and err.startswith(
+        f"pillagerbench {command}: refusing to mix suite versions or conditions: "
+    )
     assert f"{A} in {two[0]}" in err and f"{B} in {two[1]}" in err and "--mix-suites" in err
     assert not (tmp_path / "out" / "summary.md").exists()
 
@@ -72,7 +74,7 @@ def test_every_table_of_a_mixed_report_says_so(two, tmp_path, capsys):
 def test_the_league_refuses_mixed_rounds_unless_asked(two, tmp_path, monkeypatch):
     monkeypatch.setattr(results, "round_dirs", lambda league_dir: list(two))
     league = League(entrants=[Entrant(t, t) for t in ("do_nothing", "passive")])
-    with pytest.raises(ReportError, match="refusing to mix suite versions"):
+    with pytest.raises(ReportError, match="refusing to mix suite versions or conditions"):
         write_board(tmp_path, league)
     league.mix_suites = True
     write_board(tmp_path, league)

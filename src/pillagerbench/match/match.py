@@ -48,6 +48,7 @@ class Match:
         protocol: str = "pillagerbench",
         step_wait_s: float | None = None,
         split: str | None = None,
+        conditions: dict[str, Any] | None = None,
     ):
         if scoring not in SCORINGS:
             raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
@@ -62,6 +63,7 @@ class Match:
         self.rundir = RunDir(run_dir)  # every path and record of the run directory
         self.last_records: dict[str, LastEpisode] = {}
         self.layout, self.split = scenario.layout_key, split  # split: each episode on a layout of its own
+        self.conditions = dict(conditions or {})  # the rules differing from the suite's (conditions.py)
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -132,6 +134,7 @@ class Match:
             protocol=self.protocol,
             layout=sc.layout_key,
             split=sc.split,
+            conditions=dict(self.conditions),
         )
         out = self.rundir.episode(episode)
         (out / "events").mkdir(parents=True, exist_ok=True)

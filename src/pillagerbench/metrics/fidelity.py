@@ -27,11 +27,18 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from pillagerbench.conditions import describe, suite_defaults
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
 from pillagerbench.metrics.formulas import Estimate, mean_ci, over_opponents, welch_half_width
-from pillagerbench.metrics.reference import REFERENCE_SCORES, suite_reference
+from pillagerbench.metrics.reference import (
+    REFERENCE_CONDITIONS,
+    REFERENCE_LENGTH,
+    REFERENCE_SCORES,
+    REFERENCE_SPLIT,
+    suite_reference,
+)
 
 TOLERANCE = 0.25  # ✓ when mean / reference is within 1 ± TOLERANCE
 MIN_EPISODES = 10  # per opponent and side (the fidelity check's default)
@@ -53,6 +60,7 @@ FIDELITY_COLUMNS = [
     "suite_reference",
     "suite_reference_ci",
     "vs_suite",
+    "conditions",
 ]
 CLAIM_COLUMNS = ["scenario", "claim", "evidence", "holds"]
 
@@ -61,12 +69,16 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     """Per opponent, side and scoring: its points against do_nothing beside upstream's reference."""
     rows, notes = [], []
     few: list[str] = []
+    unlike: dict[str, list[str]] = {}  # conditions unlike the references' -> the rows played under them
     for side in ("blue", "red"):
         other = "red" if side == "blue" else "blue"
         for scenario, team, g in against_do_nothing(df, side):
             if team == "do_nothing" or (scenario in REFERENCE_SCORES and team not in builtin_teams(scenario)):
                 continue  # the check is about the built-in opponents (an LLM team's row is the report's)
-            reference = REFERENCE_SCORES.get(scenario, {}).get(team)
+            differ = unlike_references(g)
+            if differ:
+                unlike.setdefault(differ, []).append(f"{scenario} {team} ({side})")
+            reference = None if differ else REFERENCE_SCORES.get(scenario, {}).get(team)
             for scoring in SCORINGS:
                 mine, theirs = g[f"{side}_{scoring}"].dropna(), g[f"{other}_{scoring}"].dropna()
                 if not len(mine):
@@ -87,7 +99,8 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
                         "reference": reference if reference is not None else math.nan,
                         "ratio": ratio,
                         "within_25pct": "–" if math.isnan(ratio) else "✓" if abs(ratio - 1) <= TOLERANCE else "✗",
-                        **beside_suite(scenario, team, scoring, e),
+                        **(NO_SUITE_FIGURE if differ else beside_suite(scenario, team, scoring, e)),
+                        "conditions": played_under(g),
                     }
                 )
                 if e.n < MIN_EPISODES and f"{scenario} {team} ({side}): {e.n}" not in few:  # once, not per scoring
@@ -103,6 +116,12 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
             + ", ".join(few[:5])
             + (f" and {len(few) - 5} more" if len(few) > 5 else "")
         )
+    notes += [
+        f"fidelity: no reference for these conditions ({differ}): {', '.join(where)}; the references are "
+        f"{REFERENCE_LENGTH:g} s episodes with {describe(REFERENCE_CONDITIONS)} on the {REFERENCE_SPLIT}'s layout "
+        "(paper=true)"
+        for differ, where in unlike.items()
+    ]
     table = pd.DataFrame(rows, columns=FIDELITY_COLUMNS)
     if len(table) and table["suite_reference"].notna().any():
         figures = suite_reference()
@@ -119,12 +138,40 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     return table, notes
 
 
+def _rules(g: pd.DataFrame) -> set[str]:
+    """The rules each episode was played under besides its scoring (both scorings are columns)."""
+    return {describe({k: v for k, v in c.items() if k != "scoring"}) for c in g["conditions"]}
+
+
+def played_under(g: pd.DataFrame) -> str:
+    """The rules of the episodes besides their scoring ('' for the suite's defaults), `; `-joined."""
+    return "; ".join(sorted(_rules(g)))
+
+
+def unlike_references(g: pd.DataFrame) -> str:
+    """'' when every episode was played as the references were (rules, length, split), else what
+    differs, as `key=value` of the episodes."""
+    differ: list[str] = []
+    for scenario, conditions in zip(g["scenario"], g["conditions"]):
+        defaults = suite_defaults(scenario)
+        for key in sorted((set(conditions) | set(REFERENCE_CONDITIONS)) - {"scoring"}):
+            mine = conditions.get(key, defaults.get(key))
+            if key != "episode_length" and mine != REFERENCE_CONDITIONS.get(key, defaults.get(key)):
+                differ.append(f"{key}={mine}")
+    differ += [f"episode_length={L:g}" for L in sorted(set(g["episode_length"])) if L != REFERENCE_LENGTH]
+    differ += [f"split={s}" for s in sorted(set(g["split"])) if s != REFERENCE_SPLIT]
+    return ", ".join(dict.fromkeys(differ))
+
+
+NO_SUITE_FIGURE = {"suite_reference": math.nan, "suite_reference_ci": math.nan, "vs_suite": "–"}
+
+
 def beside_suite(scenario: str, team: str, scoring: str, e) -> dict:
     """The suite's own figure for this opponent and scoring, and ✓ when the run's mean agrees with
     it within the two intervals combined (– without a figure or an interval)."""
     ref = suite_reference()["scenarios"].get(scenario, {}).get(team, {}).get(scoring)
     if ref is None:
-        return {"suite_reference": math.nan, "suite_reference_ci": math.nan, "vs_suite": "–"}
+        return NO_SUITE_FIGURE
     spread = math.hypot(e.ci, ref["ci"])
     mark = "–" if math.isnan(spread) else "✓" if abs(e.mean - ref["mean"]) <= spread else "✗"
     return {"suite_reference": ref["mean"], "suite_reference_ci": ref["ci"], "vs_suite": mark}

@@ -18,6 +18,11 @@ REFERENCE_SCORES: dict[str, dict[str, float]] = {
     "mushroom_war": {"aggressive": 20.27, "balanced": 16.75, "passive": 25.23, "slimy": 22.18},
     "dash_and_dine": {"berries": 34.73, "cake_beetroot": 7.83, "melon_pumpkin": 15.82, "potato_cookie": 13.12},
 }
+# the conditions both references were measured under (conditions.py), besides the scoring each column
+# names: upstream's step protocol, 120 s episodes (the suite's default length), the paper's layout
+REFERENCE_CONDITIONS: dict[str, object] = {"protocol": "upstream"}
+REFERENCE_LENGTH = 120.0
+REFERENCE_SPLIT = "paper"
 # the value of --calibration that selects them
 REFERENCE_CALIBRATION = "reference"
 

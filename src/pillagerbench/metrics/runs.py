@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.faults import faults
 from pillagerbench.metrics.formulas import SCORE_SCALE
@@ -67,7 +68,7 @@ def mixed_notes(runs: Runs) -> list[str]:
     """What every table of mixed suite versions says: one line, or none when the episodes share one."""
     if len(runs.suites) < 2:
         return []
-    return [f"mixed suite versions: {', '.join(runs.suites)} (scores may not compare)"]
+    return [f"mixed suite versions or conditions: {', '.join(runs.suites)} (scores may not compare)"]
 
 
 def mixed_title(runs: Runs) -> str:
@@ -218,6 +219,9 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "blue_score": float(rec.blue_score or 0.0) * scale,
         "scoring": rec.scoring,
         "suite": rec.suite,
+        "stamp": rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
+        "rules": describe(rec.conditions),
+        "conditions": dict(rec.conditions),
         "layout": rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
         "split": rec.split,
         **alternatives,
@@ -249,21 +253,22 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
 
 
 def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
-    """The suite versions of the episodes, in order; more than one is refused unless `mix_suites`.
-    A version is its hash: the same files named before and after their hash was recorded
-    (`suite 1.0+dev@H`, `suite 1.0@H`) are one version, written with both names."""
+    """The stamps of the episodes (suite version and the rules differing from its defaults,
+    conditions.py), in order; more than one is refused unless `mix_suites`. A version is its hash: the
+    same files named before and after their hash was recorded (`suite 1.0+dev@H`, `suite 1.0@H`) are
+    one version, written with both names."""
     names: dict[str, list[str]] = {}
     where: dict[str, list[str]] = {}
     for r in rows:
-        key = r["suite"].rpartition("@")[2]
-        for seen, item in ((names, r["suite"]), (where, r["run"])):
+        key = r["stamp"].rpartition("@")[2]  # the hash and the conditions
+        for seen, item in ((names, r["stamp"]), (where, r["run"])):
             if item not in seen.setdefault(key, []):
                 seen[key].append(item)
     labels = {key: " = ".join(found) for key, found in names.items()}
     if len(where) > 1 and not mix_suites:
         detail = "; ".join(f"{labels[key]} in {', '.join(runs)}" for key, runs in where.items())
         raise ReportError(
-            f"refusing to mix suite versions: {detail}. Their scores may not compare; report them "
+            f"refusing to mix suite versions or conditions: {detail}. Their scores may not compare; report them "
             "separately, or ask to mix them (--mix-suites; league: mix_suites=true)"
         )
     return list(labels.values())

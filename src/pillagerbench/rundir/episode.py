@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 from typing import Any, TypedDict
 
+from pillagerbench.conditions import RULES, stamp, suite_defaults
 from pillagerbench.suite import UNVERSIONED, current
 
 
@@ -40,6 +41,7 @@ class EpisodeRecord:
     layout: str | int = "paper"  # the arena's layout: "paper", a seed, or a layout file (docs/layouts.md)
     split: str = "paper"  # paper | dev | test | custom (scenarios/layout.py split_of)
     suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite.py)
+    conditions: dict[str, Any] = field(default_factory=dict)  # rules differing from the suite's (conditions.py)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
@@ -54,7 +56,20 @@ class EpisodeRecord:
             rec.scores = {rec.scoring: {"red": rec.red_score, "blue": rec.blue_score}}
         if not data.get("suite"):
             rec.suite = UNVERSIONED
+        if "conditions" not in data:  # before conditions were stamped: the rules the record itself names
+            rec.conditions = _recorded_rules(rec)
         return rec
+
+    @property
+    def stamp(self) -> str:
+        """The suite and the conditions it was played under (conditions.stamp)."""
+        return stamp(self.suite, self.conditions)
+
+
+def _recorded_rules(rec: EpisodeRecord) -> dict[str, Any]:
+    defaults = suite_defaults(rec.scenario)
+    named = {"scoring": rec.scoring, "protocol": rec.protocol}
+    return {k: v for k, v in named.items() if k in RULES and k in defaults and v != defaults[k]}
 
 
 # keys whose null is a value (not "missing in an earlier version")
