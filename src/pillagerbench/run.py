@@ -21,6 +21,7 @@ from pillagerbench.arena import ArenaServer
 from pillagerbench.conditions import conditions_of
 from pillagerbench.config import load_config
 from pillagerbench.display import MatchDisplay
+from pillagerbench.llm.spend import spend_lines
 from pillagerbench.manifest import write_manifest
 from pillagerbench.match import Match
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
@@ -166,6 +167,8 @@ def run_match(cfg) -> int:
     for line in problems:
         print(line)
     for line in summarize_lag(records):
+        print(line)
+    for line in spend_lines([(RunDir(run_dir).ledger_path, {"red": cfg.red.name, "blue": cfg.blue.name})]):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if (failed and failed == len(records)) or all_without_model else 0

@@ -37,7 +37,19 @@ def test_table_prices_gpt_4o_gpt_4o_mini_and_an_unknown_model(monkeypatch):
     assert not unknown.known and unknown.cost(100, 100) is None
     assert unknown.source.startswith("unknown:") and "gpt-nonexistent" in unknown.source
     # a local server is never priced from the table, whatever its model is called
-    assert not price_of(settings("openai_compatible", "gpt-4o", base_url="http://127.0.0.1:8080/v1")).known
+    for local in ("vllm", "ollama", "llamacpp", "fake"):
+        assert not price_of(settings(local, "gpt-4o", base_url="http://127.0.0.1:8080/v1")).known
+    # a compatible proxy (e.g. LiteLLM in front of OpenAI) is priced by the model's name, and says so
+    proxy = price_of(settings("openai_compatible", "gpt-4o", base_url="http://127.0.0.1:4000/v1"))
+    assert (proxy.input_per_1m, proxy.output_per_1m) == (2.5, 10.0)
+    assert (
+        proxy.source
+        == f"{TABLE}: openai gpt-4o (by model name, through the openai_compatible proxy at http://127.0.0.1:4000/v1)"
+    )
+    assert not price_of(settings("openai_compatible", "local", base_url="http://127.0.0.1:8080/v1")).known
+    # a compatible address the table knows is priced as that provider's
+    groq = price_of(settings("openai_compatible", "llama-3.1-8b-instant", base_url="https://api.groq.com/openai/v1"))
+    assert groq.known and groq.source.endswith("groq llama-3.1-8b-instant")
     # the preset's (or the command line's) price overrides the table
     over = price_of(settings("openai", "gpt-4o", price_input_per_1m=1.0, price_output_per_1m=2.0))
     assert (over.input_per_1m, over.output_per_1m, over.source) == (1.0, 2.0, "llm.price")

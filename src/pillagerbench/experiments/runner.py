@@ -29,6 +29,7 @@ from pillagerbench.config import ConfigError, to_dict
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
+from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
 from pillagerbench.rundir import RunDir, read_series
 
@@ -281,6 +282,8 @@ def main_experiment(cfg, argv: list[str]) -> int:
         f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else "")
     )
     for line in lag_lines(specs, dirs):
+        print(line)
+    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, {"red": s.red, "blue": s.blue}) for s in specs):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if errors else 0

@@ -10,7 +10,10 @@ newer pin.
 The table is asked by provider: the preset's `provider` when the table knows a provider of exactly
 that id (`openai`, `openrouter`, `anthropic`, ...), else the provider whose API address matches
 `base_url` (e.g. `llm=openai_compatible llm.base_url=https://api.groq.com/openai/v1`). A local server
-(llama.cpp, Ollama, vLLM, the fake provider) matches none: its price is unknown unless given.
+(llama.cpp, Ollama, vLLM, the fake provider) matches none: its price is unknown unless given. A
+compatible proxy (`llm=openai_compatible`, e.g. LiteLLM in front of OpenAI) that matches no provider
+is priced by the model's name when the table knows exactly one provider's model of that name
+(`gpt-4o` → OpenAI's), the price's source saying so.
 
 A model with no known price has an unknown cost (null in the ledger, never 0), and a dollar
 budget (`llm.budget.max_cost_usd`) refuses to start until a price is given.
@@ -27,6 +30,7 @@ from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 PRICE_TABLE = "genai-prices"
+PROXIES = ("openai_compatible",)  # providers that stand in front of another's models: priced by model name
 
 
 @dataclass(frozen=True)
@@ -75,11 +79,15 @@ def table_price(provider: str, model: str, base_url: str = "") -> Price | None:
 
     snapshot = data_snapshot.get_snapshot()
     match = data_snapshot.find_provider_by_id(snapshot.providers, provider)
+    by_name = ""
     try:
         if match is not None and match.id == provider.lower():
             found, info = snapshot.find_provider_model(model, None, match.id, None)
-        elif base_url:
+        elif base_url and _serves(snapshot, base_url):
             found, info = snapshot.find_provider_model(model, None, None, base_url)
+        elif provider in PROXIES:
+            found, info = snapshot.find_provider_model(model, None, None, None)
+            by_name = f" (by model name, through the {provider} proxy at {base_url or '?'})"
         else:
             return None
         prices = info.get_prices(datetime.now(timezone.utc))
@@ -88,7 +96,16 @@ def table_price(provider: str, model: str, base_url: str = "") -> Price | None:
     p_in, p_out = _flat(getattr(prices, "input_mtok", None)), _flat(getattr(prices, "output_mtok", None))
     if p_in is None or p_out is None:
         return None
-    return Price(p_in, p_out, f"{table_version()}: {found.id} {info.id}")
+    return Price(p_in, p_out, f"{table_version()}: {found.id} {info.id}{by_name}")
+
+
+def _serves(snapshot: Any, base_url: str) -> bool:
+    """Whether some provider of the table is known by this API address."""
+    try:
+        snapshot.find_provider("", None, base_url)
+    except LookupError:
+        return False
+    return True
 
 
 def resolve_price(

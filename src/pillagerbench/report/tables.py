@@ -104,6 +104,7 @@ def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool
         calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
         llm = llm_metrics(calls)
         it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
+        paid = cost_of(calls, wins=int((rd["red_score"] > rd["blue_score"]).sum()))
         row = {
             "red": red,
             **({"scenario": scenario} if by_scenario else {}),
@@ -112,6 +113,7 @@ def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool
             "N_out": llm["N_out"],
             "R_tps": llm["R_tps"],
             "llm_calls": llm["calls"],
+            **paid,
             "I": it.mean,
             "I_ci": it.ci,
         }
@@ -121,9 +123,27 @@ def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool
         + (["scenario"] if by_scenario else [])
         + ["episodes"]
         + [c for m in METRICS for c in (m, f"{m}_ci")]
-        + ["T_resp", "N_out", "R_tps", "llm_calls", "I", "I_ci"]
+        + ["T_resp", "N_out", "R_tps", "llm_calls", "cost", "cost_per_win", "I", "I_ci"]
     )
     return pd.DataFrame(rows, columns=cols)
+
+
+def cost_of(calls: list[dict], wins: int) -> dict[str, str]:
+    """What the team's calls cost (ledger: "$0.0123", "≥ $… (n calls unpriced)", "unknown (…)") and per
+    episode won ("–" without calls or wins; "unknown" when some call is unpriced)."""
+    from pillagerbench.llm.ledger import summarize  # the llm package loads openai: only when asked
+    from pillagerbench.llm.prices import format_cost
+
+    if not calls:
+        return {"cost": "–", "cost_per_win": "–"}
+    stats = summarize(calls)
+    if not wins:
+        per_win = "– (no win)"
+    elif stats.unpriced:
+        per_win = "unknown"
+    else:
+        per_win = format_cost(stats.cost_usd / wins, 0)
+    return {"cost": stats.cost_text(), "cost_per_win": per_win}
 
 
 def team_view(df: pd.DataFrame) -> pd.DataFrame:

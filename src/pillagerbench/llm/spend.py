@@ -1,0 +1,32 @@
+"""What a run cost: each team's LLM calls, tokens and dollars, per model, from the ledgers of its
+series (`pillagerbench run` prints it at the end of a match and of an experiment)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+
+from .ledger import LedgerStats, read_ledger, summarize
+
+
+def spend(sources: Iterable[tuple[Path, Mapping[str, str]]]) -> dict[str, LedgerStats]:
+    """`team@model` -> its calls' stats, over (ledger file, {side: team name}) pairs; a ledger that
+    does not exist (no LLM team) adds nothing."""
+    calls: dict[str, list[dict]] = {}
+    for path, names in sources:
+        if not path.exists():
+            continue
+        for call in read_ledger(path):
+            side = call.get("team")
+            if side in names:
+                calls.setdefault(f"{names[side]}@{call.get('model') or '?'}", []).append(call)
+    return {label: summarize(found) for label, found in calls.items()}
+
+
+def spend_lines(sources: Iterable[tuple[Path, Mapping[str, str]]]) -> list[str]:
+    """One line per team and model: calls (failed), tokens in and out, and the cost or what is unpriced."""
+    return [
+        f"LLM cost of {label}: {s.calls} call(s) ({s.errors} failed), {s.input_tokens:,} tokens in, "
+        f"{s.output_tokens:,} out, {s.cost_text()}"
+        for label, s in spend(sources).items()
+    ]
