@@ -8,7 +8,7 @@ import json
 import re
 
 from pillagerbench.cli import main as cli_main
-from pillagerbench.node import JS_DIR
+from pillagerbench.node import JS_DIR, _npm
 
 REQUIRE = re.compile(r"require\('([^'./][^']*)'\)")
 
@@ -37,3 +37,18 @@ def test_setup_refuses_an_unknown_argument_in_one_line(capsys):
     assert err == [
         "pillagerbench setup: unknown argument '--viewer'; setup takes only --watch (the live view's packages too)"
     ]
+
+
+def test_npm_and_the_scripts_it_runs_get_no_key(tmp_path, monkeypatch):
+    """npm runs the packages' install scripts: they see the allow-listed environment, not the user's
+    keys (docs/security.md, layer 6). A real npm runs a package script that writes its environment."""
+    monkeypatch.setenv("OPENAI_API_KEY", "sk-test-secret-npm")
+    monkeypatch.setenv("TZ", "UTC")
+    script = "node -e \"require('fs').writeFileSync('env.json', JSON.stringify(process.env))\""
+    (tmp_path / "package.json").write_text(
+        json.dumps({"name": "probe", "version": "1.0.0", "scripts": {"probe": script}})
+    )
+    _npm(tmp_path, (".probed", ("run", "probe"), "a probe"), quiet=True)
+    env = json.loads((tmp_path / "env.json").read_text())
+    assert env.get("TZ") == "UTC" and "PATH" in env  # the script ran with what npm passed on
+    assert "OPENAI_API_KEY" not in env and "sk-test-secret-npm" not in json.dumps(env)

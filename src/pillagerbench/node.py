@@ -25,6 +25,27 @@ JS_DIR = Path(__file__).parent / "js"
 _LOCKFILES = ("package.json", "package-lock.json")
 
 
+# What our Node processes get of the user's environment: these names only (a trailing `*`: every
+# name that begins so), never a key (OPENAI_API_KEY and the like stay with us; docs/security.md).
+# The server and the bots run LLM-written code beside them; Node needs only these: where programs
+# and home are, temporary files, time zone and locale, and PB_TRACE, the one variable our
+# JavaScript reads (js/bot/main.js). npm, which runs the packages' install scripts, also gets the
+# network settings it needs to reach the registry.
+NODE_ENV_ALLOWED = ("PATH", "HOME", "TMPDIR", "TZ", "LANG", "LANGUAGE", "LC_*", "PB_TRACE")
+NPM_ENV_ALLOWED = (
+    *NODE_ENV_ALLOWED,
+    "HTTP_PROXY", "HTTPS_PROXY", "NO_PROXY", "http_proxy", "https_proxy", "no_proxy",
+    "NODE_EXTRA_CA_CERTS", "npm_config_registry", "npm_config_cache",
+)  # fmt: skip
+
+
+def allowed_env(names: tuple[str, ...]) -> dict[str, str]:
+    """The variables of this process's environment that `names` allow (see NODE_ENV_ALLOWED)."""
+    exact = {n for n in names if not n.endswith("*")}
+    prefixes = tuple(n[:-1] for n in names if n.endswith("*"))
+    return {k: v for k, v in os.environ.items() if k in exact or k.startswith(prefixes)}
+
+
 class NodeSetupError(RuntimeError):
     """The Node runtime or the npm dependencies could not be made ready."""
 
@@ -85,7 +106,8 @@ def _npm(work: Path, step: tuple[str, tuple[str, ...], str], quiet: bool) -> Non
     marker, args, what = step
     if not quiet:
         print(f"pillagerbench: installing {what} into {work} (first use only) …", file=sys.stderr, flush=True)
-    env = dict(os.environ, PATH=f"{node_binary().parent}{os.pathsep}{os.environ.get('PATH', '')}")
+    env = allowed_env(NPM_ENV_ALLOWED)
+    env["PATH"] = f"{node_binary().parent}{os.pathsep}{env.get('PATH', '')}"
     proc = subprocess.run(
         [str(node_binary()), str(_npm_cli()), *args, "--no-audit", "--no-fund", "--loglevel=error"],
         cwd=work,
@@ -122,11 +144,12 @@ def ensure_node_modules(quiet: bool = False, dev: bool = False, watch: bool = Fa
 
 
 def node_env(watch: bool = False) -> dict[str, str]:
-    """Environment for our Node processes: NODE_PATH points at the pinned packages (with the live
-    view's when `watch`)."""
-    env = dict(os.environ)
+    """Environment for our Node processes (the server, the bots, the live view the server forks, the
+    code checks): only the allowed names of the user's (`NODE_ENV_ALLOWED`), NODE_PATH pointing at
+    the pinned packages (with the live view's when `watch`), NODE_ENV=production."""
+    env = allowed_env(NODE_ENV_ALLOWED)
     env["NODE_PATH"] = str(ensure_node_modules(watch=watch))
-    env.setdefault("NODE_ENV", "production")
+    env["NODE_ENV"] = "production"
     return env
 
 

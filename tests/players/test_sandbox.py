@@ -11,8 +11,11 @@ import time
 
 import pytest
 
+from pillagerbench.agents.code import SANDBOX_NAMES
+from pillagerbench.players import primitives as prim
 from pillagerbench.players.events import chat_log, chats_by, errors, last_observation
 from tests.players.conftest import count
+from tests.support.node_script import run_node_script
 
 
 @pytest.fixture
@@ -200,7 +203,7 @@ async def test_bot_process_runs_under_the_permission_model(pair):
 
 # Routes to the host realm through the real host objects the facade hands out (issue 12). Each
 # snippet returns what it reached; none may reach the bot (which holds `_client`, the raw protocol
-# client and through its socket the network), `process` or `require`.
+# client and through its socket the network), `process`, its environment (`process.env`) or `require`.
 STACK_FRAMES = """
 const reached = []
 const E = Error, R = RangeError
@@ -260,7 +263,7 @@ return found
 GRAPH_WALK = """
 const seen = new Set(), found = []
 const queue = [[globalThis, 'globalThis']]
-const bad = (v) => v._client || (v.pid && typeof v.exit === 'function') || (typeof v === 'function' && /^(require|dlopen|binding)$/.test(v.name)) || v.constructor?.name === 'Socket'
+const bad = (v) => v._client || (v.pid && typeof v.exit === 'function') || (typeof v === 'function' && /^(require|dlopen|binding)$/.test(v.name)) || v.constructor?.name === 'Socket' || typeof v.NODE_PATH === 'string' || typeof v.PATH === 'string'
 let t0 = Date.now()
 for (let i = 0; i < queue.length && seen.size < 400000; i++) {
   if (Date.now() - t0 > 100) { await bot.waitForTicks(1); t0 = Date.now() }
@@ -319,3 +322,39 @@ async def test_no_property_path_reaches_the_bot_process_or_require(pair):
     bad, _ = pair
     out = await _returned(bad, GRAPH_WALK)
     assert out["found"] == [] and out["walked"] > 10000, out
+
+
+# Every own property of the agent's global object, enumerable or not (a hidden `env` would show).
+GLOBAL_NAMES = """
+return { names: Object.getOwnPropertyNames(globalThis), symbols: Object.getOwnPropertySymbols(globalThis).map(String) }
+"""
+
+# The language's built-ins: the own properties of a fresh, empty vm context's global object.
+EMPTY_CONTEXT = r"""
+const vm = require('vm')
+const context = vm.createContext({}, { codeGeneration: { strings: false, wasm: false } })
+console.log(JSON.stringify(vm.runInContext(
+  '({ names: Object.getOwnPropertyNames(globalThis), symbols: Object.getOwnPropertySymbols(globalThis).map(String) })',
+  context)))
+"""
+
+
+async def test_agent_globals_are_the_documented_names_only(pair):
+    """The documented list (docs/security.md): the language's built-ins, sandbox_globals.json and
+    the primitives of modules.json; nothing else, not even non-enumerable (no `env`, no `process`)."""
+    bad, _ = pair
+    found = await _returned(bad, GLOBAL_NAMES)
+    builtins = run_node_script(EMPTY_CONTEXT)
+    assert set(found["names"]) == set(builtins["names"]) | SANDBOX_NAMES | set(prim.functions())
+    assert set(found["symbols"]) == set(builtins["symbols"])
+    assert not {"env", "process", "require", "global", "module"} & set(found["names"])
+
+
+async def test_env_is_nowhere_in_reach(pair):
+    bad, _ = pair
+    found = await _returned(
+        bad,
+        "return [typeof env, 'env' in globalThis, Reflect.has(globalThis, 'env'), typeof bot.env,"
+        " typeof globalThis.process, Object.getOwnPropertyDescriptor(globalThis, 'env') === undefined]",
+    )
+    assert found == ["undefined", False, False, "undefined", "undefined", True]

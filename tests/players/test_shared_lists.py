@@ -37,7 +37,8 @@ def test_primitives_are_what_the_modules_make():
     assert len(prim.functions()) == len(set(prim.functions()))  # no function in two modules
 
 
-# a sandbox context made with stand-ins: the names agent code finds in it (the built-ins are not enumerable)
+# a sandbox context made with stand-ins: the names agent code finds in it besides the language's built-ins
+# (those of an empty context), enumerable or not
 SANDBOX = r"""
 const vm = require('vm')
 const { createContext } = require(process.argv[1] + '/bot/sandbox.js')
@@ -45,9 +46,10 @@ const context = createContext({
   bot: {}, run: { timers: new Set(), intervals: new Set() }, mcData: {}, Vec3: require('vec3').Vec3,
   primitives: { somePrimitive () {} }, chat () {}, save () {}, report () {}, log () {}
 })
-const names = vm.runInContext('Object.keys(globalThis)', context)
+const builtins = vm.runInContext('Object.getOwnPropertyNames(globalThis)', vm.createContext({}))
+const names = vm.runInContext('Object.getOwnPropertyNames(globalThis)', context)  // non-enumerable ones too
 const missing = vm.runInContext('Object.keys(globalThis).filter(n => globalThis[n] === undefined)', context)
-console.log(JSON.stringify({ names, missing }))
+console.log(JSON.stringify({ names, builtins, missing }))
 """
 
 
@@ -55,7 +57,7 @@ def test_sandbox_names_are_what_the_sandbox_gives():
     js = run_node_script(SANDBOX)
     assert js["missing"] == []
     assert "somePrimitive" in js["names"]
-    assert set(js["names"]) - {"somePrimitive"} == SANDBOX_NAMES
+    assert set(js["names"]) == set(js["builtins"]) | SANDBOX_NAMES | {"somePrimitive"}
 
 
 SMELTING = r"""

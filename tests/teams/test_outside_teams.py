@@ -252,3 +252,46 @@ async def test_a_team_server_that_dies_mid_game_is_a_problem_and_the_episode_fin
     assert any(p.startswith(f"remote /events: cannot reach {url}/events") for p in problems), problems
     assert problems[-1].startswith(f"remote /postgame: cannot reach {url}/postgame"), problems
     assert DiesMidGame.calls == ["/pregame", "/events", "/events"]
+
+
+class Throws(TeamServer):
+    """Pre-game: both players get a program that throws, one at once, one after a wait; the team
+    answers every /events with nothing new, and keeps what it was sent."""
+
+    PROGRAMS = (
+        "bot.chat('attempt at once'); throw new Error('thrown at once')",
+        "await bot.waitForTicks(5); bot.chat('attempt after a wait'); throw new Error('thrown after a wait')",
+    )
+    received: list[dict]
+
+    def do_POST(self):
+        if self.path != "/pregame":
+            return super().do_POST()
+        body = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
+        self.calls.append(self.path)
+        names = [p["name"] for p in body["side"]["players"]]
+        self.answer(json.dumps({"programs": dict(zip(names, self.PROGRAMS, strict=True))}).encode())
+
+    def on_events(self, n: int, body: dict) -> None:
+        self.received.append(body["events"])
+        self.answer(b"{}")
+
+
+async def test_a_remote_players_program_that_throws_is_started_again_within_the_episode(tmp_path):
+    Throws.received = []
+    with team_server(Throws) as url:
+        team = RemoteTeam(url=url, events_every_s=0.5, restart_pause_s=0.5)
+        (rec,) = await play_series("mushroom_war", team, "do_nothing", tmp_path, length=10)
+    assert rec.status == "ok", rec.error
+    at_once, after_a_wait = rec.runs  # both players of red, in the scenario's order
+    chat = (tmp_path / "episode_000" / "chat.txt").read_text()
+    for name, said, thrown in (
+        (at_once, "attempt at once", "Error: thrown at once"),
+        (after_a_wait, "attempt after a wait", "Error: thrown after a wait"),
+    ):
+        assert rec.runs[name] >= 3, rec.runs  # run again after each throw, within the 10 s
+        assert chat.count(said) >= 3, chat
+        sent = [e for batch in Throws.received for e in batch.get(name, [])]
+        errors_sent = [e[1]["onError"] for e in sent if e[0] == "onError"]
+        assert len(errors_sent) >= 3 and all(err.startswith(thrown) for err in errors_sent), errors_sent
+    assert rec.problems.get("red", []) == []  # a throw is the program's, not a failure of the protocol
