@@ -1,13 +1,15 @@
-"""A plain `pillagerbench run` (no experiment=) killed with SIGKILL at three moments, then finished with
-resume=RUN_DIR: every episode recorded exactly once and finished, nothing finished rewritten. The kill
-comes where the red team (tests/experiments/held_team.py, passive held on a file this test controls)
-says it stands: in the pre-game after a record was written, mid-episode, and half way through saving
-its state after an episode."""
+"""A plain `pillagerbench run` (no experiment=) killed with SIGKILL at four moments, then finished with
+resume=RUN_DIR: every episode recorded exactly once and finished, nothing finished rewritten, and the
+run reads as three episodes. The kill comes as soon as episodes.jsonl has grown by the record of
+episode 0 ("record"), or where the red team (tests/experiments/held_team.py, passive held on a file
+this test controls) says it stands: in the next pre-game (its arena reset, nothing of it played),
+mid-episode, and half way through saving its state after an episode."""
 
 from __future__ import annotations
 
 import json
 import os
+import shutil
 import signal
 import time
 from pathlib import Path
@@ -15,6 +17,7 @@ from pathlib import Path
 import psutil
 import pytest
 
+from pillagerbench.metrics.runs import load_runs
 from tests.support.cli import run_cli, start_cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -43,16 +46,17 @@ def command(run: Path, hold: Path, at: str) -> list[str]:
 
 
 def kill_when_held(run: Path, hold: Path, at: str) -> list[dict]:
-    """Start the run, SIGKILL its process group once the team holds; the records then."""
+    """Start the run, SIGKILL its process group once the team holds (or, at "record", once episode 0
+    is recorded); the records then."""
     hold.write_text("")
     proc = start_cli("run", *command(run, hold, at), cwd=ROOT)
     reached = hold.with_name(hold.name + ".reached")
     deadline = time.monotonic() + 150
     try:
-        while not reached.exists():
+        while not (reached.exists() or at == "record" and len(records(run)) == HELD):
             assert proc.poll() is None, proc.stdout.read()
             assert time.monotonic() < deadline, f"the run never held at {at}"
-            time.sleep(0.05)
+            time.sleep(0.01)
         children = psutil.Process(proc.pid).children(recursive=True)
         os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
@@ -65,7 +69,7 @@ def kill_when_held(run: Path, hold: Path, at: str) -> list[dict]:
     return records(run)
 
 
-@pytest.mark.parametrize("at", ["pre_game", "play", "save"])
+@pytest.mark.parametrize("at", ["record", "pre_game", "play", "save"])
 def test_a_killed_plain_run_resumes_with_nothing_lost_and_nothing_repeated(tmp_path, at):
     run, hold = tmp_path / "run", tmp_path / "hold"
     before = kill_when_held(run, hold, at)
@@ -86,3 +90,17 @@ def test_a_killed_plain_run_resumes_with_nothing_lost_and_nothing_repeated(tmp_p
     assert f"resume after {HELD} finished episode(s)" in res.stdout
     assert f"{EPISODES} episode(s), 0 failed" in res.stdout  # the plain run's summary, over the whole run
     assert len((run / "resumes.jsonl").read_text().splitlines()) == 1
+    assert sorted(load_runs([run]).episodes["episode"]) == list(range(EPISODES))  # and it reads as one run
+
+
+def test_a_plain_run_without_the_teams_state_is_refused_in_one_line(tmp_path):
+    """As a plain run written before plain runs kept state: its resume would start the teams from
+    scratch, so it is refused (one line, exit 2), not played."""
+    run, hold = tmp_path / "run", tmp_path / "hold"
+    kill_when_held(run, hold, "play")
+    shutil.rmtree(run / "state")
+    res = run_cli(ROOT, "run", f"resume={run}", timeout=120)
+    assert res.returncode == 2, res.stdout + res.stderr
+    (line,) = res.stderr.strip().splitlines()
+    assert line.startswith("pillagerbench run: cannot resume: red's state after episode 0 is missing (")
+    assert [r["episode"] for r in records(run)] == [0]
