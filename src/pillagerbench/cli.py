@@ -52,7 +52,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 
 def run_main(argv: list[str]) -> int:
-    """`pillagerbench run`: one match (run.py), or many series with experiment=/resume= (experiments/)."""
+    """`pillagerbench run`: one match (experiments/plain_run.py: a one-series experiment), or many
+    series with experiment= (experiments/); resume= finishes either."""
     from pillagerbench import preflight
     from pillagerbench.config import load_config
     from pillagerbench.validate import check_run_config
@@ -68,7 +69,7 @@ def run_main(argv: list[str]) -> int:
         from pillagerbench.experiments.runner import main_experiment
 
         return main_experiment(cfg, argv)
-    from pillagerbench.run import run_match
+    from pillagerbench.experiments.plain_run import run_match
 
     preflight.check(preflight.sides_of(cfg))
     return run_match(cfg)
@@ -130,6 +131,7 @@ USER_ERRORS = (
     ("pillagerbench.arena.server", "ArenaServerError"),
     ("pillagerbench.args", "UsageError"),
     ("pillagerbench.rundir.bundle", "BundleError"),
+    ("pillagerbench.experiments.series", "ResumeError"),
 )
 OS_ERRORS = (FileNotFoundError, PermissionError, IsADirectoryError)
 

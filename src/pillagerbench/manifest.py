@@ -1,8 +1,8 @@
 """The manifest of a run directory (`manifest.json`): config, versions, seed, git revision, suite and
 the rules differing from the suite's defaults (conditions.py).
 
-Written by a plain `pillagerbench run` (run.py) and by every series of an experiment
-(experiments/series.py); the experiment's own top-level manifest uses `git_revision` too.
+Written by every series (experiments/series.py): an experiment's, and the one series of a plain
+`pillagerbench run`; the experiment's own top-level manifest uses `git_revision` too.
 """
 
 from __future__ import annotations

@@ -18,13 +18,13 @@ def nothing_played(monkeypatch, tmp_path):
         raise AssertionError("plan=true played something")
 
     import pillagerbench.arena
+    import pillagerbench.experiments.plain_run
     import pillagerbench.experiments.runner
-    import pillagerbench.run
 
     monkeypatch.setattr(pillagerbench.arena.ArenaServer, "start", played)
     monkeypatch.setattr(pillagerbench.experiments.runner, "run_series", played)
     monkeypatch.setattr(pillagerbench.experiments.runner, "write_experiment", played)
-    monkeypatch.setattr(pillagerbench.run, "run_match", played)
+    monkeypatch.setattr(pillagerbench.experiments.plain_run, "run_match", played)
     monkeypatch.chdir(tmp_path)
     return tmp_path
 

@@ -259,6 +259,10 @@ def main_experiment(cfg, argv: list[str]) -> int:
             check_same(specs, build_series(cfg, argv), run_dir)
         check_series(specs)
         print(f"resuming {run_dir}", flush=True)
+        if title == "run":  # a plain run: finished as it was started, with its display and summary
+            from pillagerbench.experiments.plain_run import play_run
+
+            return play_run(specs[0], dirs[specs[0].id], cfg)
     else:
         specs = build_series(cfg, argv)
         check_series(specs)

@@ -1,7 +1,9 @@
 """Play one series (a match of consecutive episodes) so that it can be killed and resumed.
 
-A series directory is a plain `pillagerbench run` directory plus its spec, the teams' state after the
-last finished episode and kept checkpoints (`pillagerbench.rundir` owns its layout). On resume
+A plain `pillagerbench run` is a series too (experiments/plain_run.py): its run directory is the series
+directory. A series directory holds the episodes, the teams' state after the last finished episode, kept
+checkpoints and, in an experiment, its spec (`pillagerbench.rundir` owns its layout). Each episode is
+committed one way (`_commit`): both teams' state saved, then its line in episodes.jsonl. On resume
 everything of an unfinished episode is moved to discarded/, the teams are restored from the state
 after the last finished episode, and the series goes on with the next episode.
 """
@@ -45,8 +47,10 @@ async def run_series(
     on_episode: Callable[[Any], None] | None = None,
     on_tick: Callable[[dict], None] | None = None,
     say: Callable[[str], None] = print,
+    watch: int | None = None,
 ) -> dict:
-    """Play the unfinished episodes of a series. Returns {"id", "finished", "failed", "played"}."""
+    """Play the unfinished episodes of a series (`watch`: the live view's port). Returns {"id",
+    "finished", "failed", "played"}."""
     from pillagerbench.manifest import write_manifest
     from pillagerbench.run import scenario_from_config
     from pillagerbench.teams import team_from_config
@@ -74,7 +78,7 @@ async def run_series(
             write_manifest(rundir.path, cfg, scenario)
         else:
             rundir.note_resume(sorted(finished), discarded)
-        await _play(spec, cfg, rundir, scenario, teams, finished, remaining, on_episode, on_tick)
+        await _play(spec, cfg, rundir, scenario, teams, finished, remaining, on_episode, on_tick, watch)
         summary["played"] = len(remaining)
     finished = rundir.finished()
     summary["finished"] = len(finished)
@@ -104,6 +108,7 @@ async def _play(
     remaining: list[int],
     on_episode: Callable[[Any], None] | None,
     on_tick: Callable[[dict], None] | None,
+    watch: int | None = None,
 ) -> None:
     from pillagerbench.run import play_match
 
@@ -123,7 +128,16 @@ async def _play(
 
     try:
         await play_match(
-            cfg, rundir, scenario, teams, remaining, done, on_tick=tick, last=last, log_path=rundir.free_server_log()
+            cfg,
+            rundir,
+            scenario,
+            teams,
+            remaining,
+            done,
+            on_tick=tick,
+            last=last,
+            log_path=rundir.free_server_log(),
+            watch=watch,
         )
     finally:
         rundir.live_path.unlink(missing_ok=True)

@@ -11,7 +11,7 @@ package.
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, winner_of
 from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
-from pillagerbench.rundir.series import SeriesSpec, read_series
+from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series
 
 __all__ = [
     "EPISODES",
@@ -22,6 +22,7 @@ __all__ = [
     "RunDir",
     "SeriesSpec",
     "episode_index",
+    "plain_series",
     "read_experiment",
     "read_series",
     "winner_of",

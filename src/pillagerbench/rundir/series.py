@@ -65,9 +65,15 @@ def read_series(
     if not rundir.manifest_path.exists():
         return None
     config = {k: v for k, v in rundir.manifest()["config"].items() if k not in runner_keys}
+    return "run", [(plain_series(config, rundir.path.name), rundir.path)]
+
+
+def plain_series(config: dict[str, Any], name: str) -> SeriesSpec:
+    """The one series of a plain run (design "run", named as its directory) from its match config:
+    the same whether the run is started or resumed."""
     red, blue = config["red"]["name"], config["blue"]["name"]
-    spec = SeriesSpec(
-        id=rundir.path.name,
+    return SeriesSpec(
+        id=name,
         index=0,
         design="run",
         scenario=config["scenario"]["name"],
@@ -79,4 +85,3 @@ def read_series(
         seed=int(config.get("seed", 0)),
         config=config,
     )
-    return "run", [(spec, rundir.path)]

@@ -1,0 +1,102 @@
+"""`pillagerbench run` without experiment=: one match, played as a one-series experiment.
+
+    pillagerbench run scenario=mushroom_war red=passive blue=balanced episodes=3 episode_length=120
+    pillagerbench run resume=RUN_DIR     # after a kill: the rest of it, nothing lost, nothing repeated
+
+The run directory (printed first and last) is the series' directory (experiments/series.py):
+manifest.json, episodes.jsonl (one line per finished episode), per episode its events, score
+timeline, game-master log and team artefacts, and state/ (both teams' state after the last finished
+episode). Each episode is committed as a series' is: the teams' state first, its line last, so a run
+killed at any moment resumes from its last finished episode. An episode that fails (a bot or the
+server dies) is recorded as failed and the match goes on; Ctrl-C ends the match cleanly, keeping
+every finished episode.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from pathlib import Path
+
+from omegaconf import OmegaConf
+
+from pillagerbench.config import to_dict
+from pillagerbench.display import MatchDisplay
+from pillagerbench.experiments.series import run_series
+from pillagerbench.experiments.spec import RUNNER_KEYS
+from pillagerbench.llm.spend import spend_lines
+from pillagerbench.run import scenario_from_config
+from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series
+
+
+def make_run_dir(cfg) -> Path:
+    if cfg.run_dir:
+        return Path(cfg.run_dir)
+    stamp = time.strftime("%Y-%m-%d_%H-%M-%S")
+    return Path("runs") / f"{stamp}_{cfg.scenario.name}_{cfg.red.name}_vs_{cfg.blue.name}"
+
+
+def run_match(cfg) -> int:
+    """A new plain run from the command's config."""
+    run_dir = make_run_dir(cfg)
+    config = {k: v for k, v in to_dict(cfg).items() if k not in RUNNER_KEYS}
+    return play_run(plain_series(config, run_dir.name), run_dir, cfg)
+
+
+def play_run(spec: SeriesSpec, run_dir: Path, cfg) -> int:
+    """Play the unfinished episodes of a plain run (all of a new one) with its display, then its
+    summary over every finished episode. `cfg`: the command's (display, watch)."""
+    run_dir.mkdir(parents=True, exist_ok=True)
+    print(f"run directory: {run_dir}", flush=True)
+    try:
+        asyncio.run(_play(spec, run_dir, cfg))
+    except KeyboardInterrupt:
+        print(
+            f"interrupted: finished episodes are kept in {RunDir(run_dir).episodes_path}; finish with resume={run_dir}"
+        )
+        print(f"run directory: {run_dir}")
+        return 130
+    records = [EpisodeRecord.from_dict(r) for r in RunDir(run_dir).finished().values()]
+    failed = sum(r.status != "ok" for r in records)
+    problems, all_without_model = summarize_problems(records)
+    print(f"{len(records)} episode(s), {failed} failed")
+    for line in problems:
+        print(line)
+    for line in summarize_lag(records):
+        print(line)
+    for line in spend_lines([(RunDir(run_dir).ledger_path, {"red": spec.red, "blue": spec.blue})]):
+        print(line)
+    print(f"run directory: {run_dir}")
+    return 1 if (failed and failed == len(records)) or all_without_model else 0
+
+
+async def _play(spec: SeriesSpec, run_dir: Path, cfg) -> None:
+    scenario = scenario_from_config(OmegaConf.create(spec.config))
+    title = f"{scenario.title}: red {spec.red} vs blue {spec.blue}"
+    with MatchDisplay(title, cfg.display) as display:
+        await run_series(spec, run_dir, on_episode=display.episode_done, on_tick=display.tick, watch=cfg.get("watch"))
+
+
+def summarize_problems(records: list) -> tuple[list[str], bool]:
+    """Lines about episodes in which a team had problems (its model or its server never answered,
+    ...), and whether every episode of some team went that way."""
+    lines, all_failed = [], False
+    for side in ("red", "blue"):
+        hit = [r for r in records if side in (r.problems or {})]
+        if hit:
+            lines.append(
+                f"{side} {getattr(hit[0], side)} had problems in {len(hit)} of {len(records)} "
+                f"episode(s), e.g.: {hit[-1].problems[side][-1]}"
+            )
+            all_failed = all_failed or len(hit) == len(records)
+    return lines, all_failed
+
+
+def summarize_lag(records: list) -> list[str]:
+    """One line per episode played under lag (pillagerbench/machine.py), after a count."""
+    hit = [r for r in records if getattr(r, "lagged", False)]
+    if not hit:
+        return []
+    return [f"{len(hit)} of {len(records)} episode(s) played under lag (scores may be low; docs/performance.md):"] + [
+        f"  episode {r.episode}: {r.lag_reason}" for r in hit
+    ]

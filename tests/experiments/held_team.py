@@ -1,0 +1,56 @@
+"""A team for the kill tests (by import path `tests.experiments.held_team:HeldPassive`): passive that
+stops at one moment of one episode while a file the test controls exists, so the test can kill
+the run exactly there. `hold_at`: "pre_game" (the record of the episode before is written, nothing
+of this one played), "play" (mid-episode, the clock running) or "save" (half way through writing its
+state after the episode: its team.json torn). It writes `<hold>.reached` when it gets there."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from pathlib import Path
+
+from pillagerbench.teams.mushroom_war import Passive
+
+
+class HeldPassive(Passive):
+    name = "held_passive"
+    options_declared = {"hold": "", "hold_at": "play", "hold_episode": 1}
+
+    def _here(self, at: str, episode: int) -> Path | None:
+        """The hold file if this is the moment and the file exists (after the test removed it: None)."""
+        hold = Path(str(self.options.get("hold") or "/nonexistent"))
+        if (
+            at != self.options.get("hold_at")
+            or episode != int(self.options.get("hold_episode", 1))
+            or not hold.exists()
+        ):
+            return None
+        hold.with_name(hold.name + ".reached").write_text(at)
+        return hold
+
+    async def pre_game(self, ctx) -> None:
+        hold = self._here("pre_game", ctx.episode)
+        while hold and hold.exists():
+            await asyncio.sleep(0.05)
+        await super().pre_game(ctx)
+
+    async def play(self, ctx) -> None:
+        hold = self._here("play", ctx.episode)
+        if hold:
+            await asyncio.sleep(2)  # some of the game played first
+        while hold and hold.exists():
+            await asyncio.sleep(0.05)
+        await super().play(ctx)
+
+    def save_checkpoint(self, directory: Path) -> Path:
+        self.saves = getattr(self, "saves", 0) + 1  # once after each episode, from episode 0
+        hold = self._here("save", self.saves - 1)
+        if hold:
+            directory.mkdir(parents=True, exist_ok=True)
+            text = json.dumps({"team": self.name, "state": self.state()})
+            (directory / "team.json").write_text(text[: len(text) // 2])
+            while hold.exists():  # the event loop stands still here, as in a slow disk write
+                time.sleep(0.05)
+        return super().save_checkpoint(directory)

@@ -1,0 +1,106 @@
+"""A plain `pillagerbench run` (no experiment=) killed with SIGKILL at four moments, then finished with
+resume=RUN_DIR: every episode recorded exactly once and finished, nothing finished rewritten, and the
+run reads as three episodes. The kill comes as soon as episodes.jsonl has grown by the record of
+episode 0 ("record"), or where the red team (tests/experiments/held_team.py, passive held on a file
+this test controls) says it stands: in the next pre-game (its arena reset, nothing of it played),
+mid-episode, and half way through saving its state after an episode."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import time
+from pathlib import Path
+
+import psutil
+import pytest
+
+from pillagerbench.metrics.runs import load_runs
+from tests.support.cli import run_cli, start_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+EPISODES = 3
+HELD = 1  # the episode the kill comes in (episode 0 is finished then)
+
+
+def records(run: Path) -> list[dict]:
+    path = run / "episodes.jsonl"
+    return [json.loads(x) for x in path.read_text().splitlines()] if path.exists() else []
+
+
+def command(run: Path, hold: Path, at: str) -> list[str]:
+    return [
+        "scenario=mushroom_war",
+        "red=tests.experiments.held_team:HeldPassive",
+        f"red.hold={hold}",
+        f"red.hold_at={at}",
+        f"red.hold_episode={HELD}",
+        "blue=do_nothing",
+        f"episodes={EPISODES}",
+        "episode_length=5",
+        "display=plain",
+        f"run_dir={run}",
+    ]
+
+
+def kill_when_held(run: Path, hold: Path, at: str) -> list[dict]:
+    """Start the run, SIGKILL its process group once the team holds (or, at "record", once episode 0
+    is recorded); the records then."""
+    hold.write_text("")
+    proc = start_cli("run", *command(run, hold, at), cwd=ROOT)
+    reached = hold.with_name(hold.name + ".reached")
+    deadline = time.monotonic() + 150
+    try:
+        while not (reached.exists() or at == "record" and len(records(run)) == HELD):
+            assert proc.poll() is None, proc.stdout.read()
+            assert time.monotonic() < deadline, f"the run never held at {at}"
+            time.sleep(0.01)
+        children = psutil.Process(proc.pid).children(recursive=True)
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    _, alive = psutil.wait_procs(children, timeout=15)
+    assert not alive, f"processes outlived the killed run: {[p.pid for p in alive]}"
+    hold.unlink()
+    return records(run)
+
+
+@pytest.mark.parametrize("at", ["record", "pre_game", "play", "save"])
+def test_a_killed_plain_run_resumes_with_nothing_lost_and_nothing_repeated(tmp_path, at):
+    run, hold = tmp_path / "run", tmp_path / "hold"
+    before = kill_when_held(run, hold, at)
+    assert [r["episode"] for r in before] == list(range(HELD))  # killed before episode HELD was recorded
+    if at == "save":  # half of red's state after episode HELD on disk, blue's not yet
+        assert (run / "state" / f"episode_{HELD:03d}" / "red" / "team.json").exists()
+    kept = (run / "episode_000" / "timeline.json").read_text()
+
+    res = run_cli(ROOT, "run", *command(run, hold, at), f"resume={run}", timeout=240)
+    assert res.returncode == 0, res.stdout + res.stderr
+    after = records(run)
+    assert [r["episode"] for r in after] == list(range(EPISODES))
+    assert all(r["status"] == "ok" for r in after), [r.get("error") for r in after]
+    assert after[: len(before)] == before  # the finished ones untouched
+    assert (run / "episode_000" / "timeline.json").read_text() == kept
+    for i in range(EPISODES):
+        assert json.loads((run / f"episode_{i:03d}" / "timeline.json").read_text())[-1]["t"] == 5
+    assert f"resume after {HELD} finished episode(s)" in res.stdout
+    assert f"{EPISODES} episode(s), 0 failed" in res.stdout  # the plain run's summary, over the whole run
+    assert len((run / "resumes.jsonl").read_text().splitlines()) == 1
+    assert sorted(load_runs([run]).episodes["episode"]) == list(range(EPISODES))  # and it reads as one run
+
+
+def test_a_plain_run_without_the_teams_state_is_refused_in_one_line(tmp_path):
+    """As a plain run written before plain runs kept state: its resume would start the teams from
+    scratch, so it is refused (one line, exit 2), not played."""
+    run, hold = tmp_path / "run", tmp_path / "hold"
+    kill_when_held(run, hold, "play")
+    shutil.rmtree(run / "state")
+    res = run_cli(ROOT, "run", f"resume={run}", timeout=120)
+    assert res.returncode == 2, res.stdout + res.stderr
+    (line,) = res.stderr.strip().splitlines()
+    assert line.startswith("pillagerbench run: cannot resume: red's state after episode 0 is missing (")
+    assert [r["episode"] for r in records(run)] == [0]
