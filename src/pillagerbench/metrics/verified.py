@@ -180,10 +180,10 @@ def check_bundles(paths: list[Path]) -> None:
     for bundle in (p for p in paths if is_bundle(p)):
         problems = bundle_problems(bundle)[0]
         if problems:
-            more = f" and {len(problems) - 1} more" if len(problems) > 1 else ""
             raise ReportError(
-                f"{bundle}: fails its checks ({problems[0]}{more}; `pillagerbench verify {bundle}` names them); "
-                "refusing to read it. --no-verify (league: no_verify=true) reads it anyway, every table marked"
+                f"{bundle}: fails its checks ({len(problems)} disagreement(s), the first: {problems[0]}; "
+                f"`pillagerbench verify {bundle}` names them all); refusing to read it. --no-verify "
+                "(league: no_verify=true) reads it anyway, every table marked"
             )
 
 
