@@ -193,7 +193,7 @@ def load_runs(paths: list[str | Path], mix_suites: bool = False, verify: bool = 
     inputs = [Path(p) for p in paths]
     if verify:
         check_bundles(inputs)
-    runs = read_runs(inputs, mix_suites)
+    runs = read_runs(paths, mix_suites)
     if not verify:
         runs.unverified = list(runs.bundles)
     return runs
