@@ -10,8 +10,9 @@ episodes of a killed run, series that did not finish). Runs of different version
 suite versions (suite.py; records from before it read "unversioned") unless `mix_suites` asks for them,
 and then `mixed_notes` says so. A results bundle (rundir/bundle.py) is read as the run directories in it,
 named by the paths they were exported from; `read_runs` reads it as it is: readers call
-metrics/verified.py `load_runs`, which verifies it first (and marks it in `unverified` when asked not to). Every finished episode's faults (metrics/faults.py: ours or
-the team's) are in `faults`.
+metrics/verified.py `load_runs`, which verifies it first (or, asked not to, marks it in `unverified`,
+and `mixed_notes` says so). Every finished episode's faults (metrics/faults.py: ours or the team's) are
+in `faults`.
 """
 
 from __future__ import annotations
