@@ -1,18 +1,19 @@
 """Bundles are checked when read (issue 37 item 6): report, symmetry, fidelity, calibrate, export and the
 league verify a bundle first and refuse one whose score was edited (checksums forged to match) in one
 line, exit 2, nothing written; --no-verify (league: no_verify=true) reads it anyway and every table's
-title and the notes say it was not verified; `verify` names a manifest whose suite version is not its
-episodes'; a good bundle still reports the numbers of its run directory."""
+title and the notes say it was not verified; `verify` names a manifest (a run's, an experiment's) whose
+suite version is not its episodes'; a good bundle still reports the numbers of its run directory."""
 
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import pytest
 
 from pillagerbench import cli
-from tests.bundle.test_bundle import SUITE, export, raise_a_score, repack, series_of, tables
+from tests.bundle.test_bundle import OLD_RUN, SUITE, export, raise_a_score, repack, series_of, tables
 from tests.metrics.fake_runs import write_run
 
 MARK = "bundle not verified: "
@@ -138,3 +139,17 @@ def test_the_league_refuses_a_handed_over_bundle_that_fails_unless_no_verify(tmp
     board = (tmp_path / "league" / "leaderboard.md").read_text()
     assert f"{MARK}{handed}" in board and "3 episodes in 1 rounds" in board
     assert all(MARK in line for line in board.splitlines() if line.startswith("## "))
+
+
+def test_verify_checks_an_experiments_manifest_and_each_series_manifest(tmp_path, capsys):
+    old = shutil.copytree(OLD_RUN, tmp_path / "old")  # a real experiment, from before suite versions
+
+    def change(root: Path) -> None:
+        top = next((root / "runs").glob("*/old"))
+        path = top / "manifest.json"
+        path.write_text(json.dumps({**json.loads(path.read_text()), "suite": {"label": OTHER}}))
+
+    mismatched = repack(export(tmp_path, old), tmp_path, change, forge=True)
+    assert cli.main(["verify", str(mismatched)]) == 1
+    found = [line for line in capsys.readouterr().out.splitlines() if line.startswith("disagrees: ")]
+    assert found == [f"disagrees: runs/00/old/manifest.json: says {OTHER}, but 2 episode(s) say unversioned (0, 1)"]
