@@ -33,7 +33,7 @@ from itertools import combinations
 from pillagerbench.league.ratings import Outcome, p_above, ranked, rate
 from pillagerbench.league.schedule import Pairing, settled
 from pillagerbench.league.simulate import SCENARIO, order, play_scheduled, round_robin, scheduled
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 
 # Mushroom War's five (do_nothing + the four built-ins), strengths doubling down the ladder;
 # and nine teams (the built-ins of both scenarios as one board) the same way.

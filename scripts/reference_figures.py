@@ -21,7 +21,7 @@ from pillagerbench import suite
 from pillagerbench.experiments import builtin_teams
 from pillagerbench.metrics.fidelity import fidelity_table
 from pillagerbench.metrics.reference import SUITE_FIGURES
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 
 TITLES = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
 

@@ -15,7 +15,8 @@ import pytest
 
 from pillagerbench import conditions, suite
 from pillagerbench.config import load_config
-from pillagerbench.metrics.runs import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError
+from pillagerbench.metrics.verified import load_runs
 from tests.metrics.fake_runs import write_run
 
 CONF = suite.PACKAGE / "conf"

@@ -17,7 +17,7 @@ from pathlib import Path
 import psutil
 import pytest
 
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 from tests.support.cli import run_cli, start_cli
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -14,7 +14,7 @@ from typing import get_args
 from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.match import SCORINGS
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import main as report_main
 from pillagerbench.rundir import EpisodeRecord, RunDir, read_experiment
 from tests.support.cli import run_cli

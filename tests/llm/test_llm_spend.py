@@ -10,7 +10,7 @@ from pathlib import Path
 
 from pillagerbench.llm import read_ledger, summarize
 from pillagerbench.llm.spend import spend_lines
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report import tables
 from tests.support.cli import run_cli
 

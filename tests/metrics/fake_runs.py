@@ -43,9 +43,10 @@ def write_run(
         "episode_length": length,
         "seed": 0,
     }
-    (run / "manifest.json").write_text(
-        json.dumps({"config": config, "scenario": {"key": scenario, "version": version}})
-    )
+    manifest = {"config": config, "scenario": {"key": scenario, "version": version}}
+    if suite:  # the manifest names the suite its episodes were played under, as a real run's does
+        manifest["suite"] = {"label": suite}
+    (run / "manifest.json").write_text(json.dumps(manifest))
     with open(run / "episodes.jsonl", "w") as f:
         for i, (r, b) in enumerate(scores):
             ep = run / f"episode_{i:03d}"

@@ -12,7 +12,8 @@ from pillagerbench.metrics.calibration import resolve
 from pillagerbench.metrics.fidelity import CLAIMS, claims_table, fidelity_table
 from pillagerbench.metrics.formulas import Estimate
 from pillagerbench.metrics.reference import REFERENCE_SCORES, suite_reference
-from pillagerbench.metrics.runs import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.fidelity import main as fidelity_main
 from tests.metrics.fake_runs import write_run

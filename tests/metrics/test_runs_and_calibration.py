@@ -8,7 +8,8 @@ import json
 import pytest
 
 from pillagerbench.metrics import calibration as calib
-from pillagerbench.metrics.runs import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError
+from pillagerbench.metrics.verified import load_runs
 from tests.metrics.fake_runs import write_run
 
 

@@ -14,7 +14,8 @@ from pillagerbench import cli
 from pillagerbench.league import results
 from pillagerbench.league.board import write_board
 from pillagerbench.league.spec import Entrant, League
-from pillagerbench.metrics.runs import ReportError, load_runs
+from pillagerbench.metrics.runs import ReportError
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.rundir import EpisodeRecord
 from pillagerbench.suite import UNVERSIONED, current
 from tests.metrics.fake_runs import write_run

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from pillagerbench.metrics.runs import load_runs
 from pillagerbench.metrics.symmetry import side_symmetry, welch
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.symmetry import main as symmetry_main
 from tests.metrics.fake_runs import write_run
 

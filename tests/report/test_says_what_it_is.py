@@ -16,7 +16,7 @@ import pytest
 
 from pillagerbench.metrics.calibration import REFERENCE_FALLBACK
 from pillagerbench.metrics.reference import REFERENCE_SCORES
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.build import main as report_main
 from pillagerbench.report.plots import timeline_lines

@@ -2,26 +2,17 @@
 (or of other bundles): their manifests, episodes, ledgers, timelines, events, chat and team artefacts,
 replays with --replays, a sha256 for every file, the suite versions the episodes were played under and
 every harness failure kept apart from the teams' own (rundir/bundle.py has the layout). Check one with
-`pillagerbench verify FILE`; `report`, `symmetry` and `fidelity` read it as they read run directories."""
+`pillagerbench verify FILE`; `report`, `symmetry`, `fidelity`, `calibrate` and the league read it as they read
+run directories, once it passes the same checks. A bundle given to export is checked first too."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 from pillagerbench.args import Parser
-from pillagerbench.metrics.faults import tally
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs, summary
 from pillagerbench.rundir.bundle import write_bundle
 from pillagerbench.suite import current
-
-
-def summary(runs) -> dict:
-    """What bundle.json says of the runs beyond their files (verify recomputes it)."""
-    return {
-        "suites": runs.suites,
-        "episodes_used": len(runs.episodes),
-        "faults": {**tally(runs.faults), "rows": runs.faults},
-    }
 
 
 def main(argv: list[str]) -> int:
@@ -30,7 +21,8 @@ def main(argv: list[str]) -> int:
     p.add_argument("--out", required=True, help="the bundle to write (FILE.tar.gz)")
     p.add_argument("--replays", action="store_true", help="include the episodes' replay recordings")
     a = p.parse_args(argv)
-    runs = load_runs(a.runs, mix_suites=True)  # a bundle carries whatever it is given; it records the suites
+    # a bundle carries whatever it is given and records the suites; a bundle given is verified first
+    runs = load_runs(a.runs, mix_suites=True)
     out = Path(a.out)
     info = {"exported_by": current(), **summary(runs)}
     files = write_bundle([(runs.roots[name], name) for name in runs.runs], out, info, a.replays)

@@ -122,7 +122,7 @@ def head_to_head(league: League, runs: results.Runs, scenario: str) -> pd.DataFr
 
 
 def write_board(league_dir: Path, league: League) -> list[Path]:
-    runs, on = splits.on_split(results.load(league_dir, league.mix_suites), league.split)
+    runs, on = splits.on_split(results.load(league_dir, league.mix_suites, not league.no_verify), league.split)
     main = leaderboard(league, runs).assign(split=league.split)  # the layouts its ratings are from
     h2h = {sc: head_to_head(league, runs, sc) for sc in league.scenarios}
     notes = [
@@ -137,7 +137,8 @@ def write_board(league_dir: Path, league: League) -> list[Path]:
         notes.append(f"LLM cost unknown (left blank) where {unpriced} calls had no price for their model (docs/llm.md)")
     out = Path(league_dir)
     main.to_csv(out / "leaderboard.csv", index=False)
-    mixed = mixed_title(runs) + splits.title(league.split)  # mixed suite versions, the split: every table says so
+    # mixed suites, unverified bundles, the split: every table says so
+    mixed = mixed_title(runs) + splits.title(league.split)
     md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", f"## Leaderboard{mixed}", "", to_markdown(main)]
     for sc, t in h2h.items():
         md += ["", f"## Head to head, {sc} (row's win rate against column, episodes){mixed}", "", to_markdown(t)]

@@ -3,9 +3,10 @@
 init  [scenarios=[a,b]] [episodes_per_match=N] [KEY=VALUE]   a new league with the built-in opponents
 add   NAME team=TEAM [llm=PRESET] [OPTION=VALUE] [llm.KEY=VALUE]   a new entrant (creates the league if needed)
 play  [league keys, e.g. budget.episodes=4] [run overrides, e.g. episode_length=20] [parallel=N]
-board [mix_suites=true] [split=test]                        leaderboard.md, .csv, .html
+board [mix_suites=true] [no_verify=true] [split=test]       leaderboard.md, .csv, .html
 
-Rounds of different suite versions are refused unless mix_suites=true (then the board says so).
+Rounds of different suite versions are refused unless mix_suites=true, handed-over bundles that fail
+their checks (pillagerbench verify) unless no_verify=true (then the board says so).
 split=test (league.yaml or play/board) plays and rates on fresh test layouts (league/splits.py).
 """
 

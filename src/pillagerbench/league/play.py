@@ -16,11 +16,12 @@ from pillagerbench.config import ConfigError
 from pillagerbench.experiments.runner import check_series, execute, load_experiment
 from pillagerbench.league import results
 from pillagerbench.league.compose import check_entrant
-from pillagerbench.league.rounds import check_stamps, round_dirs, write_round
+from pillagerbench.league.rounds import check_stamps, handed_over, round_dirs, write_round
 from pillagerbench.league.schedule import next_round
 from pillagerbench.league.spec import League
 from pillagerbench.league.splits import check_game, on_split
 from pillagerbench.league.standings import boards
+from pillagerbench.metrics.verified import check_bundles
 from pillagerbench.rundir import RunDir
 
 RUNNER = ("parallel", "launcher", "ray_address", "display")  # how to play, not what: free to change
@@ -46,6 +47,8 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) 
     for e in league.entrants:
         check_entrant(e, league.scenarios, game)
     check_stamps(league_dir, league, game)
+    if not league.no_verify:  # before anything is played: a handed-over bundle that fails its checks is refused
+        check_bundles(handed_over(league_dir))
     start = results.spent(league_dir)
     if (over := start.over(league.budget)) and not (round_dirs(league_dir) and _unfinished(round_dirs(league_dir)[-1])):
         raise ConfigError(f"budget already spent ({over}); raise it (e.g. budget.episodes=N) to play more")
@@ -61,7 +64,9 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) 
         if over := spent.over(league.budget):
             print(f"league stopped: budget spent ({over})")
             return 0
-        outs = results.outcomes(on_split(results.load(league_dir, league.mix_suites), league.split)[0])
+        outs = results.outcomes(
+            on_split(results.load(league_dir, league.mix_suites, not league.no_verify), league.split)[0]
+        )
         pairings = next_round(boards(league, outs), outs, league.confidence, league.matches_per_round)
         if not pairings:
             print(f"league settled: every adjacent pair is separated at confidence {league.confidence:g}")

@@ -11,7 +11,8 @@ import pandas as pd
 from pillagerbench.league.ratings import Outcome
 from pillagerbench.league.rounds import handed_over, round_dirs
 from pillagerbench.llm.ledger import read_ledger
-from pillagerbench.metrics.runs import Runs, load_runs
+from pillagerbench.metrics.runs import Runs
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.rundir import LEDGER, RunDir
 
 
@@ -32,8 +33,9 @@ class Spent:
         return None
 
 
-def load(league_dir: Path, mix_suites: bool = False) -> Runs:
-    return load_runs([*round_dirs(league_dir), *handed_over(league_dir)], mix_suites)
+def load(league_dir: Path, mix_suites: bool = False, verify: bool = True) -> Runs:
+    """The league's rounds, the handed-over bundles verified first unless `verify` is False (no_verify=true)."""
+    return load_runs([*round_dirs(league_dir), *handed_over(league_dir)], mix_suites, verify)
 
 
 def outcomes(runs: Runs) -> list[Outcome]:

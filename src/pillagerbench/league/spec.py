@@ -10,10 +10,11 @@
       - {name: do_nothing, team: do_nothing, options: {}, llm: null, llm_options: {}}
 
     mix_suites: false           # true: rate rounds of different suite versions together (the board says so)
+    no_verify: false            # true: read handed-over bundles that fail their checks (the board says so)
     split: paper                # the layouts rated on: paper, test (a fresh layout every episode) or dev
 
 `play` and `board` may override any of these keys for one invocation (`budget.episodes=4`, `scenarios=[...]`,
-`mix_suites=true`, `split=test`).
+`mix_suites=true`, `no_verify=true`, `split=test`).
 """
 
 from __future__ import annotations
@@ -61,6 +62,7 @@ class League:
     )
     entrants: list[Entrant] = field(default_factory=list)
     mix_suites: bool = False  # rate episodes of different suite versions together (the board says so)
+    no_verify: bool = False  # read handed-over bundles (matches/*.tar.gz) that fail their checks (the board says so)
     split: str = "paper"  # the layouts its matches are played and rated on (league/splits.py)
 
     def entrant(self, name: str) -> Entrant | None:

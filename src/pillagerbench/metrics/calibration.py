@@ -4,7 +4,8 @@ when the red team is do_nothing, from real episodes stored with the results.
     pillagerbench calibrate [key=value ...]        play experiment=calibration, write its calibration.json
     pillagerbench calibrate RUN_DIR... [--out F]   compute it from runs that have do_nothing-red series
                                                    (e.g. a round robin), write RUN_DIR/calibration.json;
-                                                   --mix-suites allows runs of different suite versions
+                                                   --mix-suites allows runs of different suite versions;
+                                                   --no-verify reads a bundle that fails its checks
 
 calibration.json: {"created", "sources": [run dirs], "scenarios": {scenario: {"version", "episode_length",
 "opponents": {team: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them).
@@ -24,7 +25,8 @@ import pandas as pd
 from pillagerbench.args import Parser
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
-from pillagerbench.metrics.runs import ReportError, Runs, beside, load_runs, mix_switch, mixed_notes
+from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, reader_switches
+from pillagerbench.metrics.verified import load_runs
 
 CALIBRATION = "calibration.json"
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
@@ -76,6 +78,7 @@ def calibration_from_runs(runs: Runs) -> dict:
         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         "sources": [str(r) for r in runs.runs],
         "suites": runs.suites,  # more than one only with --mix-suites
+        "notes": mixed_notes(runs),  # mixed suites, bundles read without their checks (--no-verify)
         "scenarios": scenarios,
     }
 
@@ -191,9 +194,9 @@ def main(argv: list[str]) -> int:
             default=None,
             help="file to write (default: FIRST_RUN/calibration.json; beside a bundle: BUNDLE_calibration.json)",
         )
-        mix_switch(p)
+        reader_switches(p)
         a = p.parse_args(argv)
-        runs = load_runs(a.runs, a.mix_suites)
+        runs = load_runs(a.runs, a.mix_suites, not a.no_verify)
         out = Path(a.out) if a.out else beside(Path(a.runs[0]), CALIBRATION)
     else:  # play the calibration experiment first
         from pillagerbench.config import load_config

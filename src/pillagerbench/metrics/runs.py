@@ -9,8 +9,10 @@ episodes of a killed run, series that did not finish). Runs of different version
 (or different episode lengths) are refused: their scores do not compare. So are episodes of different
 suite versions (suite.py; records from before it read "unversioned") unless `mix_suites` asks for them,
 and then `mixed_notes` says so. A results bundle (rundir/bundle.py) is read as the run directories in it,
-named by the paths they were exported from. Every finished episode's faults (metrics/faults.py: ours or
-the team's) are in `faults`.
+named by the paths they were exported from; `read_runs` reads it as it is: readers call
+metrics/verified.py `load_runs`, which verifies it first (or, asked not to, marks it in `unverified`,
+and `mixed_notes` says so). Every finished episode's faults (metrics/faults.py: ours or the team's) are
+in `faults`.
 """
 
 from __future__ import annotations
@@ -62,24 +64,36 @@ class Runs:
     faults: list[dict] = field(default_factory=list)  # every finished episode's faults (metrics/faults.py)
     suites: list[str] = field(default_factory=list)  # the suite versions of the episodes used
     bundles: list[Path] = field(default_factory=list)  # results bundles among the inputs
+    unverified: list[Path] = field(default_factory=list)  # bundles read without their checks (--no-verify)
 
 
 def mixed_notes(runs: Runs) -> list[str]:
-    """What every table of mixed suite versions says: one line, or none when the episodes share one."""
-    if len(runs.suites) < 2:
-        return []
-    return [f"mixed suite versions or conditions: {', '.join(runs.suites)} (scores may not compare)"]
+    """What every table says of the runs it is made of: mixed suite versions or conditions, bundles read without
+    their checks; none when neither."""
+    out = []
+    if len(runs.suites) >= 2:
+        out.append(f"mixed suite versions or conditions: {', '.join(runs.suites)} (scores may not compare)")
+    if runs.unverified:
+        names = ", ".join(str(b) for b in runs.unverified)
+        out.append(f"bundle not verified: {names} (--no-verify; its numbers may have been edited)")
+    return out
 
 
 def mixed_title(runs: Runs) -> str:
-    """The mark a table's title gets when suite versions are mixed ('' when not)."""
+    """The mark a table's title gets when suite versions are mixed or a bundle was not verified ('' when not)."""
     return "".join(f" [{n}]" for n in mixed_notes(runs))
 
 
-def mix_switch(parser: Any) -> None:
-    """--mix-suites on a command that reads runs (argparse): allow episodes of different suite versions."""
+def reader_switches(parser: Any) -> None:
+    """The switches of a command that reads runs (argparse): --mix-suites allows episodes of different
+    suite versions, --no-verify reads a results bundle that fails its checks; every table says so."""
     parser.add_argument(
         "--mix-suites", action="store_true", help="allow episodes of different suite versions (every table says so)"
+    )
+    parser.add_argument(
+        "--no-verify",
+        action="store_true",
+        help="read results bundles without their checks (pillagerbench verify); every table says so",
     )
 
 
@@ -281,7 +295,8 @@ def _named(where: str, roots: dict[Path, Path]) -> str:
     return where
 
 
-def load_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
+def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
+    """The runs as they are, bundles unchecked: readers use metrics/verified.py `load_runs`."""
     series: list[Any] = []
     skipped: list[Any] = []
     rows: list[Any] = []

@@ -25,8 +25,9 @@ import pandas as pd
 from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.faults import fault_note, faults_table
-from pillagerbench.metrics.runs import ReportError, Runs, beside, load_runs, mix_switch, mixed_notes, mixed_title
+from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, mixed_title, reader_switches
 from pillagerbench.metrics.symmetry import side_symmetry
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report import generalization as unseen
 from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.fidelity import fidelity_sections
@@ -64,8 +65,9 @@ def build_report(
     calibration: Path | None = None,
     with_replays: bool = True,
     mix_suites: bool = False,
+    verify: bool = True,
 ) -> dict:
-    runs = load_runs(run_dirs, mix_suites)
+    runs = load_runs(run_dirs, mix_suites, verify)
     origin: dict = {}
     sigma, notes = calib.resolve(runs, calibration, origin, fallback=True)
     out.mkdir(parents=True, exist_ok=True)
@@ -106,7 +108,7 @@ def build_report(
         table("faults", "Failures: ours (the harness) apart from the teams' own", faults_table(runs.faults)),
         table("skipped", "Skipped", tables.skipped(runs.skipped)),
     ]
-    for s in sections:  # mixed suite versions: every table says so (its .md file too)
+    for s in sections:  # mixed suite versions, a bundle not verified: every table says so (its .md file too)
         s.title += mixed_title(runs)
     notes = [
         *mixed_notes(runs),
@@ -115,7 +117,10 @@ def build_report(
         *notes,
         *more_notes(runs, sigma, pairs, fidelity_notes),
         *fault_note(runs.faults),
-        *[f"read from the results bundle {b} (pillagerbench verify checks it)" for b in runs.bundles],
+        *[
+            f"read from the results bundle {b}{'' if b in runs.unverified else ', its checks passed'}"
+            for b in runs.bundles
+        ],
         *lag_notes(lag, one_order),
         *unseen.unseen_notes(main),
     ]
@@ -261,12 +266,12 @@ def main(argv: list[str]) -> int:
         help="a calibration.json (pillagerbench calibrate), or `reference`: upstream's reference scores",
     )
     p.add_argument("--no-replays", action="store_true", help="do not write the episodes' replay pages")
-    mix_switch(p)
+    reader_switches(p)
     a = p.parse_args(argv)
     out = Path(a.out) if a.out else beside(Path(a.runs[0]), "report")
     try:
         calibration = Path(a.calibration) if a.calibration else None
-        result = build_report(a.runs, out, calibration, not a.no_replays, a.mix_suites)
+        result = build_report(a.runs, out, calibration, not a.no_replays, a.mix_suites, not a.no_verify)
     except ReportError as exc:
         print(f"pillagerbench report: {exc}", file=sys.stderr)
         return 2

@@ -12,7 +12,8 @@ import pandas as pd
 from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.fidelity import claims_table, fidelity_table
-from pillagerbench.metrics.runs import ReportError, Runs, load_runs, mix_switch, mixed_title
+from pillagerbench.metrics.runs import ReportError, Runs, mixed_notes, mixed_title, reader_switches
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.tables import to_markdown
 
 SIGMA_FROM_RUNS_NOTE = (
@@ -50,10 +51,10 @@ def main(argv: list[str]) -> int:
         default=None,
         help="a calibration.json for σ_blue (sabotage claims), or `reference`: upstream's reference scores",
     )
-    mix_switch(p)
+    reader_switches(p)
     a = p.parse_args(argv)
     try:
-        runs = load_runs([Path(r) for r in a.runs], a.mix_suites)
+        runs = load_runs([Path(r) for r in a.runs], a.mix_suites, not a.no_verify)
         origin: dict = {}
         sigma, _ = calib.resolve(runs, Path(a.calibration) if a.calibration else None, origin)
     except ReportError as exc:
@@ -61,7 +62,7 @@ def main(argv: list[str]) -> int:
         return 2
     table, claims, notes = fidelity_sections(runs, sigma, origin)
     mixed = mixed_title(runs)
-    for note in notes:
+    for note in mixed_notes(runs) + notes:
         print(note)
     if len(table):
         print(f"\nBuilt-in opponents against do_nothing (Dash & Dine ×0.1; ± is the 95 % interval){mixed}\n")

@@ -7,8 +7,9 @@ import sys
 from pathlib import Path
 
 from pillagerbench.args import Parser
-from pillagerbench.metrics.runs import ReportError, load_runs, mix_switch, mixed_notes
+from pillagerbench.metrics.runs import ReportError, mixed_notes, reader_switches
 from pillagerbench.metrics.symmetry import side_symmetry
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.tables import to_markdown
 
 
@@ -17,10 +18,10 @@ def main(argv: list[str]) -> int:
     p.add_argument(
         "runs", nargs="+", help="run directories (experiment=symmetry, round robins, plain runs) or results bundles"
     )
-    mix_switch(p)
+    reader_switches(p)
     a = p.parse_args(argv)
     try:
-        runs = load_runs([Path(r) for r in a.runs], a.mix_suites)
+        runs = load_runs([Path(r) for r in a.runs], a.mix_suites, not a.no_verify)
     except ReportError as exc:
         print(f"pillagerbench symmetry: {exc}", file=sys.stderr)
         return 2
