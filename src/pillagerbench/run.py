@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from pillagerbench.arena import ArenaServer
-from pillagerbench.config import load_config
+from pillagerbench.config import load_config, to_dict
 from pillagerbench.display import MatchDisplay
 from pillagerbench.manifest import write_manifest
 from pillagerbench.match import Match
@@ -24,6 +24,7 @@ from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
 from pillagerbench.scenarios.layout import PAPER, parse_layout
 from pillagerbench.teams import Team, team_from_config
+from pillagerbench.teams.entrant import entrant_of
 
 
 def make_run_dir(cfg) -> Path:
@@ -56,6 +57,7 @@ async def play_match(
     if server.watch_url:
         print(f"live view: {server.watch_url}", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
+    config = to_dict(cfg)
     match = Match(
         server,
         scenario,
@@ -68,6 +70,7 @@ async def play_match(
         split=cfg.get("split"),
         on_tick=on_tick,
         llms=llms,
+        entrants={side: entrant_of(config, side) for side in teams},
     )
     match.last_records.update(last or {})
     try:

@@ -30,18 +30,19 @@ FILES = ("leaderboard.md", "leaderboard.csv", "leaderboard.html")
 
 
 def _episodes(runs: results.Runs) -> pd.DataFrame:
-    return runs.episodes if len(runs.episodes) else pd.DataFrame(columns=["scenario", "red", "blue", *SCORES])
+    return runs.episodes if len(runs.episodes) else pd.DataFrame(columns=["scenario", *NAMES, *SCORES])
 
 
 SCORES = ("red_score", "blue_score")
+NAMES = ("red_name", "blue_name", "red_entrant", "blue_entrant", "red_entrant_id", "blue_entrant_id")
 
 
 def _sides(df: pd.DataFrame, name: str) -> pd.DataFrame:
     """The entrant's episodes as (opponent, own, opp) rows, whichever side it played."""
-    red, blue = df[df["red"] == name], df[df["blue"] == name]
+    red, blue = df[df["red_name"] == name], df[df["blue_name"] == name]
     return pd.DataFrame(
         {
-            "opponent": list(red["blue"]) + list(blue["red"]),
+            "opponent": list(red["blue_name"]) + list(blue["red_name"]),
             "own": list(red["red_score"]) + list(blue["blue_score"]),
             "opp": list(red["blue_score"]) + list(blue["red_score"]),
         }

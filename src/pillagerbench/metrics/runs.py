@@ -10,7 +10,8 @@ episodes of a killed run, series that did not finish). Runs of different version
 suite versions (suite.py; records from before it read "unversioned") unless `mix_suites` asks for them,
 and then `mixed_notes` says so. A results bundle (rundir/bundle.py) is read as the run directories in it,
 named by the paths they were exported from. Every finished episode's faults (metrics/faults.py: ours or
-the team's) are in `faults`.
+the team's) are in `faults`. Each side of an episode is its entrant (metrics/entrants.py): `red` and
+`blue` are the entrants' names, which every table groups by.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.match import SCORINGS
+from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
 from pillagerbench.metrics.faults import faults
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, SeriesSpec, read_series
@@ -47,6 +49,7 @@ class SeriesInfo(SeriesSpec):
     version: str = "?"  # the scenario's version (its manifest)
     episode_length: float = 120.0
     manifest: dict = field(default_factory=dict)  # the series' manifest.json ({} when not started)
+    entrants: dict = field(default_factory=dict)  # side -> its entrant from the config (metrics/entrants.py)
 
 
 @dataclass
@@ -120,6 +123,7 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
                 version=str(manifest.get("scenario", {}).get("version", "?")),
                 episode_length=float(spec.config.get("episode_length", 120)),
                 manifest=manifest,
+                entrants=series_entrants(spec.config),
             )
         )
     return out
@@ -200,8 +204,9 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "scenario": s.scenario,
         "version": s.version,
         "episode_length": s.episode_length,
-        "red": s.red,
+        "red": s.red,  # the entrants' names once every row is read (metrics/entrants.py)
         "blue": s.blue,
+        **columns({"red": rec.red_entrant, "blue": rec.blue_entrant}, s.entrants, {"red": s.red, "blue": s.blue}),
         "red_team": s.red_team,
         "blue_team": s.blue_team,
         "design": s.design,
@@ -297,10 +302,12 @@ def load_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
             from pillagerbench.llm.ledger import read_ledger
 
             ledger += [
-                {**r, "label": s.red, "scenario": s.scenario, "series": s.id}
+                {**r, "label": s.red, "scenario": s.scenario, "series": s.id, "run": str(s.run)}
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
+    name_sides(rows)  # red and blue: the entrants, in every table
+    label_calls(ledger, rows)
     suites = _suites(rows, mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
     df = pd.DataFrame(rows)

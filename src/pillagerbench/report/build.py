@@ -179,7 +179,7 @@ def series_figures(
 ) -> list[Section]:
     """The figures over the episodes of a series: D per episode index, per group, self-play."""
     n_groups = int(grouped.loc[grouped["scenario"] != tables.ALL, "episodes"].sum()) if len(grouped) else 0
-    same = df[(df["red_team"] == df["blue_team"]) & (df["red_team"] != "do_nothing")] if len(df) else df
+    same = df[(df["red"] == df["blue"]) & (df["red_team"] != "do_nothing")] if len(df) else df
     return [
         figure(
             "Points difference per episode",

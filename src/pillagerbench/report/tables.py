@@ -72,7 +72,7 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
             rd = sd[sd["red"] == red]
             for blue in opponent_order(rd, scenario):
                 g = rd[rd["blue"] == blue]
-                s = sigma.get((scenario, g["blue_team"].iloc[0]))
+                s = sigma.get((scenario, blue))
                 rows.append(
                     {
                         "scenario": scenario,
@@ -168,8 +168,8 @@ def per_team(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
         for team in team_order(sd):
             td = sd[sd["team"] == team]
             groups_ = []
-            for _, g in td.groupby("opponent_team", sort=False):
-                s = sigma.get((scenario, g["opponent_team"].iloc[0]))
+            for opponent, g in td.groupby("opponent", sort=False):
+                s = sigma.get((scenario, str(opponent)))
                 groups_.append((g["own"].to_numpy(), g["opp"].to_numpy(), s.mean if s else None, s))
             rows.append(
                 {

@@ -40,6 +40,10 @@ class EpisodeRecord:
     layout: str | int = "paper"  # the arena's layout: "paper", a seed, or a layout file (docs/layouts.md)
     split: str = "paper"  # paper | dev | test | custom (scenarios/layout.py split_of)
     suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite.py)
+    # who played each side: {label, id, team, models, options} (teams/entrant.py); None in records from
+    # before entrants (readers derive it from the series' config: metrics/entrants.py)
+    red_entrant: dict[str, Any] | None = None
+    blue_entrant: dict[str, Any] | None = None
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
