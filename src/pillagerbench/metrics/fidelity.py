@@ -329,9 +329,7 @@ def claims_table(df: pd.DataFrame, sigma: dict) -> tuple[pd.DataFrame, list[str]
     stats = _stats_of(main, sigma)
     few = []
     pairs: dict[str, dict] = {}
-    for (scenario, red, blue), g in (
-        main.groupby(["scenario", "red", "blue"], sort=False) if len(main) else []
-    ):
+    for (scenario, red, blue), g in main.groupby(["scenario", "red", "blue"], sort=False) if len(main) else []:
         pairs.setdefault(scenario, {})[(red, blue)] = mean_ci(
             np.asarray(g["red_score"] > g["blue_score"], dtype=float) + 0.5 * (g["red_score"] == g["blue_score"])
         )
