@@ -100,7 +100,9 @@ def test_the_contents_name_the_sections_present_and_empty_ones_are_left_off(tmp_
     assert "(empty)" not in page
     # ... while their files are still written (scripts rely on the set of files)
     assert (out / "skipped.csv").exists() and (out / "groups.png").exists() and (out / "lagged.md").exists()
-    assert "Summary per red team (all scenarios and opponents)" in shown and "Points over time: Mushroom War" in shown
+    assert (
+        "Summary per red entrant (all scenarios and opponents)" in shown and "Points over time: Mushroom War" in shown
+    )
 
 
 def test_a_one_episode_run_says_n_is_1(tmp_path):
@@ -108,7 +110,7 @@ def test_a_one_episode_run_says_n_is_1(tmp_path):
     result = build_report([run], tmp_path / "report", with_replays=False)
     assert any(n.startswith("n = 1: 1 of 1 pairing(s) rest on a single episode") for n in result["notes"])
     page = (tmp_path / "report" / "report.html").read_text()
-    (summary,) = table_after(page, "Summary per red team (all scenarios and opponents)")
+    (summary,) = table_after(page, "Summary per red entrant (all scenarios and opponents)")
     assert summary["P"] == "5.00 (n = 1)" and summary["D"] == "2.00 (n = 1)"
     assert "| passive | 1 | 5.00 (n = 1) |" in (tmp_path / "report" / "summary.md").read_text()
 

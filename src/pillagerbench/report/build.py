@@ -79,10 +79,12 @@ def build_report(
     sections = [  # the report's one list of sections: its files, its contents and its page
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
         table(
-            "summary", "Summary per red team (all scenarios and opponents)", tables.summary(main, sigma, runs.ledger)
+            "summary", "Summary per red entrant (all scenarios and opponents)", tables.summary(main, sigma, runs.ledger)
         ),
-        table("per_scenario", "Per red team and scenario", tables.summary(main, sigma, runs.ledger, by_scenario=True)),
-        table("per_team", "Per team, whichever side it played (own points vs the opponent's)", per_team),
+        table(
+            "per_scenario", "Per red entrant and scenario", tables.summary(main, sigma, runs.ledger, by_scenario=True)
+        ),
+        table("per_team", "Per entrant, whichever side it played (own points vs the opponent's)", per_team),
         table("pairings", "Per pairing (heatmap values)", pairs),
         table("groups", "Groups (adaptation: same/different opponent; self-play: after k episodes)", grouped),
         table(

@@ -1,5 +1,6 @@
 """The report's tables as DataFrames (numbers with separate 95 % CI columns), written as CSV and
-Markdown ("mean ± ci").
+Markdown ("mean ± ci"). A "team" here is an entrant (metrics/entrants.py): `red` and `blue` are the
+entrants' labels, and σ_blue is keyed by the opponent's entrant (a built-in team's is its name).
 
 - summary:       per red team (row label) over every scenario and opponent: P S D W, T_resp N_out R_tps, I
                  (the paper's main table, model ablation and module ablation)
