@@ -1,6 +1,6 @@
 """Entrants on the real server (issue 37, item 1): a league of cot on two models (the fake LLM provider
 under two model names) plays a match; every episode records each side's entrant, the board has one
-row per entrant with its label and id, the report one row per entrant, and the same round with its
+row per entrant with its label and id, the report one row per entrant, and its LLM calls in its row, and the same round with its
 records stripped of their entrants (a run from before them) reports the same entrants."""
 
 from __future__ import annotations
@@ -68,6 +68,8 @@ def test_the_report_has_a_row_per_entrant_and_an_old_copy_reports_the_same(leagu
     build_report([round_dir], tmp_path / "report", with_replays=False)
     per_team = list(csv.DictReader((tmp_path / "report" / "per_team.csv").open()))
     assert sorted(r["team"] for r in per_team) == ["cot@gpt-4o", "cot@gpt-4o-mini"]
+    (summary,) = csv.DictReader((tmp_path / "report" / "summary.csv").open())  # the red entrant's row
+    assert summary["red"] in ("cot@gpt-4o", "cot@gpt-4o-mini") and int(summary["llm_calls"]) >= 1  # its calls
 
     old = shutil.copytree(round_dir, tmp_path / "old")
     for path in old.glob("series/*/episodes.jsonl"):  # records from before entrants

@@ -7,7 +7,8 @@ when the red team is do_nothing, from real episodes stored with the results.
                                                    --mix-suites allows runs of different suite versions
 
 calibration.json: {"created", "sources": [run dirs], "scenarios": {scenario: {"version", "episode_length",
-"opponents": {team: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them).
+"opponents": {entrant: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them); an
+opponent is its entrant's label (metrics/entrants.py): a built-in team's is its name, as in upstream's reference.
 `pillagerbench run experiment=... calibration=FILE` copies the file into the new run directory.
 """
 

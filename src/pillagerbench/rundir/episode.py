@@ -50,8 +50,8 @@ class EpisodeRecord:
         """A record read back, whichever version wrote it: the one place that knows earlier versions.
         Keys added since take their defaults (records before scoring modes were clean-scored, before
         protocols played ours), a record before suite versions is "unversioned", `scores` is filled from
-        red_score/blue_score where it was not recorded, null lists and maps are empty; unknown keys are
-        dropped."""
+        red_score/blue_score where it was not recorded, null lists and maps are empty, a record before
+        entrants has none (its reader derives them from the config); unknown keys are dropped."""
         known = {f.name for f in fields(cls)}
         rec = cls(**{k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE})
         if not rec.scores and rec.red_score is not None and rec.blue_score is not None:
