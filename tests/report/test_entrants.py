@@ -1,5 +1,5 @@
 """The report groups by entrant (issue 37, item 1): cot on two models is two rows in every table, never
-one "cot" row. Hand-made runs whose records are from before entrants (no red_entrant/blue_entrant):
+one "cot" row; σ_blue, side symmetry and "Unseen arenas" too. Hand-made runs whose records are from before entrants (no red_entrant/blue_entrant):
 their entrants come from the manifests' configs, so old run directories still report (no server)."""
 
 from __future__ import annotations
@@ -8,11 +8,15 @@ import csv
 import json
 from pathlib import Path
 
+from pillagerbench.metrics.calibration import calibration_from_runs
 from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.report.build import build_report
+from pillagerbench.report.generalization import unseen_arenas
 from pillagerbench.teams.entrant import entrant_of
 from tests.metrics.fake_runs import write_run
 from tests.report.test_says_what_it_is import with_manifest
+from tests.report.test_unseen_arenas import TEST_SEEDS
 
 
 def cot_run(path: Path, model: str, scores: list[tuple[float, float]]) -> Path:
@@ -57,3 +61,37 @@ def test_entrants_that_read_alike_get_their_ids(tmp_path):
         runs.append(with_manifest(run, red={"name": "random", "pause_every": value}))
     df = load_runs(runs).episodes
     assert df["red"].nunique() == 2 and all(r.startswith("random(pause_every=2)#") for r in df["red"])
+
+
+def llm_run(path: Path, red: tuple[str, str], blue: tuple[str, str], scores, **kw) -> Path:
+    """A run of (team, model) against (team, model); a model of None: a team without an LLM."""
+    run = write_run(path, "mushroom_war", red[0], blue[0], scores, length=6, **kw)
+    nodes = {
+        side: {"name": t, "llm": {"model": m}} if m else {"name": t}
+        for side, (t, m) in zip(("red", "blue"), (red, blue))
+    }
+    return with_manifest(run, llm={"provider": "openai", "model": "gpt-4o"}, **nodes)
+
+
+def test_calibration_symmetry_and_unseen_arenas_keep_entrants_apart(tmp_path):
+    four, mini, nothing = ("cot", "gpt-4o"), ("cot", "gpt-4o-mini"), ("do_nothing", None)
+    runs = [
+        llm_run(tmp_path / "a", nothing, four, [(0, 6), (0, 4)]),
+        llm_run(tmp_path / "b", nothing, mini, [(0, 1), (0, 1)]),
+        llm_run(tmp_path / "c", four, mini, [(5, 1), (6, 2)]),
+        llm_run(tmp_path / "d", mini, four, [(1, 5), (2, 6)]),
+    ]
+    loaded = load_runs(runs)
+    sigma = calibration_from_runs(loaded)["scenarios"]["mushroom_war"]["opponents"]
+    assert {k: v["sigma_blue"] for k, v in sigma.items()} == {"cot@gpt-4o": 5.0, "cot@gpt-4o-mini": 1.0}
+    table, _ = side_symmetry(loaded.episodes[loaded.episodes["red_team"] == "cot"])
+    assert sorted(table["team"]) == ["cot@gpt-4o", "cot@gpt-4o-mini"]  # not a mirror match of "cot"
+    assert set(table.loc[table["team"] == "cot@gpt-4o", "as_red"]) == {5.5}
+
+    arenas = [
+        llm_run(tmp_path / f"{split}_{m}", (("cot", m)), nothing, [(3, 0)] * 3, layouts=layouts)
+        for m in ("gpt-4o", "gpt-4o-mini")
+        for split, layouts in (("paper", ["paper"] * 3), ("test", TEST_SEEDS))
+    ]
+    unseen = unseen_arenas(load_runs(arenas).episodes, {})
+    assert set(unseen["team"]) == {"cot@gpt-4o", "cot@gpt-4o-mini", "do_nothing"}
