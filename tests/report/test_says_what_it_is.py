@@ -20,6 +20,7 @@ from pillagerbench.metrics.runs import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.build import main as report_main
 from pillagerbench.report.plots import timeline_lines
+from pillagerbench.teams.entrant import entrant_of
 from tests.metrics.fake_runs import write_run
 
 FIXTURE = Path(__file__).resolve().parents[1] / "replay" / "fixtures" / "episode_000"
@@ -67,6 +68,8 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
     build_report([llm, builtin], tmp_path / "report", with_replays=False)
     page = (tmp_path / "report" / "report.html").read_text()
     rows = {r["run"]: r for r in table_after(page, "Provenance: what each run is, from its manifests")}
+    config = json.loads((llm / "manifest.json").read_text())["config"]
+    ids = {side: entrant_of(config, side)["id"] for side in ("red", "blue")}  # derived: records before entrants
     assert rows[str(llm)] == {
         "run": str(llm),
         "what": "run",
@@ -78,6 +81,7 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
         "episode_length": "6 s",
         "episodes": "2 of 2",
         "models": "cot: openai gpt-4o-mini",
+        "entrants": f"cot@gpt-4o-mini ({ids['red']}), balanced ({ids['blue']})",
         "scoring": "upstream",
         "protocol": "upstream",
     }
