@@ -56,7 +56,7 @@ class SeriesInfo(SeriesSpec):
 class Runs:
     episodes: pd.DataFrame  # one row per usable episode
     series: list[SeriesInfo]
-    ledger: list[dict]  # red-team LLM calls, each with "label" (row) and "scenario"
+    ledger: list[dict]  # red-team LLM calls, each with "label" (its red entrant's row), "scenario", "run", "series"
     skipped: list[tuple[str, str]] = field(default_factory=list)  # (where, why)
     calibration_files: list[Path] = field(default_factory=list)
     runs: list[Path] = field(default_factory=list)  # every run's name (a bundle's: the paths exported)
