@@ -11,11 +11,13 @@ from omegaconf import OmegaConf
 
 from pillagerbench.arena import ArenaServer
 from pillagerbench.conditions import conditions_of
+from pillagerbench.config import to_dict
 from pillagerbench.match import Match
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
 from pillagerbench.scenarios.layout import PAPER, parse_layout
 from pillagerbench.teams import Team
+from pillagerbench.teams.entrant import entrant_of
 
 
 async def play_match(
@@ -41,6 +43,7 @@ async def play_match(
     if server.watch_url:
         print(f"live view: {server.watch_url}", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
+    config = to_dict(cfg)
     match = Match(
         server,
         scenario,
@@ -54,6 +57,7 @@ async def play_match(
         conditions=conditions_of(lambda key: OmegaConf.select(cfg, key), scenario.key),
         on_tick=on_tick,
         llms=llms,
+        entrants={side: entrant_of(config, side) for side in teams},
     )
     match.last_records.update(last or {})
     try:

@@ -20,6 +20,7 @@ from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.build import main as report_main
 from pillagerbench.report.plots import timeline_lines
+from pillagerbench.teams.entrant import entrant_of
 from tests.metrics.fake_runs import write_run
 
 FIXTURE = Path(__file__).resolve().parents[1] / "replay" / "fixtures" / "episode_000"
@@ -67,6 +68,8 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
     build_report([llm, builtin], tmp_path / "report", with_replays=False)
     page = (tmp_path / "report" / "report.html").read_text()
     rows = {r["run"]: r for r in table_after(page, "Provenance: what each run is, from its manifests")}
+    config = json.loads((llm / "manifest.json").read_text())["config"]
+    ids = {side: entrant_of(config, side)["id"] for side in ("red", "blue")}  # derived: records before entrants
     assert rows[str(llm)] == {
         "run": str(llm),
         "what": "run",
@@ -78,6 +81,7 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
         "episode_length": "6 s",
         "episodes": "2 of 2",
         "models": "cot: openai gpt-4o-mini",
+        "entrants": f"cot@gpt-4o-mini ({ids['red']}), balanced ({ids['blue']})",
         "scoring": "upstream",
         "protocol": "upstream",
     }
@@ -100,7 +104,9 @@ def test_the_contents_name_the_sections_present_and_empty_ones_are_left_off(tmp_
     assert "(empty)" not in page
     # ... while their files are still written (scripts rely on the set of files)
     assert (out / "skipped.csv").exists() and (out / "groups.png").exists() and (out / "lagged.md").exists()
-    assert "Summary per red team (all scenarios and opponents)" in shown and "Points over time: Mushroom War" in shown
+    assert (
+        "Summary per red entrant (all scenarios and opponents)" in shown and "Points over time: Mushroom War" in shown
+    )
 
 
 def test_a_one_episode_run_says_n_is_1(tmp_path):
@@ -108,7 +114,7 @@ def test_a_one_episode_run_says_n_is_1(tmp_path):
     result = build_report([run], tmp_path / "report", with_replays=False)
     assert any(n.startswith("n = 1: 1 of 1 pairing(s) rest on a single episode") for n in result["notes"])
     page = (tmp_path / "report" / "report.html").read_text()
-    (summary,) = table_after(page, "Summary per red team (all scenarios and opponents)")
+    (summary,) = table_after(page, "Summary per red entrant (all scenarios and opponents)")
     assert summary["P"] == "5.00 (n = 1)" and summary["D"] == "2.00 (n = 1)"
     assert "| passive | 1 | 5.00 (n = 1) |" in (tmp_path / "report" / "summary.md").read_text()
 

@@ -2,7 +2,8 @@
 rebuilt only from the rounds' episodes.jsonl (and their ledgers), so the same files give the same board.
 
 The main table (also the CSV): rank by overall rating (equal ratings share a rank: 1, 1, 3),
-entrant, team, rating ± interval (at the league's confidence), conservative rating (mu − 3σ),
+entrant (its name in league.yaml), team, the entrant's label and id as its episodes recorded them
+(team, model per role and play options: teams/entrant.py), rating ± interval (at the league's confidence), conservative rating (mu − 3σ),
 episodes; per scenario its rating and the entrant's P, S, W over all its episodes on either side
 (S against each opponent with that opponent's mean score against do_nothing in the league as σ,
 where it has played do_nothing);
@@ -30,22 +31,32 @@ FILES = ("leaderboard.md", "leaderboard.csv", "leaderboard.html")
 
 
 def _episodes(runs: results.Runs) -> pd.DataFrame:
-    return runs.episodes if len(runs.episodes) else pd.DataFrame(columns=["scenario", "red", "blue", *SCORES])
+    return runs.episodes if len(runs.episodes) else pd.DataFrame(columns=["scenario", *NAMES, *SCORES])
 
 
 SCORES = ("red_score", "blue_score")
+NAMES = ("red_name", "blue_name", "red_entrant", "blue_entrant", "red_entrant_id", "blue_entrant_id")
 
 
 def _sides(df: pd.DataFrame, name: str) -> pd.DataFrame:
     """The entrant's episodes as (opponent, own, opp) rows, whichever side it played."""
-    red, blue = df[df["red"] == name], df[df["blue"] == name]
+    red, blue = df[df["red_name"] == name], df[df["blue_name"] == name]
     return pd.DataFrame(
         {
-            "opponent": list(red["blue"]) + list(blue["red"]),
+            "opponent": list(red["blue_name"]) + list(blue["red_name"]),
             "own": list(red["red_score"]) + list(blue["blue_score"]),
             "opp": list(red["blue_score"]) + list(blue["red_score"]),
         }
     )
+
+
+def _recorded(df: pd.DataFrame, name: str) -> dict[str, str]:
+    """The entrant label and id its episodes recorded (teams/entrant.py), "" before it played."""
+    seen: dict[str, str] = {}
+    for side in ("red", "blue"):
+        mine = df[df[f"{side}_name"] == name]
+        seen |= dict(zip(mine[f"{side}_entrant_id"], mine[f"{side}_entrant"]))
+    return {"label": ", ".join(dict.fromkeys(seen.values())), "id": ", ".join(seen)}
 
 
 def _sabotage(df: pd.DataFrame, mine: pd.DataFrame) -> Estimate:
@@ -78,6 +89,7 @@ def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
             "rank": place[name],
             "entrant": name,
             "team": entrant.team if entrant else "",
+            **_recorded(df, name),
             "rating": r.mu,
             "rating_ci": r.interval(z_conf),
             "conservative": r.conservative,

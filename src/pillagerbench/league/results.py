@@ -43,7 +43,14 @@ def outcomes(runs: Runs) -> list[Outcome]:
     if not len(df):
         return []
     return [
-        Outcome(r.scenario, r.red, r.blue, float(r.red_score), float(r.blue_score), (r.run, r.series, int(r.episode)))
+        Outcome(
+            r.scenario,
+            r.red_name,
+            r.blue_name,
+            float(r.red_score),
+            float(r.blue_score),
+            (r.run, r.series, int(r.episode)),
+        )
         for r in df.itertuples()
     ]
 

@@ -1,5 +1,5 @@
-"""What a run cost: each team's LLM calls, tokens and dollars, per model, from the ledgers of its
-series (`pillagerbench run` prints it at the end of a match and of an experiment)."""
+"""What a run cost: each entrant's LLM calls, tokens and dollars, from the ledgers of its series
+(`pillagerbench run` prints it at the end of a match and of an experiment)."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ from .ledger import LedgerStats, read_ledger, summarize
 
 
 def spend(sources: Iterable[tuple[Path, Mapping[str, str]]]) -> dict[str, LedgerStats]:
-    """`team@model` -> its calls' stats, over (ledger file, {side: team name}) pairs; a ledger that
-    does not exist (no LLM team) adds nothing."""
+    """Entrant label -> its calls' stats, over (ledger file, {side: entrant label}) pairs; a label
+    without a model (`@`) gets the calls' model; a ledger that does not exist (no LLM team) adds nothing."""
     calls: dict[str, list[dict]] = {}
     for path, names in sources:
         if not path.exists():
@@ -19,12 +19,13 @@ def spend(sources: Iterable[tuple[Path, Mapping[str, str]]]) -> dict[str, Ledger
         for call in read_ledger(path):
             side = call.get("team")
             if side in names:
-                calls.setdefault(f"{names[side]}@{call.get('model') or '?'}", []).append(call)
+                label = names[side] if "@" in names[side] else f"{names[side]}@{call.get('model') or '?'}"
+                calls.setdefault(label, []).append(call)
     return {label: summarize(found) for label, found in calls.items()}
 
 
 def spend_lines(sources: Iterable[tuple[Path, Mapping[str, str]]]) -> list[str]:
-    """One line per team and model: calls (failed), tokens in and out, and the cost or what is unpriced."""
+    """One line per entrant: calls (failed), tokens in and out, and the cost or what is unpriced."""
     return [
         f"LLM cost of {label}: {s.calls} call(s) ({s.errors} failed), {s.input_tokens:,} tokens in, "
         f"{s.output_tokens:,} out, {s.cost_text()}"

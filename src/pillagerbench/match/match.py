@@ -49,6 +49,7 @@ class Match:
         step_wait_s: float | None = None,
         split: str | None = None,
         conditions: dict[str, Any] | None = None,
+        entrants: dict[str, dict] | None = None,
     ):
         if scoring not in SCORINGS:
             raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
@@ -59,6 +60,7 @@ class Match:
         self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
         self.on_tick = on_tick
+        self.entrants = entrants or {}  # side -> the entrant playing it (teams/entrant.py), on every record
         self.players: dict[str, Player] = {}
         self.rundir = RunDir(run_dir)  # every path and record of the run directory
         self.last_records: dict[str, LastEpisode] = {}
@@ -135,6 +137,8 @@ class Match:
             layout=sc.layout_key,
             split=sc.split,
             conditions=dict(self.conditions),
+            red_entrant=self.entrants.get("red"),
+            blue_entrant=self.entrants.get("blue"),
         )
         out = self.rundir.episode(episode)
         (out / "events").mkdir(parents=True, exist_ok=True)

@@ -8,7 +8,8 @@ when the red team is do_nothing, from real episodes stored with the results.
                                                    --no-verify reads a bundle that fails its checks
 
 calibration.json: {"created", "sources": [run dirs], "scenarios": {scenario: {"version", "episode_length",
-"opponents": {team: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them).
+"opponents": {entrant: {"sigma_blue", "ci", "std", "n"}}}}}, scores unscaled (the report scales them); an
+opponent is its entrant's label (metrics/entrants.py): a built-in team's is its name, as in upstream's reference.
 `pillagerbench run experiment=... calibration=FILE` copies the file into the new run directory.
 """
 
@@ -37,21 +38,22 @@ REFERENCE_FALLBACK = (
 
 
 def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
-    """(scenario, team, episodes) for every built-in or other team that played `side` against a
-    do_nothing team on the other side, in ordinary series (shared by σ_blue and the fidelity check)."""
+    """(scenario, entrant, episodes) for every built-in team or other entrant that played `side` against a
+    do_nothing team on the other side, in ordinary series (shared by σ_blue and the fidelity check); a
+    built-in team's entrant is its name."""
     if not len(df):
         return
     other = "red" if side == "blue" else "blue"
     ref = df[(df[f"{other}_team"] == "do_nothing") & df["group"].isna()]
-    yield from ((sc, team, g) for (sc, team), g in ref.groupby(["scenario", f"{side}_team"], sort=False))
+    yield from ((sc, team, g) for (sc, team), g in ref.groupby(["scenario", side], sort=False))
 
 
 def opponent_groups(df: pd.DataFrame, sigma: dict) -> list:
-    """Per opponent (blue team) of the red rows in df: (red scores, blue scores, σ_blue, σ estimate),
+    """Per opponent (blue entrant) of the red rows in df: (red scores, blue scores, σ_blue, σ estimate),
     the input of formulas.over_opponents."""
     out = []
-    for (scenario, blue_team), g in df.groupby(["scenario", "blue_team"], sort=False):
-        s = sigma.get((scenario, blue_team))
+    for (scenario, blue), g in df.groupby(["scenario", "blue"], sort=False):
+        s = sigma.get((scenario, blue))
         out.append((g["red_score"].to_numpy(), g["blue_score"].to_numpy(), s.mean if s else None, s))
     return out
 

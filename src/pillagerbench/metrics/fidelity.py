@@ -338,13 +338,13 @@ def _teams_named(a: dict) -> list[str]:
 
 
 def _stats_of(df: pd.DataFrame, sigma: dict) -> dict[str, Stats]:
-    """Per scenario: per red team, P S W (over all opponents) and T1 (time to first points) estimates.
+    """Per scenario: per red entrant (a built-in team is its name), P S W (over all opponents) and T1 (time to first points) estimates.
     do_nothing is left out of T1 comparisons (it never acts)."""
     out: dict[str, Stats] = {}
     main = df[df["group"].isna()] if len(df) else df
     if not len(main):
         return out
-    for (scenario, red), g in main.groupby(["scenario", "red_team"], sort=False):
+    for (scenario, red), g in main.groupby(["scenario", "red"], sort=False):
         est = over_opponents(opponent_groups(g, sigma))
         t1 = mean_ci([first_points(r.t, r.red_t, r.episode_length) for r in g.itertuples()])
         out.setdefault(scenario, {})[red] = {**est, "T1": t1}
@@ -356,7 +356,7 @@ def _round_robins(df: pd.DataFrame) -> list[str]:
     out = []
     for scenario, g in df.groupby("scenario", sort=False):
         teams = set(builtin_teams(scenario)) - {"do_nothing"}
-        met = {(r, b) for r, b in zip(g["red_team"], g["blue_team"]) if r in teams and b in teams}
+        met = {(r, b) for r, b in zip(g["red"], g["blue"]) if r in teams and b in teams}
         if len(met) >= 2:
             out.append(scenario)
     return out
@@ -376,9 +376,7 @@ def claims_table(df: pd.DataFrame, sigma: dict) -> tuple[pd.DataFrame, list[str]
     stats = _stats_of(main, sigma)
     few = []
     pairs: dict[str, dict] = {}
-    for (scenario, red, blue), g in (
-        main.groupby(["scenario", "red_team", "blue_team"], sort=False) if len(main) else []
-    ):
+    for (scenario, red, blue), g in main.groupby(["scenario", "red", "blue"], sort=False) if len(main) else []:
         pairs.setdefault(scenario, {})[(red, blue)] = mean_ci(
             np.asarray(g["red_score"] > g["blue_score"], dtype=float) + 0.5 * (g["red_score"] == g["blue_score"])
         )

@@ -12,7 +12,8 @@ and then `mixed_notes` says so. A results bundle (rundir/bundle.py) is read as t
 named by the paths they were exported from; `read_runs` reads it as it is: readers call
 metrics/verified.py `load_runs`, which verifies it first (or, asked not to, marks it in `unverified`,
 and `mixed_notes` says so). Every finished episode's faults (metrics/faults.py: ours or the team's) are
-in `faults`.
+in `faults`. Each side of an episode is its entrant (metrics/entrants.py): `red` and
+`blue` are the entrants' names, which every table groups by.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ import pandas as pd
 
 from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
+from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
 from pillagerbench.metrics.faults import faults
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, SeriesSpec, read_series
@@ -50,13 +52,14 @@ class SeriesInfo(SeriesSpec):
     version: str = "?"  # the scenario's version (its manifest)
     episode_length: float = 120.0
     manifest: dict = field(default_factory=dict)  # the series' manifest.json ({} when not started)
+    entrants: dict = field(default_factory=dict)  # side -> its entrant from the config (metrics/entrants.py)
 
 
 @dataclass
 class Runs:
     episodes: pd.DataFrame  # one row per usable episode
     series: list[SeriesInfo]
-    ledger: list[dict]  # red-team LLM calls, each with "label" (row) and "scenario"
+    ledger: list[dict]  # red-team LLM calls, each with "label" (its red entrant's row), "scenario", "run", "series"
     skipped: list[tuple[str, str]] = field(default_factory=list)  # (where, why)
     calibration_files: list[Path] = field(default_factory=list)
     runs: list[Path] = field(default_factory=list)  # every run's name (a bundle's: the paths exported)
@@ -135,6 +138,7 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
                 version=str(manifest.get("scenario", {}).get("version", "?")),
                 episode_length=float(spec.config.get("episode_length", 120)),
                 manifest=manifest,
+                entrants=series_entrants(spec.config),
             )
         )
     return out
@@ -215,8 +219,9 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "scenario": s.scenario,
         "version": s.version,
         "episode_length": s.episode_length,
-        "red": s.red,
+        "red": s.red,  # the entrants' names once every row is read (metrics/entrants.py)
         "blue": s.blue,
+        **columns({"red": rec.red_entrant, "blue": rec.blue_entrant}, s.entrants, {"red": s.red, "blue": s.blue}),
         "red_team": s.red_team,
         "blue_team": s.blue_team,
         "design": s.design,
@@ -317,10 +322,12 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
             from pillagerbench.llm.ledger import read_ledger
 
             ledger += [
-                {**r, "label": s.red, "scenario": s.scenario, "series": s.id}
+                {**r, "label": s.red, "scenario": s.scenario, "series": s.id, "run": str(s.run)}
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
+    name_sides(rows)  # red and blue: the entrants, in every table
+    label_calls(ledger, rows)
     suites = _suites(rows, mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
     df = pd.DataFrame(rows)

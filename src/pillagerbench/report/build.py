@@ -81,10 +81,12 @@ def build_report(
     sections = [  # the report's one list of sections: its files, its contents and its page
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
         table(
-            "summary", "Summary per red team (all scenarios and opponents)", tables.summary(main, sigma, runs.ledger)
+            "summary", "Summary per red entrant (all scenarios and opponents)", tables.summary(main, sigma, runs.ledger)
         ),
-        table("per_scenario", "Per red team and scenario", tables.summary(main, sigma, runs.ledger, by_scenario=True)),
-        table("per_team", "Per team, whichever side it played (own points vs the opponent's)", per_team),
+        table(
+            "per_scenario", "Per red entrant and scenario", tables.summary(main, sigma, runs.ledger, by_scenario=True)
+        ),
+        table("per_team", "Per entrant, whichever side it played (own points vs the opponent's)", per_team),
         table("pairings", "Per pairing (heatmap values)", pairs),
         table("groups", "Groups (adaptation: same/different opponent; self-play: after k episodes)", grouped),
         table(
@@ -184,7 +186,7 @@ def series_figures(
 ) -> list[Section]:
     """The figures over the episodes of a series: D per episode index, per group, self-play."""
     n_groups = int(grouped.loc[grouped["scenario"] != tables.ALL, "episodes"].sum()) if len(grouped) else 0
-    same = df[(df["red_team"] == df["blue_team"]) & (df["red_team"] != "do_nothing")] if len(df) else df
+    same = df[(df["red"] == df["blue"]) & (df["red_team"] != "do_nothing")] if len(df) else df
     return [
         figure(
             "Points difference per episode",

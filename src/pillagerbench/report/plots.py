@@ -238,10 +238,10 @@ def groups(table: pd.DataFrame, path: Path) -> Path:
 
 
 def series_scores(df: pd.DataFrame, path: Path, max_series: int = 6) -> Path:
-    """Red and blue points per episode of the longest series in which a team plays itself (self-play)."""
+    """Red and blue points per episode of the longest series in which an entrant plays itself (self-play)."""
     if not len(df):
         return _empty(path, "no episodes")
-    same = df[(df["red_team"] == df["blue_team"]) & (df["red_team"] != "do_nothing")]
+    same = df[(df["red"] == df["blue"]) & (df["red_team"] != "do_nothing")]
     if not len(same):
         return _empty(path, "no self-play series")
     ids = list(same.groupby("series").size().sort_values(ascending=False).index[:max_series])

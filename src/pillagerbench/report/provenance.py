@@ -1,6 +1,7 @@
 """What the report is made of: one row per run directory, read from its manifests (the run's
 manifest.json and each series' own): git revision (12 characters), seeds, episode length, episodes used of those
-planned, the LLM teams' models, scoring and protocol. Distinct values are joined with ", "."""
+planned, the LLM teams' models, the entrants of its episodes (label and id: metrics/entrants.py), scoring
+and protocol. Distinct values are joined with ", "."""
 
 from __future__ import annotations
 
@@ -21,6 +22,7 @@ COLUMNS = [
     "episode_length",
     "episodes",
     "models",
+    "entrants",
     "scoring",
     "protocol",
 ]
@@ -54,6 +56,15 @@ def models(s: SeriesInfo) -> list[str]:
     return out
 
 
+def entrants(df: pd.DataFrame) -> list[str]:
+    """`label (id)` of every entrant in these episodes, red before blue, each once."""
+    return [
+        f"{label} ({i})"
+        for side in ("red", "blue")
+        for label, i in zip(df[f"{side}_entrant"], df[f"{side}_entrant_id"])
+    ]
+
+
 def provenance(runs: Runs) -> pd.DataFrame:
     df = runs.episodes
     rows = []
@@ -77,6 +88,7 @@ def provenance(runs: Runs) -> pd.DataFrame:
                 "episode_length": _distinct(f"{s.episode_length:g} s" for s in series),
                 "episodes": f"{used} of {sum(s.episodes for s in series)}",
                 "models": _distinct((m for s in series for m in models(s)), "no LLM team"),
+                "entrants": _distinct(entrants(df[df["run"] == str(run)]) if len(df) else []),
                 "scoring": _distinct(s.config.get("scoring", "clean") for s in series),
                 "protocol": _distinct(s.config.get("protocol", "pillagerbench") for s in series),
             }

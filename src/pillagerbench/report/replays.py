@@ -32,7 +32,10 @@ def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
         if not Path(s.dir).exists():
             continue
         for _, ep in RunDir(s.dir).episode_dirs():
-            row = {"series": s.id, "episode": ep.name, "red": s.red, "blue": s.blue, "score": "", "replay": None}
+            red, blue = (
+                s.entrants.get(side, {}).get("label", name) for side, name in (("red", s.red), ("blue", s.blue))
+            )
+            row = {"series": s.id, "episode": ep.name, "red": red, "blue": blue, "score": "", "replay": None}
             try:
                 rec = json.loads((ep / "episode.json").read_text())
                 if rec.get("red_score") is not None:

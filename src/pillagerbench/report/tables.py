@@ -1,5 +1,6 @@
 """The report's tables as DataFrames (numbers with separate 95 % CI columns), written as CSV and
-Markdown ("mean ± ci").
+Markdown ("mean ± ci"). A "team" here is an entrant (metrics/entrants.py): `red` and `blue` are the
+entrants' labels, and σ_blue is keyed by the opponent's entrant (a built-in team's is its name).
 
 - summary:       per red team (row label) over every scenario and opponent: P S D W, T_resp N_out R_tps, I
                  (the paper's main table, model ablation and module ablation)
@@ -72,7 +73,7 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
             rd = sd[sd["red"] == red]
             for blue in opponent_order(rd, scenario):
                 g = rd[rd["blue"] == blue]
-                s = sigma.get((scenario, g["blue_team"].iloc[0]))
+                s = sigma.get((scenario, blue))
                 rows.append(
                     {
                         "scenario": scenario,
@@ -188,8 +189,8 @@ def per_team(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
         for team in team_order(sd):
             td = sd[sd["team"] == team]
             groups_ = []
-            for _, g in td.groupby("opponent_team", sort=False):
-                s = sigma.get((scenario, g["opponent_team"].iloc[0]))
+            for opponent, g in td.groupby("opponent", sort=False):
+                s = sigma.get((scenario, str(opponent)))
                 groups_.append((g["own"].to_numpy(), g["opp"].to_numpy(), s.mean if s else None, s))
             rows.append(
                 {

@@ -42,14 +42,18 @@ class EpisodeRecord:
     split: str = "paper"  # paper | dev | test | custom (scenarios/layout.py split_of)
     suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite.py)
     conditions: dict[str, Any] = field(default_factory=dict)  # rules differing from the suite's (conditions.py)
+    # who played each side: {label, id, team, models, options} (teams/entrant.py); None in records from
+    # before entrants (readers derive it from the series' config: metrics/entrants.py)
+    red_entrant: dict[str, Any] | None = None
+    blue_entrant: dict[str, Any] | None = None
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
         """A record read back, whichever version wrote it: the one place that knows earlier versions.
         Keys added since take their defaults (records before scoring modes were clean-scored, before
         protocols played ours), a record before suite versions is "unversioned", `scores` is filled from
-        red_score/blue_score where it was not recorded, null lists and maps are empty; unknown keys are
-        dropped."""
+        red_score/blue_score where it was not recorded, null lists and maps are empty, a record before
+        entrants has none (its reader derives them from the config); unknown keys are dropped."""
         known = {f.name for f in fields(cls)}
         rec = cls(**{k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE})
         if not rec.scores and rec.red_score is not None and rec.blue_score is not None:

@@ -1,0 +1,61 @@
+"""The entrant of each side of an episode, and the name every table gives it (docs/experiments.md).
+
+An episode's record names its entrants (`red_entrant`, `blue_entrant`: teams/entrant.py); a record
+from before entrants gets them from its series' config (the manifest), computed the same way, so
+old run directories and bundles still report. In the episodes table `red` and `blue` are the
+entrants' labels, which every table groups by: two entrants never share a row. Should two entrants
+read alike (a label hides a long value behind a hash), each label gets `#` and its id's first 6 hex
+digits. The name the series gave the side (an experiment's variant label, a league entrant's name)
+stays in `red_name` and `blue_name`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pillagerbench.teams.entrant import entrant_of
+
+SIDES = ("red", "blue")
+
+
+def series_entrants(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """Each side's entrant under a series' resolved config (for records from before entrants)."""
+    if not config.get("red") or not config.get("blue"):
+        return {}
+    return {side: entrant_of(config, side) for side in SIDES}
+
+
+def columns(recorded: dict[str, dict | None], derived: dict[str, dict], names: dict[str, str]) -> dict[str, Any]:
+    """An episode's entrant columns: `<side>_entrant` (label), `<side>_entrant_id`, `<side>_name`; the
+    recorded entrant, else the derived one, else (no config to derive from) the series' name."""
+    out: dict[str, Any] = {}
+    for side in SIDES:
+        e = recorded.get(side) or derived.get(side) or {"label": names[side], "id": names[side]}
+        out |= {f"{side}_entrant": e["label"], f"{side}_entrant_id": e["id"], f"{side}_name": names[side]}
+    return out
+
+
+def display_names(rows: list[dict[str, Any]]) -> dict[str, str]:
+    """Entrant id -> the name its rows show: its label, or `label#id6` when another entrant reads alike."""
+    labels: dict[str, str] = {}
+    for r in rows:
+        for side in SIDES:
+            labels[r[f"{side}_entrant_id"]] = r[f"{side}_entrant"]
+    shared = {lab for lab in labels.values() if list(labels.values()).count(lab) > 1}
+    return {i: f"{lab}#{i[:6]}" if lab in shared else lab for i, lab in labels.items()}
+
+
+def name_sides(rows: list[dict[str, Any]]) -> dict[str, str]:
+    """Set every row's `red` and `blue` to its entrants' names; returns id -> name."""
+    names = display_names(rows)
+    for r in rows:
+        for side in SIDES:
+            r[side] = names[r[f"{side}_entrant_id"]]
+    return names
+
+
+def label_calls(ledger: list[dict[str, Any]], rows: list[dict[str, Any]]) -> None:
+    """Every red-team LLM call labelled as its series' red rows are (calls carry `run` and `series`)."""
+    red = {(r["run"], r["series"]): r["red"] for r in rows}
+    for call in ledger:
+        call["label"] = red.get((call["run"], call["series"]), call["label"])
