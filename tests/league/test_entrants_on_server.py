@@ -14,7 +14,7 @@ import pytest
 import yaml  # type: ignore[import-untyped]
 
 from pillagerbench.llm.fake_server import FakeLLMServer
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.teams.entrant import entrant_of
 from tests.support.cli import run_cli

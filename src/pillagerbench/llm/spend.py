@@ -17,7 +17,7 @@ def spend(sources: Iterable[tuple[Path, Mapping[str, str]]]) -> dict[str, Ledger
         if not path.exists():
             continue
         for call in read_ledger(path):
-            side = call.get("team")
+            side = str(call.get("team"))
             if side in names:
                 label = names[side] if "@" in names[side] else f"{names[side]}@{call.get('model') or '?'}"
                 calls.setdefault(label, []).append(call)
