@@ -4,8 +4,9 @@
 
 The run directory (printed first and last) holds manifest.json, episodes.jsonl (one line per
 finished episode) and per episode its events, score timeline, game-master log and team artefacts.
-An episode that fails (a bot or the server dies) is recorded as failed and the series goes on;
-Ctrl-C ends the match cleanly, keeping every finished episode.
+An episode that fails (a bot or the server dies) is recorded as failed and the series goes on; one
+spoiled on our side (rundir/faults.py) is kept, in no score, and played again as the next index up to
+`retries` times (rundir/schedule.py), as in an experiment's series; Ctrl-C ends the match cleanly, keeping every finished episode.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from pillagerbench.config import load_config
 from pillagerbench.display import MatchDisplay
 from pillagerbench.manifest import write_manifest
 from pillagerbench.match import Match
-from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
+from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, episodes_to_play, progress, retries_of
 from pillagerbench.scenarios import Scenario, make_scenario
 from pillagerbench.scenarios.layout import PAPER, parse_layout
 from pillagerbench.teams import Team, team_from_config
@@ -108,7 +109,7 @@ async def play(cfg, run_dir: Path) -> list:
             rundir,
             scenario,
             teams,
-            range(int(cfg.episodes)),
+            episodes_to_play(rundir, int(cfg.episodes), retries_of(cfg)),
             done,
             on_tick=display.tick,
             watch=cfg.get("watch"),
@@ -159,6 +160,13 @@ def run_match(cfg) -> int:
     failed = sum(r.status != "ok" for r in records)
     problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")
+    done = progress(RunDir(run_dir).finished(), int(cfg.episodes), retries_of(cfg))
+    if done.spoiled:
+        print(
+            f"{done.used} of {cfg.episodes} planned episode(s) used; {done.spoiled} spoiled on our side "
+            f"(in no score, played again up to retries={retries_of(cfg)})"
+            + (f"; {done.given_up} given up" if done.given_up else "")
+        )
     for line in problems:
         print(line)
     for line in summarize_lag(records):
