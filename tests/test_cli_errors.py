@@ -33,6 +33,11 @@ def one_line_refusal(tmp_path, *args, lines=1):
         (["episode_length=abc"], "pillagerbench run: episode_length='abc': input should be a valid number"),
         (["episodes=-1"], "pillagerbench run: episodes=-1: input should be greater than or equal to 1"),
         (["parallel=0"], "pillagerbench run: parallel=0: input should be greater than or equal to 1"),
+        (["retries=-1"], "pillagerbench run: retries=-1: input should be greater than or equal to 0"),
+        (
+            ["experiment=round_robin_mushroom_war", "retries=-1"],
+            "pillagerbench run: retries=-1: input should be greater than or equal to 0",
+        ),
         (["display=fancy"], "pillagerbench run: display='fancy': input should be 'auto', 'live' or 'plain'"),
         (["scoring=paper"], "pillagerbench run: scoring='paper': input should be 'clean' or 'upstream'"),
         (["protocol=paper"], "pillagerbench run: protocol='paper': input should be 'pillagerbench' or 'upstream'"),
