@@ -26,11 +26,6 @@ class ResumeError(RuntimeError):
     """A series directory that cannot be resumed as it was played."""
 
 
-def count_finished(series_dir: Path) -> int:
-    """Finished episodes of a series directory."""
-    return len(RunDir(series_dir).finished())
-
-
 def resolve_checkpoint(ref: dict, side: str, run_dir: Path | None) -> Path:
     if "path" in ref:
         return Path(ref["path"])

@@ -50,9 +50,6 @@ class Section:
         return [self.content[0]] if self.kind == "image" else []
 
 
-USED = "episodes: used, of the planned; an episode spoiled on our side is in no score"
-
-
 def table(name: str, title: str, frame: pd.DataFrame) -> Section:
     return Section(title, "table", frame, name, empty=not len(frame))
 
@@ -84,12 +81,12 @@ def build_report(
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
         table(
             "summary",
-            f"Summary per red team (all scenarios and opponents; {USED})",
+            "Summary per red team (all scenarios and opponents)",
             tables.summary(main, sigma, runs.ledger, plan=plan),
         ),
         table(
             "per_scenario",
-            f"Per red team and scenario ({USED})",
+            "Per red team and scenario",
             tables.summary(main, sigma, runs.ledger, by_scenario=True, plan=plan),
         ),
         table("per_team", "Per team, whichever side it played (own points vs the opponent's)", per_team),
@@ -120,7 +117,8 @@ def build_report(
         s.title += mixed_title(runs)
     notes = [
         *mixed_notes(runs),
-        f"{len(df)} episode(s) used, {len(runs.spoiled)} spoiled on our side, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
+        f"{len(df)} episode(s) used (a team row's `episodes`, beside its `planned`), {len(runs.spoiled)} spoiled "
+        f"on our side and in no score (the Failures table lists them), {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
         "± is the 95 % confidence interval",
         *notes,
         *more_notes(runs, sigma, pairs, fidelity_notes),

@@ -107,33 +107,19 @@ def planned(series: list) -> dict[tuple[str, str], int]:
 def summary(
     df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool = False, plan: dict | None = None
 ) -> pd.DataFrame:
-    """`plan`: episodes planned per (red, scenario) (`planned`); a red row with none used still shows."""
+    """`plan`: episodes planned per (red, scenario) (`planned`); a red row with none used still shows
+    (0 of its planned episodes: every one spoiled on our side)."""
     rows = []
     plan = plan or {}
     keys: list[tuple[str, str | None]] = [(r, None) for r in red_order(df)]
     if by_scenario:
         keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df["scenario"] == sc])]
-    if len(df):  # a red row whose every episode was spoiled still shows: 0 of its planned episodes
-        keys = list(dict.fromkeys(keys + [(r, sc if by_scenario else None) for r, sc in plan]))
+    keys = list(dict.fromkeys(keys + [(r, sc if by_scenario else None) for r, sc in plan]))
     for red, scenario in keys:
-        rd = df[(df["red"] == red) & ((df["scenario"] == scenario) if scenario else True)] if len(df) else df
         wanted = sum(n for (r, sc), n in plan.items() if r == red and scenario in (None, sc))
-        calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
-        llm = llm_metrics(calls)
-        it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
-        row = {
-            "red": red,
-            **({"scenario": scenario} if by_scenario else {}),
-            **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
-            "planned": wanted or np.nan,
-            "T_resp": llm["T_resp"],
-            "N_out": llm["N_out"],
-            "R_tps": llm["R_tps"],
-            "llm_calls": llm["calls"],
-            "I": it.mean,
-            "I_ci": it.ci,
-        }
-        rows.append(row)
+        head = {"red": red, **({"scenario": scenario} if by_scenario else {}), "planned": wanted or np.nan}
+        rd = df[(df["red"] == red) & ((df["scenario"] == scenario) if scenario else True)] if len(df) else df
+        rows.append({**head, **(_summary_row(rd, red, scenario, sigma, ledger) if len(rd) else {"episodes": 0})})
     cols = (
         ["red"]
         + (["scenario"] if by_scenario else [])
@@ -142,6 +128,22 @@ def summary(
         + ["T_resp", "N_out", "R_tps", "llm_calls", "I", "I_ci"]
     )
     return pd.DataFrame(rows, columns=cols)
+
+
+def _summary_row(rd: pd.DataFrame, red: str, scenario: str | None, sigma: dict, ledger: list[dict]) -> dict:
+    """P S D W over the opponents, the LLM metrics and I of one red row's used episodes."""
+    calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
+    llm = llm_metrics(calls)
+    it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
+    return {
+        **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
+        "T_resp": llm["T_resp"],
+        "N_out": llm["N_out"],
+        "R_tps": llm["R_tps"],
+        "llm_calls": llm["calls"],
+        "I": it.mean,
+        "I_ci": it.ci,
+    }
 
 
 def team_view(df: pd.DataFrame) -> pd.DataFrame:
