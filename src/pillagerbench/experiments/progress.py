@@ -84,10 +84,10 @@ class ExperimentProgress:
         running = []
         for spec in self.specs:
             fin = self.finished(spec)
-            done += len(fin)
+            settled = progress(fin, spec.episodes, retries_of(spec.config))  # a spoiled episode is played again
+            done += settled.used + settled.given_up
             failed += sum(r.get("status") != "ok" for r in fin.values())
-            complete = progress(fin, spec.episodes, retries_of(spec.config)).complete
-            status = RunDir(self.series_dir(spec)).read_live() if not complete else {}
+            status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else {}
             if status:
                 running.append((spec, status))
         if self.start_done is None:
