@@ -72,3 +72,13 @@ def test_a_budget_spent_is_the_teams_and_an_unreachable_provider_ours():
     assert spoiled({"status": "ok", "problems": {"red": [UNREACHABLE]}}) == "provider unreachable"
     assert spoiled({"status": "failed", "error": "PlayerError: bot died"}) == "failed: a bot"
     assert spoiled({"status": "failed", "error": "BudgetExceeded: spent"}) is None
+
+
+def test_an_experiment_closes_with_what_our_faults_cost():
+    from pillagerbench.experiments.runner import spoiled_lines
+
+    calm, replayed, short = progress({0: OK}, 1), progress({0: BAD, 1: OK}, 1), progress({0: BAD}, 1, 0)
+    assert spoiled_lines([calm]) == []
+    (line,) = spoiled_lines([calm, replayed, short])
+    assert line.startswith("2 episode(s) spoiled on our side (in no score")
+    assert "; 1 planned episode(s) given up after every try: fewer episodes used" in line
