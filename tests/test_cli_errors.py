@@ -33,6 +33,11 @@ def one_line_refusal(tmp_path, *args, lines=1):
         (["episode_length=abc"], "pillagerbench run: episode_length='abc': input should be a valid number"),
         (["episodes=-1"], "pillagerbench run: episodes=-1: input should be greater than or equal to 1"),
         (["parallel=0"], "pillagerbench run: parallel=0: input should be greater than or equal to 1"),
+        (["retries=-1"], "pillagerbench run: retries=-1: input should be greater than or equal to 0"),
+        (
+            ["experiment=round_robin_mushroom_war", "retries=-1"],
+            "pillagerbench run: retries=-1: input should be greater than or equal to 0",
+        ),
         (["display=fancy"], "pillagerbench run: display='fancy': input should be 'auto', 'live' or 'plain'"),
         (["scoring=paper"], "pillagerbench run: scoring='paper': input should be 'clean' or 'upstream'"),
         (["protocol=paper"], "pillagerbench run: protocol='paper': input should be 'pillagerbench' or 'upstream'"),
@@ -118,10 +123,13 @@ def test_without_preflight_a_team_without_its_model_is_recorded_and_shown(tmp_pa
     )
     assert proc.returncode == 1, proc.stdout + proc.stderr  # every episode of red went without its model
     assert "red cot: llm failed on all" in proc.stdout
-    assert "red cot had problems in 1 of 1 episode(s), e.g.: llm failed on all" in proc.stdout
-    rec = json.loads((tmp_path / "out" / "episodes.jsonl").read_text().splitlines()[0])
-    assert rec["status"] == "ok" and "LLMConnectionError" in rec["problems"]["red"][0]
-    assert "blue" not in rec["problems"]
+    # ours, not the team's: the planned episode is played again twice (retries=2), then given up
+    assert "red cot had problems in 3 of 3 episode(s), e.g.: llm failed on all" in proc.stdout
+    assert "0 of 1 planned episode(s) used; 3 spoiled on our side" in proc.stdout and "; 1 given up" in proc.stdout
+    for line in (tmp_path / "out" / "episodes.jsonl").read_text().splitlines():
+        rec = json.loads(line)
+        assert rec["status"] == "ok" and "LLMConnectionError" in rec["problems"]["red"][0]
+        assert "blue" not in rec["problems"]
 
 
 def test_an_internal_error_is_one_line_naming_the_traceback_file(tmp_path, monkeypatch, capsys):

@@ -94,6 +94,7 @@ class RunConfig(BaseModel):
     protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
     paper: bool = False  # sets scoring and protocol to upstream's (config.PAPER)
     watch: int | None = Field(None, ge=0, le=65535)
+    retries: int = Field(2, ge=0)  # replays of a spoiled episode (rundir/schedule.py); older runs: the default
     layout: int | str = "paper"  # checked in full by validate.layout_problems
     split: str | None = None
     parallel: int | None = Field(ge=1)

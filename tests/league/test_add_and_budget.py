@@ -64,12 +64,13 @@ SPENT_PER_EPISODE = {"episodes": 1, "hours": 0.5, "llm_tokens": 1000, "llm_cost_
 
 def play_by_hand(run_dir: Path, runner: dict) -> bool:
     """Stands in for playing a round: each series gets one (failed) episode of half an hour and a
-    ledger of one call of 600 + 400 tokens costing $0.25."""
+    ledger of one call of 600 + 400 tokens costing $0.25. It failed on the team's budget, a team's own
+    failure: a failure of ours would be played again (rundir/schedule.py)."""
     if len(round_dirs(run_dir.parents[1])) > 4:
         return False  # the budget should have stopped the league by now: stop as a failed round does
     for series in load_experiment(run_dir)[2].values():
         series.mkdir(parents=True)
-        record = {"episode": 0, "status": "failed", "error": "played by hand", "duration_s": 1800}
+        record = {"episode": 0, "status": "failed", "error": "BudgetExceeded: by hand", "duration_s": 1800}
         (series / EPISODES).write_text(json.dumps(record) + "\n")
         call = {"team": "red", "input_tokens": 600, "output_tokens": 400, "cost_usd": 0.25}
         (series / LEDGER).write_text(json.dumps(call) + "\n")

@@ -9,8 +9,8 @@ import json
 from pathlib import Path
 
 from pillagerbench.metrics.calibration import calibration_from_runs
-from pillagerbench.metrics.verified import load_runs
 from pillagerbench.metrics.symmetry import side_symmetry
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.generalization import unseen_arenas
 from pillagerbench.teams.entrant import entrant_of

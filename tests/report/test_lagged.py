@@ -73,6 +73,7 @@ def test_a_run_with_its_server_held_at_10_tps_is_flagged_and_says_so(tmp_path):
         "blue=do_nothing",
         "episode_length=6",
         "server.tps=10",
+        "retries=0",  # every episode lags here: not played again
         f"run_dir={run_dir}",
         "display=plain",
         timeout=240,
@@ -83,3 +84,4 @@ def test_a_run_with_its_server_held_at_10_tps_is_flagged_and_says_so(tmp_path):
     assert rec["lag_reason"].startswith(f"server at {rec['server_tps']:g} TPS (< 19)")
     assert "1 of 1 episode(s) played under lag" in res.stdout
     assert f"  episode 0: {rec['lag_reason']}" in res.stdout
+    assert "0 of 1 planned episode(s) used; 1 spoiled on our side" in res.stdout  # in no score

@@ -116,7 +116,7 @@ def test_a_one_episode_run_says_n_is_1(tmp_path):
     page = (tmp_path / "report" / "report.html").read_text()
     (summary,) = table_after(page, "Summary per red entrant (all scenarios and opponents)")
     assert summary["P"] == "5.00 (n = 1)" and summary["D"] == "2.00 (n = 1)"
-    assert "| passive | 1 | 5.00 (n = 1) |" in (tmp_path / "report" / "summary.md").read_text()
+    assert "| passive | 1 | 1 | 5.00 (n = 1) |" in (tmp_path / "report" / "summary.md").read_text()
 
 
 def test_without_calibration_s_comes_from_the_reference_sigma_with_a_note(tmp_path):

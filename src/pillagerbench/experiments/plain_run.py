@@ -26,7 +26,7 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.run import scenario_from_config
-from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series
+from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series, progress, retries_of
 from pillagerbench.teams.entrant import entrant_of
 
 SIDES = ("red", "blue")
@@ -63,6 +63,14 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg) -> int:
     failed = sum(r.status != "ok" for r in records)
     problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")
+    retries = retries_of(OmegaConf.create(spec.config))
+    done = progress(RunDir(run_dir).finished(), spec.episodes, retries)
+    if done.spoiled:
+        print(
+            f"{done.used} of {spec.episodes} planned episode(s) used; {done.spoiled} spoiled on our side "
+            f"(in no score, played again up to retries={retries})"
+            + (f"; {done.given_up} given up" if done.given_up else "")
+        )
     for line in problems:
         print(line)
     for line in summarize_lag(records):

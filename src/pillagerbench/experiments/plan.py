@@ -34,6 +34,7 @@ from omegaconf import OmegaConf
 
 from pillagerbench.experiments.spec import SeriesSpec, build_series
 from pillagerbench.llm.tokens import count_tokens
+from pillagerbench.rundir import retries_of
 
 # Measured by `python benchmarks/plan_accuracy.py --overheads` (do_nothing vs do_nothing, one series of
 # two 20 s episodes per scenario, parallel=1), twice, on the 2-core development machine at load average 4-5
@@ -105,6 +106,7 @@ class Plan:
     wall_low: float
     wall_high: float
     models: dict[str, ModelCost]
+    retries: int = 0  # an episode spoiled on our side is played again up to this many times (not estimated)
 
     @property
     def episodes(self) -> int:
@@ -255,13 +257,14 @@ def schedule(specs: list[SeriesSpec], durations: dict[str, float], parallel: int
 
 
 def _specs(cfg: Any, argv: list[str]) -> tuple[str, list[SeriesSpec], dict[str, int]]:
-    """(title, series, episodes already finished per series) of what the command would run."""
-    from pillagerbench.experiments.runner import load_experiment
-    from pillagerbench.experiments.series import count_finished
+    """(title, series, planned episodes already settled per series: used or given up) of what the
+    command would run."""
+    from pillagerbench.experiments.runner import load_experiment, series_progress
 
     if cfg.get("resume"):
         title, specs, dirs = load_experiment(Path(cfg.resume))
-        return title, specs, {s.id: count_finished(dirs[s.id]) for s in specs}
+        done = {s.id: series_progress(s, dirs[s.id]) for s in specs}
+        return title, specs, {sid: p.used + p.given_up for sid, p in done.items()}
     if cfg.get("experiment") is not None:
         return str(cfg.experiment.name), build_series(cfg, argv), {}
     from pillagerbench.config import to_dict
@@ -323,6 +326,7 @@ def build_plan(cfg: Any, argv: list[str], *, cpus: int | None = None, load: floa
         wall_low=RUN_OVERHEAD_S + schedule(specs, low, parallel),
         wall_high=RUN_OVERHEAD_S + schedule(specs, high, parallel),
         models=models,
+        retries=retries_of(cfg),
     )
 
 
@@ -350,6 +354,10 @@ def lines(plan: Plan) -> list[str]:
     if len(plan.series) > SHOW_SERIES:
         out.append(f"  ... and {len(plan.series) - SHOW_SERIES} more series")
     out.append(f"episodes: {plan.episodes} of {plan.episode_length:g} s")
+    out.append(
+        f"retries: {plan.retries}: an episode spoiled on our side (provider unreachable, crash, lag) is played "
+        f"again, up to {plan.retries} more per planned episode (not in the figures below)"
+    )
     out.append(f"parallel: {plan.parallel} at once" + (f" ({plan.parallel_note})" if plan.parallel_note else ""))
     wall = duration(plan.wall_low)
     if plan.wall_high > plan.wall_low + 1:

@@ -18,7 +18,7 @@ from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import RunDir, progress, retries_of, spoiled
 
 
 def fmt_duration(seconds: float | None) -> str:
@@ -84,9 +84,10 @@ class ExperimentProgress:
         running = []
         for spec in self.specs:
             fin = self.finished(spec)
-            done += len(fin)
+            settled = progress(fin, spec.episodes, retries_of(spec.config))  # a spoiled episode is played again
+            done += settled.used + settled.given_up
             failed += sum(r.get("status") != "ok" for r in fin.values())
-            status = RunDir(self.series_dir(spec)).read_live() if len(fin) < spec.episodes else {}
+            status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else {}
             if status:
                 running.append((spec, status))
         if self.start_done is None:
@@ -130,7 +131,8 @@ class ExperimentProgress:
                 r = fin[i]
                 print(
                     f"[{snap['done']}/{snap['total']}] {spec.id} episode {i}: red {spec.red} {r.get('red_score')} - "
-                    f"blue {spec.blue} {r.get('blue_score')} ({r.get('winner') or r.get('status')})",
+                    f"blue {spec.blue} {r.get('blue_score')} ({r.get('winner') or r.get('status')})"
+                    + (f"; spoiled on our side ({kind}): in no score" if (kind := spoiled(r)) else ""),
                     file=self.stream,
                     flush=True,
                 )

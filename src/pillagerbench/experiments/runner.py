@@ -31,7 +31,7 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RunDir, read_series
+from pillagerbench.rundir import RETRIES, RunDir, progress, read_series, retries_of
 from pillagerbench.teams.entrant import entrant_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
@@ -87,10 +87,15 @@ def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Pat
     return name, [s for s, _ in series], {s.id: d for s, d in series}
 
 
+def series_progress(spec: SeriesSpec, series_dir: Path):
+    """A series' episodes so far against its plan (rundir/schedule.py: spoiled ones replayed)."""
+    return progress(RunDir(series_dir).finished(), spec.episodes, retries_of(spec.config))
+
+
 def _comparable(spec: SeriesSpec) -> dict:
     d = spec.to_dict()
     d["config"] = {k: v for k, v in d["config"].items() if k not in IGNORED_ON_RESUME}
-    for key, default in (("scoring", "clean"), ("protocol", "pillagerbench")):  # runs from before these keys
+    for key, default in (("scoring", "clean"), ("protocol", "pillagerbench"), ("retries", RETRIES)):  # older runs
         d["config"].setdefault(key, default)
     return d
 
@@ -125,7 +130,7 @@ async def run_all(
     results: dict[str, dict] = {}
     pending = {s.id: s for s in specs}
     for s in specs:
-        if len(RunDir(dirs[s.id]).finished()) >= s.episodes:
+        if series_progress(s, dirs[s.id]).complete:
             results[s.id] = {"id": s.id, "status": "done", "played": 0}
             pending.pop(s.id)
     running: dict[asyncio.Future, SeriesSpec] = {}
@@ -251,6 +256,17 @@ def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) ->
     return lines
 
 
+def spoiled_lines(done: list) -> list[str]:
+    """What our faults cost the experiment: episodes spoiled (played again) and planned ones given up."""
+    spoiled, given_up = sum(p.spoiled for p in done), sum(p.given_up for p in done)
+    if not spoiled:
+        return []
+    line = f"{spoiled} episode(s) spoiled on our side (in no score; the report's Failures table lists them)"
+    if given_up:
+        line += f"; {given_up} planned episode(s) given up after every try: fewer episodes used (raise retries= for more tries)"
+    return [line]
+
+
 def main_experiment(cfg, argv: list[str]) -> int:
     """`pillagerbench run experiment=NAME ...` and `pillagerbench run resume=RUN_DIR ...`."""
     if cfg.get("resume"):
@@ -281,11 +297,13 @@ def main_experiment(cfg, argv: list[str]) -> int:
         print(f"interrupted: finished episodes are kept; finish with resume={run_dir}")
         return 130
     errors = [r for r in results.values() if r["status"] in ("error", "skipped")]
-    episodes = sum(len(RunDir(dirs[s.id]).finished()) for s in specs)
+    done = [series_progress(s, dirs[s.id]) for s in specs]
     print(
-        f"{episodes}/{sum(s.episodes for s in specs)} episodes finished; "
+        f"{sum(p.used for p in done)}/{sum(s.episodes for s in specs)} episodes used; "
         f"{len(errors)} series failed or skipped" + (f" (finish with resume={run_dir})" if errors else "")
     )
+    for line in spoiled_lines(done):
+        print(line)
     for line in lag_lines(specs, dirs):
         print(line)
     for line in spend_lines(

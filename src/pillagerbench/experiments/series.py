@@ -5,30 +5,27 @@ directory. A series directory holds the episodes, the teams' state after the las
 checkpoints and, in an experiment, its spec (`pillagerbench.rundir` owns its layout). Each episode is
 committed one way (`_commit`): both teams' state saved, then its line in episodes.jsonl. On resume
 everything of an unfinished episode is moved to discarded/, the teams are restored from the state
-after the last finished episode, and the series goes on with the next episode.
+after the last finished episode, and the series goes on with the next episode. An episode spoiled on
+our side (rundir/faults.py) is kept and another index is played in its place, up to `retries` times
+per planned episode (rundir/schedule.py), so the series reaches its planned episodes.
 """
 
 from __future__ import annotations
 
 import json
 import shutil
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
 from omegaconf import OmegaConf
 
 from pillagerbench.experiments.spec import SeriesSpec
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import RunDir, episodes_to_play, progress, retries_of
 
 
 class ResumeError(RuntimeError):
     """A series directory that cannot be resumed as it was played."""
-
-
-def count_finished(series_dir: Path) -> int:
-    """Finished episodes of a series directory."""
-    return len(RunDir(series_dir).finished())
 
 
 def resolve_checkpoint(ref: dict, side: str, run_dir: Path | None) -> Path:
@@ -50,7 +47,7 @@ async def run_series(
     watch: int | None = None,
 ) -> dict:
     """Play the unfinished episodes of a series (`watch`: the live view's port). Returns {"id",
-    "finished", "failed", "played"}."""
+    "finished", "failed", "played", "used", "spoiled", "given_up"}."""
     from pillagerbench.manifest import write_manifest
     from pillagerbench.run import scenario_from_config
     from pillagerbench.teams import team_from_config
@@ -63,9 +60,9 @@ async def run_series(
     finished, discarded = rundir.recover()
     if discarded:
         say(f"[{spec.id}] resume: discarded {', '.join(discarded)}")
-    remaining = [i for i in range(spec.episodes) if i not in finished]
+    retries = retries_of(cfg)
     summary = {"id": spec.id, "played": 0}
-    if remaining:
+    if not progress(finished, spec.episodes, retries).complete:
         scenario = scenario_from_config(cfg)
         teams = {"red": team_from_config(cfg.red, scenario.key), "blue": team_from_config(cfg.blue, scenario.key)}
         if finished:
@@ -78,9 +75,13 @@ async def run_series(
             write_manifest(rundir.path, cfg, scenario)
         else:
             rundir.note_resume(sorted(finished), discarded)
+        before = len(finished)
+        remaining = episodes_to_play(rundir, spec.episodes, retries)
         await _play(spec, cfg, rundir, scenario, teams, finished, remaining, on_episode, on_tick, watch)
-        summary["played"] = len(remaining)
+        summary["played"] = len(rundir.finished()) - before
     finished = rundir.finished()
+    done = progress(finished, spec.episodes, retries)
+    summary.update(used=done.used, spoiled=done.spoiled, given_up=done.given_up)
     summary["finished"] = len(finished)
     summary["failed"] = sum(r.get("status") != "ok" for r in finished.values())
     return summary
@@ -105,7 +106,7 @@ async def _play(
     scenario,
     teams: dict,
     finished: dict[int, dict],
-    remaining: list[int],
+    remaining: Iterable[int],
     on_episode: Callable[[Any], None] | None,
     on_tick: Callable[[dict], None] | None,
     watch: int | None = None,

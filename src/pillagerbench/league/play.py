@@ -13,7 +13,7 @@ from pathlib import Path
 from omegaconf import OmegaConf
 
 from pillagerbench.config import ConfigError
-from pillagerbench.experiments.runner import check_series, execute, load_experiment
+from pillagerbench.experiments.runner import check_series, execute, load_experiment, series_progress
 from pillagerbench.league import results
 from pillagerbench.league.compose import check_entrant
 from pillagerbench.league.rounds import check_stamps, handed_over, round_dirs, write_round
@@ -22,14 +22,13 @@ from pillagerbench.league.spec import League
 from pillagerbench.league.splits import check_game, on_split
 from pillagerbench.league.standings import boards
 from pillagerbench.metrics.verified import check_bundles
-from pillagerbench.rundir import RunDir
 
 RUNNER = ("parallel", "launcher", "ray_address", "display")  # how to play, not what: free to change
 
 
 def _unfinished(run_dir: Path) -> bool:
     _, specs, dirs = load_experiment(run_dir)
-    return any(len(RunDir(dirs[s.id]).finished()) < s.episodes for s in specs)
+    return any(not series_progress(s, dirs[s.id]).complete for s in specs)
 
 
 def _play_round(run_dir: Path, runner: dict) -> bool:

@@ -14,6 +14,10 @@ metrics/verified.py `load_runs`, which verifies it first (or, asked not to, mark
 and `mixed_notes` says so). Every finished episode's faults (metrics/faults.py: ours or the team's) are
 in `faults`. Each side of an episode is its entrant (metrics/entrants.py): `red` and
 `blue` are the entrants' names, which every table groups by.
+An episode spoiled on our side (a fault of ours: provider unreachable,
+server or bot crash, lag) is in no score: its row is in `spoiled`, not in `episodes`, and it is listed in
+`skipped`; a series played another in its place (rundir/schedule.py). `index` (the learning curves' x)
+counts a series' used episodes, so a spoiled one leaves no hole.
 """
 
 from __future__ import annotations
@@ -29,9 +33,18 @@ import pandas as pd
 from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
-from pillagerbench.metrics.faults import faults
 from pillagerbench.metrics.formulas import SCORE_SCALE
-from pillagerbench.rundir import EPISODES, EpisodeRecord, RunDir, SeriesSpec, read_series
+from pillagerbench.rundir import (
+    EPISODES,
+    EpisodeRecord,
+    RunDir,
+    SeriesSpec,
+    faults,
+    progress,
+    read_series,
+    retries_of,
+    spoiled,
+)
 from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
 
 # the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
@@ -68,6 +81,7 @@ class Runs:
     suites: list[str] = field(default_factory=list)  # the suite versions of the episodes used
     bundles: list[Path] = field(default_factory=list)  # results bundles among the inputs
     unverified: list[Path] = field(default_factory=list)  # bundles read without their checks (--no-verify)
+    spoiled: pd.DataFrame = field(default_factory=pd.DataFrame)  # rows of episodes spoiled on our side (in no score)
 
 
 def mixed_notes(runs: Runs) -> list[str]:
@@ -144,16 +158,25 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
     return out
 
 
-def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list) -> None:
+def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list, spoilt: list) -> None:
     finished = _finished_episodes(s, skipped)
     scale = SCORE_SCALE.get(s.scenario, 1.0)
+    used = 0
     for i in sorted(finished):
         rec = finished[i]
         found += [{"run": str(s.run), "series": s.id, "episode": i, **f} for f in faults(rec)]
         ep = RunDir(s.dir).episode(i)
         timeline = _timeline(s, rec, ep, skipped)
-        if timeline is not None:
-            rows.append(_row(s, i, rec, ep, timeline, scale))
+        if timeline is None:
+            continue
+        row = _row(s, i, rec, ep, timeline, scale, used + s.episode_offset)
+        kind = spoiled(rec)
+        if kind:
+            skipped.append((str(ep), f"spoiled on our side ({kind}): in no score (the Failures table lists it)"))
+            spoilt.append(row)
+        else:
+            rows.append(row)
+            used += 1
 
 
 def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
@@ -171,9 +194,17 @@ def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
             skipped.append(
                 (str(d), f"half-written: no line in {EPISODES} (killed mid-episode; resume=RUN_DIR plays it again)")
             )
-    missing = s.episodes - len(finished)
-    if missing > 0:
-        skipped.append((where, f"{missing} of {s.episodes} episode(s) not played (unfinished run? resume=RUN_DIR)"))
+    done = progress(finished, s.episodes, retries_of(s.config))
+    if done.given_up:
+        skipped.append(
+            (
+                where,
+                f"{done.given_up} of {s.episodes} planned episode(s) given up: every try spoiled on our side "
+                f"(retries={retries_of(s.config)}); {done.used} of {s.episodes} used",
+            )
+        )
+    if not done.complete:
+        skipped.append((where, f"{done.used} of {s.episodes} episode(s) used so far (unfinished run? resume=RUN_DIR)"))
     return finished
 
 
@@ -202,8 +233,8 @@ def _timeline(s: SeriesInfo, rec: dict, ep: Path, skipped: list) -> list | None:
     return timeline
 
 
-def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: float) -> dict:
-    """One episode's row of the table."""
+def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: float, index: int) -> dict:
+    """One episode's row of the table (`index`: its place among the series' used episodes, for curves)."""
     rec = EpisodeRecord.from_dict(data)  # whichever version wrote it
     red_it = rec.iterations.get("red") or []
     by_mode = rec.scores
@@ -230,7 +261,7 @@ def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: flo
         "group": s.group,
         "group_x": s.group_x,
         "episode": i,
-        "index": i + s.episode_offset,
+        "index": index,
         "red_raw": float(rec.red_score or 0.0),
         "blue_raw": float(rec.blue_score or 0.0),
         "scale": scale,
@@ -308,6 +339,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     ledger: list[Any] = []
     cals: list[Any] = []
     found: list[Any] = []
+    spoilt: list[Any] = []
     inputs = [Path(p) for p in paths]
     roots = {name: run for run, name in _inputs(inputs)}
     for name, run in roots.items():
@@ -316,7 +348,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
             cals.append(run / "calibration.json")
     _check_comparable(series)
     for s in series:
-        _load_series(s, rows, skipped, found)
+        _load_series(s, rows, skipped, found, spoilt)
         path = RunDir(s.dir).ledger_path
         if path.exists():
             from pillagerbench.llm.ledger import read_ledger
@@ -342,4 +374,5 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
         faults=found,
         suites=suites,
         bundles=[r for r in inputs if is_bundle(r)],
+        spoiled=pd.DataFrame(spoilt),
     )

@@ -76,15 +76,20 @@ def build_report(
     symmetry, one_order = side_symmetry(main)
     fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma, origin)
     pairs, per_team = tables.pairings(main, sigma), tables.per_team(main, sigma)
-    grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(df)
+    grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(runs.spoiled)
+    plan = tables.planned(runs.series)
     arenas = unseen.unseen_arenas(main, sigma)
     sections = [  # the report's one list of sections: its files, its contents and its page
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
         table(
-            "summary", "Summary per red entrant (all scenarios and opponents)", tables.summary(main, sigma, runs.ledger)
+            "summary",
+            "Summary per red entrant (all scenarios and opponents)",
+            tables.summary(main, sigma, runs.ledger, plan=plan),
         ),
         table(
-            "per_scenario", "Per red entrant and scenario", tables.summary(main, sigma, runs.ledger, by_scenario=True)
+            "per_scenario",
+            "Per red entrant and scenario",
+            tables.summary(main, sigma, runs.ledger, by_scenario=True, plan=plan),
         ),
         table("per_team", "Per entrant, whichever side it played (own points vs the opponent's)", per_team),
         table("pairings", "Per pairing (heatmap values)", pairs),
@@ -106,7 +111,7 @@ def build_report(
         *series_figures(df, main, grouped, curve, out),
         table("learning_curve", "Points difference per episode index", curve),
         table("calibration", "σ_blue used for the sabotage metric", tables.calibration(sigma)),
-        table("lagged", "Played under lag (used; scores may be low: see docs/performance.md)", lag),
+        table("lagged", "Played under lag (spoiled: in no score; see docs/performance.md)", lag),
         table("faults", "Failures: ours (the harness) apart from the teams' own", faults_table(runs.faults)),
         table("skipped", "Skipped", tables.skipped(runs.skipped)),
     ]
@@ -114,7 +119,8 @@ def build_report(
         s.title += mixed_title(runs)
     notes = [
         *mixed_notes(runs),
-        f"{len(df)} episode(s) used, {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
+        f"{len(df)} episode(s) used (a team row's `episodes`, beside its `planned`), {len(runs.spoiled)} spoiled "
+        f"on our side and in no score (the Failures table lists them), {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
         "± is the 95 % confidence interval",
         *notes,
         *more_notes(runs, sigma, pairs, fidelity_notes),
@@ -236,7 +242,7 @@ def lag_notes(lag: pd.DataFrame, one_order: list[str]) -> list[str]:
     notes = []
     if len(lag):
         notes.append(
-            f"{len(lag)} episode(s) played under lag (scores may be low; re-run them with a lower parallel=), e.g. "
+            f"{len(lag)} episode(s) played under lag (spoiled: in no score; use a lower parallel=), e.g. "
             f"{lag.iloc[-1]['series']} episode {lag.iloc[-1]['episode']}: {lag.iloc[-1]['lag_reason']}"
         )
     if one_order:

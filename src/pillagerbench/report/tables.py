@@ -3,14 +3,15 @@ Markdown ("mean ± ci"). A "team" here is an entrant (metrics/entrants.py): `red
 entrants' labels, and σ_blue is keyed by the opponent's entrant (a built-in team's is its name).
 
 - summary:       per red team (row label) over every scenario and opponent: P S D W, T_resp N_out R_tps, I
-                 (the paper's main table, model ablation and module ablation)
+                 (the paper's main table, model ablation and module ablation); `episodes` used of `planned`
+                 (an episode spoiled on our side is in no score: metrics/runs.py)
 - per_scenario:  the same per red team and scenario
 - pairings:      per scenario, red team and opponent, plus "all": P S D W (the heatmaps' numbers)
 - groups:        per red team, scenario (and "all") and group: adaptation same/different, self-play
                  evaluation "after k" (paper's adaptation table and self-play figure)
 - learning_curve: D per episode index (experience) per red team (paper's D-per-episode figure)
 - calibration:   σ_blue used per scenario and opponent
-- lagged:        episodes played under lag (pillagerbench/machine.py) and why
+- lagged:        episodes played under lag (pillagerbench/machine.py) and why: spoiled, in no score
 - skipped:       what was left out and why
 """
 
@@ -95,38 +96,57 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     )
 
 
-def summary(df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool = False) -> pd.DataFrame:
+def planned(series: list) -> dict[tuple[str, str], int]:
+    """Episodes the ordinary series (not evaluation groups) planned, per (red label, scenario)."""
+    out: dict[tuple[str, str], int] = {}
+    for s in series:
+        if s.group is None or s.group == "training":
+            out[(s.red, s.scenario)] = out.get((s.red, s.scenario), 0) + int(s.episodes)
+    return out
+
+
+def summary(
+    df: pd.DataFrame, sigma: dict, ledger: list[dict], by_scenario: bool = False, plan: dict | None = None
+) -> pd.DataFrame:
+    """`plan`: episodes planned per (red, scenario) (`planned`); a red row with none used still shows
+    (0 of its planned episodes: every one spoiled on our side)."""
     rows = []
+    plan = plan or {}
     keys: list[tuple[str, str | None]] = [(r, None) for r in red_order(df)]
     if by_scenario:
         keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df["scenario"] == sc])]
+    keys = list(dict.fromkeys(keys + [(r, sc if by_scenario else None) for r, sc in plan]))
     for red, scenario in keys:
-        rd = df[(df["red"] == red) & ((df["scenario"] == scenario) if scenario else True)]
-        calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
-        llm = llm_metrics(calls)
-        it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
-        paid = cost_of(calls, wins=int((rd["red_score"] > rd["blue_score"]).sum()))
-        row = {
-            "red": red,
-            **({"scenario": scenario} if by_scenario else {}),
-            **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
-            "T_resp": llm["T_resp"],
-            "N_out": llm["N_out"],
-            "R_tps": llm["R_tps"],
-            "llm_calls": llm["calls"],
-            **paid,
-            "I": it.mean,
-            "I_ci": it.ci,
-        }
-        rows.append(row)
+        wanted = sum(n for (r, sc), n in plan.items() if r == red and scenario in (None, sc))
+        head = {"red": red, **({"scenario": scenario} if by_scenario else {}), "planned": wanted or np.nan}
+        rd = df[(df["red"] == red) & ((df["scenario"] == scenario) if scenario else True)] if len(df) else df
+        rows.append({**head, **(_summary_row(rd, red, scenario, sigma, ledger) if len(rd) else {"episodes": 0})})
     cols = (
         ["red"]
         + (["scenario"] if by_scenario else [])
-        + ["episodes"]
+        + ["episodes", "planned"]
         + [c for m in METRICS for c in (m, f"{m}_ci")]
         + ["T_resp", "N_out", "R_tps", "llm_calls", "cost", "cost_per_win", "I", "I_ci"]
     )
     return pd.DataFrame(rows, columns=cols)
+
+
+def _summary_row(rd: pd.DataFrame, red: str, scenario: str | None, sigma: dict, ledger: list[dict]) -> dict:
+    """P S D W over the opponents, the LLM metrics and I of one red row's used episodes."""
+    calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
+    llm = llm_metrics(calls)
+    it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
+    paid = cost_of(calls, wins=int((rd["red_score"] > rd["blue_score"]).sum()))
+    return {
+        **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
+        "T_resp": llm["T_resp"],
+        "N_out": llm["N_out"],
+        "R_tps": llm["R_tps"],
+        "llm_calls": llm["calls"],
+        **paid,
+        "I": it.mean,
+        "I_ci": it.ci,
+    }
 
 
 def cost_of(calls: list[dict], wins: int) -> dict[str, str]:
@@ -261,8 +281,8 @@ def calibration(sigma: dict) -> pd.DataFrame:
 
 
 def lagged(df: pd.DataFrame) -> pd.DataFrame:
-    """Episodes played under lag (a threshold of pillagerbench/machine.py crossed): used in every
-    figure, listed so a reader can judge or re-run them at a lower `parallel`."""
+    """Episodes played under lag (a threshold of pillagerbench/machine.py crossed; give the spoiled
+    rows, metrics/runs.py): in no score, listed so a reader sees why and can lower `parallel`."""
     cols = ["series", "episode", "server_tps", "lag_reason"]
     if not len(df) or "lagged" not in df:
         return pd.DataFrame(columns=cols)

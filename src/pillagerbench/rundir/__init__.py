@@ -3,7 +3,8 @@
 `RunDir` knows every path of a plain run or an experiment's series directory, appends and reads the
 episode records, tells what is finished and makes a directory consistent after a crash; `EpisodeRecord`
 is an episode's record (its line in episodes.jsonl) and `LastEpisode` what a team sees of its last
-episode; `read_experiment` reads an experiment's experiment.json; `bundle` writes and unpacks results
+episode; `faults` says whose fault a bad episode is and `schedule` which episode a series plays next
+(a spoiled one is played again); `read_experiment` reads an experiment's experiment.json; `bundle` writes and unpacks results
 bundles (run directories in one archive). Every writer and reader of run directories goes through this
 package.
 """
@@ -11,19 +12,30 @@ package.
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, winner_of
 from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
+from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
+from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress, retries_of
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series
 
 __all__ = [
     "EPISODES",
     "EXPERIMENT",
+    "HARNESS",
     "LEDGER",
+    "RETRIES",
+    "TEAM",
     "EpisodeRecord",
     "LastEpisode",
+    "Progress",
     "RunDir",
     "SeriesSpec",
     "episode_index",
+    "episodes_to_play",
+    "faults",
     "plain_series",
+    "progress",
     "read_experiment",
     "read_series",
+    "retries_of",
+    "spoiled",
     "winner_of",
 ]

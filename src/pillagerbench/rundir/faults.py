@@ -1,0 +1,63 @@
+"""Whose fault a bad episode is: ours (the harness: the server died, a bot crashed, the LLM provider did
+not answer, the machine lagged) or the team's own (its code's errors, its team server's, its budget
+spent). An episode with a fault of ours is spoiled: it is kept on disk and listed, never scored, and a
+series plays another episode in its place (rundir/schedule.py).
+
+The rules are data. An episode that failed is ours (its error names what failed, `FAILED`), unless its
+error is a team's budget spent (`BudgetExceeded`); one whose cause is not named (a team's pre-game
+raising is one) is not put on the team. An episode played under lag is ours. A side's problem is the
+team's when it holds one of `TEAM_PROBLEMS` (every call refused by the team's own budget), else ours
+when it starts with one of `HARNESS_PROBLEMS`; every other is the team's.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+HARNESS = "harness"
+TEAM = "team"
+# a recorded problem's start -> the harness failure it is (llm/budget.py: every call of the episode failed)
+HARNESS_PROBLEMS: dict[str, str] = {"llm failed on all": "provider unreachable"}
+# a recorded problem holding this -> the team's own, whatever its start (its budget refused every call)
+TEAM_PROBLEMS: dict[str, str] = {"last: BudgetExceeded": "the team's budget spent"}
+# a failed episode's error type -> (whose, kind); any other type: ours, "failed (cause not named)"
+FAILED: dict[str, tuple[str, str]] = {
+    "ArenaServerError": (HARNESS, "failed: the server"),
+    "ControlError": (HARNESS, "failed: the server"),
+    "ChannelClosed": (HARNESS, "failed: the server"),
+    "PlayerError": (HARNESS, "failed: a bot"),
+    "LLMConnectionError": (HARNESS, "provider unreachable"),
+    "LLMTimeout": (HARNESS, "provider unreachable"),
+    "ProviderError": (HARNESS, "provider unreachable"),
+    "BudgetExceeded": (TEAM, "the team's budget spent"),
+}
+
+
+def _problem(problem: str) -> tuple[str, str]:
+    """(whose, kind) of one side's recorded problem."""
+    own = next((kind for part, kind in TEAM_PROBLEMS.items() if part in problem), None)
+    if own:
+        return TEAM, own
+    ours = next((kind for start, kind in HARNESS_PROBLEMS.items() if problem.startswith(start)), None)
+    return (HARNESS, ours) if ours else (TEAM, "the team's own")
+
+
+def faults(data: dict[str, Any]) -> list[dict[str, str]]:
+    """One row per fault of an episode's record: whose (harness | team), kind, side ('' for both), what."""
+    out = []
+    if data.get("status", "ok") != "ok":  # a line may hold no more than its status (a killed run's)
+        what = str(data.get("error") or data.get("status"))
+        whose, kind = FAILED.get(what.partition(":")[0], (HARNESS, "failed (cause not named)"))
+        out.append({"whose": whose, "kind": kind, "side": "", "what": what})
+    if data.get("lagged"):
+        out.append({"whose": HARNESS, "kind": "lagged", "side": "", "what": str(data.get("lag_reason"))})
+    for side, problems in (data.get("problems") or {}).items():
+        for problem in problems:
+            whose, kind = _problem(problem)
+            out.append({"whose": whose, "kind": kind, "side": side, "what": problem})
+    return out
+
+
+def spoiled(data: dict[str, Any]) -> str | None:
+    """The kind of our first fault in an episode's record (it is spoiled: not a result), or None."""
+    return next((f["kind"] for f in faults(data) if f["whose"] == HARNESS), None)
