@@ -21,7 +21,7 @@ from pillagerbench import machine
 from pillagerbench.config import load_config, to_dict
 from pillagerbench.experiments.series import run_series
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
-from pillagerbench.metrics.runs import load_runs
+from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.rundir import RunDir, SeriesSpec, faults, progress, spoiled
 
