@@ -97,7 +97,7 @@ async def test_an_episode_without_the_provider_is_kept_listed_out_of_every_score
 
     out = build_report([tmp_path / "run"], tmp_path / "report", with_replays=False)
     summary = pd.read_csv(tmp_path / "report" / "summary.csv")
-    assert summary[["red", "episodes", "planned"]].values.tolist() == [["cot", 2, 2]]
+    assert summary[["red", "episodes", "planned"]].values.tolist() == [["cot@fake-model", 2, 2]]
     used = runs.episodes
     assert summary["P"].iloc[0] == used["red_score"].mean()  # P over the used episodes only
     failures = pd.read_csv(tmp_path / "report" / "faults.csv")
@@ -115,7 +115,7 @@ async def test_with_the_retries_spent_the_series_ends_with_fewer_episodes_and_sa
     out = build_report([tmp_path / "run"], tmp_path / "report", with_replays=False)
     assert out["episodes"] == 0
     summary = pd.read_csv(tmp_path / "report" / "summary.csv")
-    assert summary[["red", "episodes", "planned"]].values.tolist() == [["cot", 0, 1]]  # 0 of 1: said
+    assert summary[["red", "episodes", "planned"]].values.tolist() == [["cot@fake-model", 0, 1]]  # 0 of 1: said
     assert any("1 of 1 planned episode(s) given up" in why and "0 of 1 used" in why for _, why in out["skipped"])
     assert pd.read_csv(tmp_path / "report" / "faults.csv")["kind"].tolist() == [PROVIDER, PROVIDER]
 

@@ -358,7 +358,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
-    name_sides(rows)  # red and blue: the entrants, in every table
+    name_sides(rows + spoilt)  # red and blue: the entrants, in every table (spoiled episodes' too)
     label_calls(ledger, rows)
     suites = _suites(rows, mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names

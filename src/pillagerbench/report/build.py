@@ -77,7 +77,7 @@ def build_report(
     fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma, origin)
     pairs, per_team = tables.pairings(main, sigma), tables.per_team(main, sigma)
     grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(runs.spoiled)
-    plan = tables.planned(runs.series)
+    plan = tables.planned(runs.series, runs.episodes, runs.spoiled)
     arenas = unseen.unseen_arenas(main, sigma)
     sections = [  # the report's one list of sections: its files, its contents and its page
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),

@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.metrics.calibration import opponent_groups
+from pillagerbench.metrics.entrants import series_entrants
 from pillagerbench.metrics.formulas import Estimate, iterations, llm_metrics, mean_ci, over_opponents, pairing
 
 METRICS = ("P", "S", "D", "W")
@@ -96,12 +97,18 @@ def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     )
 
 
-def planned(series: list) -> dict[tuple[str, str], int]:
-    """Episodes the ordinary series (not evaluation groups) planned, per (red label, scenario)."""
+def planned(series: list, *frames: pd.DataFrame) -> dict[tuple[str, str], int]:
+    """Episodes the ordinary series (not evaluation groups) planned, per (red entrant, scenario): a
+    series' red entrant is the name its episodes (`frames`: used, spoiled) show, else its config's."""
+    named: dict[tuple[str, str], str] = {}
+    for frame in frames:
+        if len(frame):
+            named.update({(r, s): red for r, s, red in zip(frame["run"], frame["series"], frame["red"])})
     out: dict[tuple[str, str], int] = {}
     for s in series:
         if s.group is None or s.group == "training":
-            out[(s.red, s.scenario)] = out.get((s.red, s.scenario), 0) + int(s.episodes)
+            red = named.get((str(s.run), s.id)) or series_entrants(s.config)["red"]["label"]
+            out[(red, s.scenario)] = out.get((red, s.scenario), 0) + int(s.episodes)
     return out
 
 
