@@ -139,34 +139,6 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     assert left == await slime_left() > 0
 
 
-async def stop_a_dig_while_turning(area, make_player):
-    """A player facing away from a slime block starts to mine it and is stopped while mineflayer
-    still turns its head (3 rad/s: half a turn takes about a second; the dig is sent after the turn)."""
-    await area.blocks((0, 4, 2, "slime_block"))
-    p = await make_player(area, 0, 0)
-    await p.run(f"await bot.lookAt(new Vec3({area.x0 + 0.5}, 5.6, -20), true)\nawait bot.waitForTicks(5)")
-    run = asyncio.create_task(p.run("await mineBlock(bot, 'slime_block', 1)"))
-    await asyncio.sleep(0.15)
-    await p.stop()
-    await asyncio.wait_for(run, 2)
-    return p
-
-
-async def test_a_dig_still_turning_the_head_at_stop_breaks_nothing(server, area, make_player):
-    # mineflayer finishes the turn and digs: the stopped run's dig must keep the block
-    await stop_a_dig_while_turning(area, make_player)
-    await asyncio.sleep(1.5)
-    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
-
-
-async def test_a_dig_turning_at_stop_breaks_nothing_in_the_next_run(server, area, make_player):
-    # the next run (the next episode) has started by the time the turn ends: the old run's dig must
-    # not act for the new one
-    p = await stop_a_dig_while_turning(area, make_player)
-    await p.run("await bot.waitForTicks(40)")
-    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
-
-
 async def test_run_timeout(area, make_player):
     p = await make_player(area)
     t0 = time.perf_counter()

@@ -25,7 +25,7 @@ const { plugin: collectBlock } = require('mineflayer-collectblock')
 const { plugin: pvp } = require('mineflayer-pvp')
 const { Vec3 } = require('vec3')
 const { Run, isStop } = require('./run')
-const { gate } = require('./gate')
+const { gate, within, clearLeftovers } = require('./gate')
 const { waitTicks } = require('./ticks')
 const { Observer } = require('./observe')
 const { LagMeter } = require('./lag')
@@ -134,6 +134,8 @@ function halt (run, reason) {
 
 async function doRun (msg) {
   if (current) halt(current, 'Stopped: another run started')
+  current = null
+  clearLeftovers(bot) // no dig of an earlier run is left for this one to cancel (gate.js)
   const code = typeof msg.code === 'string' ? msg.code : ''
   const run = new Run(msg.id, { startTick: observer.ticks })
   run.code = code
@@ -166,7 +168,7 @@ async function doRun (msg) {
       bot, run, mcData, Vec3, primitives: prims, chat: ctx.chat, save: ctx.save, report: reportError,
       log: (level, text) => log(`[agent ${level}] ${text.slice(0, 2000)}`)
     })
-    const done = sandbox.execute(context, code)
+    const done = within(run, () => sandbox.execute(context, code)) // its packets carry the run (gate.js)
     await Promise.race([done, run.stopped])
   } catch (err) {
     if (!isStop(err) && run.active) {
