@@ -141,7 +141,8 @@ def test_a_real_run_records_its_conditions_and_is_not_put_beside_the_suites_defa
     assert load_runs([run]).suites == [f"{label} [episode_length=3, server.view_distance=6]"]
     write_run(tmp_path / "default", "mushroom_war", "do_nothing", "do_nothing", [(0, 0)], length=3, suite=label)
     with pytest.raises(
-        ReportError, match=r"refusing to mix suite versions or conditions: .*\[episode_length=3, server.view_distance=6\]"
+        ReportError,
+        match=r"refusing to mix suite versions or conditions: .*\[episode_length=3, server.view_distance=6\]",
     ):
         load_runs([run, tmp_path / "default"])
     mixed = load_runs([run, tmp_path / "default"], mix_suites=True)

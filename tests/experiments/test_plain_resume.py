@@ -14,11 +14,10 @@ import signal
 import time
 from pathlib import Path
 
-import psutil
 import pytest
 
 from pillagerbench.metrics.verified import load_runs
-from tests.support.cli import run_cli, start_cli
+from tests.support.cli import kill_run, run_cli, start_cli
 
 ROOT = Path(__file__).resolve().parents[2]
 EPISODES = 3
@@ -57,14 +56,10 @@ def kill_when_held(run: Path, hold: Path, at: str) -> list[dict]:
             assert proc.poll() is None, proc.stdout.read()
             assert time.monotonic() < deadline, f"the run never held at {at}"
             time.sleep(0.01)
-        children = psutil.Process(proc.pid).children(recursive=True)
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
+        kill_run(proc)
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
-    _, alive = psutil.wait_procs(children, timeout=15)
-    assert not alive, f"processes outlived the killed run: {[p.pid for p in alive]}"
     hold.unlink()
     return records(run)
 

@@ -13,12 +13,11 @@ import sys
 import time
 from pathlib import Path
 
-import psutil
 import pytest
 
 from pillagerbench.report.build import build_report
 from pillagerbench.report.build import main as report_main
-from tests.support.cli import start_cli
+from tests.support.cli import kill_run, start_cli
 
 EPISODES = 3
 ARGS = [
@@ -59,14 +58,10 @@ def killed_and_resumed(tmp_path_factory):
             time.sleep(0.2)
         else:
             pytest.fail("the run never reached episode 1")
-        children = psutil.Process(proc.pid).children(recursive=True)
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
+        kill_run(proc)
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
-    _, alive = psutil.wait_procs(children, timeout=15)
-    assert not alive, f"processes outlived the killed run: {[p.pid for p in alive]}"
     before = {d.name: lines(d / "episodes.jsonl") for d in (run / "series").iterdir()}
     kept = {
         d.name: (d / "episode_000" / "timeline.json").read_text() for d in (run / "series").iterdir() if before[d.name]

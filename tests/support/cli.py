@@ -1,12 +1,15 @@
 """The `pillagerbench` command as the tests run it: to the end (`run_cli`) or in the background in
-its own session, so a test can kill it and everything it started (`start_cli`)."""
+its own session, so a test can kill it and everything it started (`start_cli`, `kill_run`)."""
 
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 from pathlib import Path
+
+import psutil
 
 COMMAND = [sys.executable, "-m", "pillagerbench.cli"]
 
@@ -23,3 +26,13 @@ def start_cli(*args: str, **kw) -> subprocess.Popen:
     return subprocess.Popen(
         [*COMMAND, *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True, **kw
     )
+
+
+def kill_run(proc: subprocess.Popen) -> None:
+    """SIGKILL a command started by `start_cli` and everything it started (its session), as a crash
+    would; fails when a process outlives it."""
+    children = psutil.Process(proc.pid).children(recursive=True)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    _, alive = psutil.wait_procs(children, timeout=15)
+    assert not alive, f"processes outlived the killed run: {[p.pid for p in alive]}"
