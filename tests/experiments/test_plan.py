@@ -39,7 +39,7 @@ def plan_output(capsys, *args: str) -> str:
 def test_main_benchmark_plan_prints_150_episodes_and_plays_none(nothing_played: Path, capsys):
     out = plan_output(capsys, "experiment=main_benchmark", "parallel=2")
     assert "series: 30\n" in out and "episodes: 150 of 120 s\n" in out and "parallel: 2 at once\n" in out
-    assert "000_mushroom_war_tacticrafter_vs_do_nothing_r0: 5 episode(s), red tacticrafter (LLM " in out
+    assert "000_mushroom_war_tacticrafter_vs_do_nothing_r0: 5 episode(s), red tacticrafter@local (LLM " in out
     assert "LLM calls (openai_compatible local):" in out
     # the default preset is a local server: no price is known, and the plan says so
     assert "cost (openai_compatible local): unknown (" in out and "llm.price.input_per_1m=USD" in out
@@ -49,7 +49,7 @@ def test_main_benchmark_plan_prints_150_episodes_and_plays_none(nothing_played: 
 def test_plain_run_plan_with_a_priced_model(nothing_played: Path, capsys):
     out = plan_output(capsys, "red=cot", "llm=openai", "llm.model=gpt-4o", "episodes=2", "episode_length=60")
     assert "series: 1\n" in out and "episodes: 2 of 60 s\n" in out and "parallel: 1 at once\n" in out
-    assert "red cot (LLM openai gpt-4o) vs blue passive" in out
+    assert "red cot@gpt-4o (LLM openai gpt-4o) vs blue passive" in out
     # cot: one call per episode, up to `attempts` (3) when answers cannot be used
     assert "LLM calls (openai gpt-4o): 2 to 6;" in out
     assert "at $2.5 / $10 per million input / output tokens (genai-prices 0.2.3: openai gpt-4o)" in out

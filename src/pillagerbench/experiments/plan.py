@@ -35,6 +35,7 @@ from omegaconf import OmegaConf
 from pillagerbench.experiments.spec import SeriesSpec, build_series
 from pillagerbench.llm.tokens import count_tokens
 from pillagerbench.rundir import retries_of
+from pillagerbench.teams.entrant import entrant_of
 
 # Measured by `python benchmarks/plan_accuracy.py --overheads` (do_nothing vs do_nothing, one series of
 # two 20 s episodes per scenario, parallel=1), twice, on the 2-core development machine at load average 4-5
@@ -301,14 +302,14 @@ def build_plan(cfg: Any, argv: list[str], *, cpus: int | None = None, load: floa
         chain_low = chain_high = 0.0
         teams = {}
         for side, name, options, llm in _sides(s.config):
-            teams[side] = name
+            teams[side] = entrant_of(s.config, side)["label"]  # the entrant, as its records will name it
             if llm is None:
                 continue
             calls = team_calls(name, options, llm, s.scenario, todo, upstream)
             if not calls.high:
                 continue
             label = f"{llm.provider} {llm.model}"
-            teams[side] = f"{name} (LLM {label})"
+            teams[side] = f"{teams[side]} (LLM {label})"
             models.setdefault(label, ModelCost(label, price_of(llm))).calls += calls
             chain_low, chain_high = max(chain_low, calls.chain_low), max(chain_high, calls.chain_high)
         n = len(todo)

@@ -12,7 +12,7 @@ import pandas as pd
 
 from pillagerbench.rundir.faults import HARNESS, TEAM, faults
 
-__all__ = ["HARNESS", "TEAM", "COLUMNS", "fault_note", "faults", "faults_table", "tally"]
+__all__ = ["HARNESS", "TEAM", "COLUMNS", "fault_note", "faults", "faults_table", "name_entrants", "tally"]
 
 
 def tally(rows: list[dict[str, Any]]) -> dict[str, Any]:
@@ -26,7 +26,7 @@ def tally(rows: list[dict[str, Any]]) -> dict[str, Any]:
     return {"harness_episodes": len(harness), "team_episodes": len(team), "harness_by_kind": kinds}
 
 
-COLUMNS = ["whose", "kind", "run", "series", "episode", "side", "what"]
+COLUMNS = ["whose", "kind", "run", "series", "episode", "side", "entrant", "what"]
 
 
 def faults_table(rows: list[dict[str, Any]]) -> pd.DataFrame:
@@ -45,3 +45,12 @@ def fault_note(rows: list[dict[str, Any]]) -> list[str]:
         f"failures: ours (the harness) in {t['harness_episodes']} episode(s) ({kinds}), not used in any score (each played again while `retries` last); "
         f"the teams' own (their code, their team server, their budget) in {t['team_episodes']} episode(s)"
     ]
+
+
+def name_entrants(found: list[dict[str, Any]], rows: list[dict[str, Any]]) -> None:
+    """Every fault's `entrant`: its side's entrant as the episode's row names it (both, for a fault of
+    the whole episode); '' for an episode that has no row (failed, half-written)."""
+    sides = {(r["run"], r["series"], r["episode"]): (r["red"], r["blue"]) for r in rows}
+    for f in found:
+        red, blue = sides.get((f["run"], f["series"], f["episode"]), ("", ""))
+        f["entrant"] = {"red": red, "blue": blue}.get(f["side"], f"{red} vs {blue}" if red else "")

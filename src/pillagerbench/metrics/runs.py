@@ -33,6 +33,7 @@ import pandas as pd
 from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
+from pillagerbench.metrics.faults import name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import (
     EPISODES,
@@ -359,6 +360,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
                 if r.get("team") == "red"
             ]
     name_sides(rows + spoilt)  # red and blue: the entrants, in every table (spoiled episodes' too)
+    name_entrants(found, rows + spoilt)  # the Failures table names them too
     label_calls(ledger, rows)
     suites = _suites(rows, mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
