@@ -18,9 +18,10 @@ from datetime import date
 from pathlib import Path
 
 from pillagerbench import suite
+from pillagerbench.conditions import stamp
 from pillagerbench.experiments import builtin_teams
 from pillagerbench.metrics.fidelity import fidelity_table
-from pillagerbench.metrics.reference import SUITE_FIGURES
+from pillagerbench.metrics.reference import REFERENCE_CONDITIONS, SUITE_FIGURES
 from pillagerbench.metrics.verified import load_runs
 
 TITLES = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
@@ -28,7 +29,8 @@ TITLES = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
 
 def figures(run: Path) -> dict[str, dict]:
     runs = load_runs([run])
-    here = suite.current()["label"]
+    # the references' conditions, with upstream's scoring so that each episode records both scorings
+    here = stamp(suite.current()["label"], {**REFERENCE_CONDITIONS, "scoring": "upstream"})
     if runs.suites != [here]:
         sys.exit(f"reference_figures: {run} was played under {', '.join(runs.suites)}, this installation is {here}")
     df = runs.episodes

@@ -45,11 +45,12 @@ def test_our_faults_are_in_no_score_and_the_teams_own_are(tmp_path):
     theirs = failures[failures["whose"] == "team"]
     assert sorted(theirs["episode"]) == [2, 4]
     # each failure names its side's entrant (both for a fault of the whole episode, the lag)
+    cot = runs.episodes["red"].iloc[0]  # the entrant's name (an LLM team of a config without a model: cot@?)
     assert dict(zip(failures["episode"], failures["entrant"])) == {
-        1: "cot",
-        2: "cot",
-        3: "cot vs do_nothing",
-        4: "cot",
+        1: cot,
+        2: cot,
+        3: f"{cot} vs do_nothing",
+        4: cot,
     }
     assert list(pd.read_csv(tmp_path / "report" / "lagged.csv")["episode"]) == [3]
 
