@@ -29,7 +29,9 @@ def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
     write_run(tmp_path / "s", "mushroom_war", "do_nothing", "slimy", [(1, 11)] * TEN, **AS_REFERENCES)
     write_run(tmp_path / "b", "dash_and_dine", "do_nothing", "berries", [(0, 340), (0, 360)] * 5, **AS_REFERENCES)
     table, notes = fidelity_table(load_runs([tmp_path / x for x in "psb"]).episodes)
-    assert len(notes) == 1 and notes[0].startswith(f"fidelity: vs_suite compares with {suite_reference()['suite']}'s own reference")
+    assert len(notes) == 1 and notes[0].startswith(
+        f"fidelity: vs_suite compares with {suite_reference()['suite']}'s own reference"
+    )
     rows = {r.opponent: r for r in table.itertuples()}
     # the suite's own reference (reference_figures.json): passive 27.40 ± 4.04 agrees with
     # 25.0 ± 0.75, slimy 23.80 ± 2.84 does not with 11 ± 0
