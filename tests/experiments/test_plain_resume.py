@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 
 from pillagerbench.metrics.verified import load_runs
+from pillagerbench.rundir import spoiled
 from tests.support.cli import kill_run, run_cli, start_cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -76,16 +77,19 @@ def test_a_killed_plain_run_resumes_with_nothing_lost_and_nothing_repeated(tmp_p
     res = run_cli(ROOT, "run", *command(run, hold, at), f"resume={run}", timeout=240)
     assert res.returncode == 0, res.stdout + res.stderr
     after = records(run)
-    assert [r["episode"] for r in after] == list(range(EPISODES))
+    assert [r["episode"] for r in after] == list(range(len(after)))  # every index once: none lost, none repeated
+    # an episode spoiled on our side (lag on a loaded machine) is kept and played again as the next index
+    used = [r["episode"] for r in after if not spoiled(r)]
+    assert len(used) == EPISODES, [(r["episode"], spoiled(r)) for r in after]
     assert all(r["status"] == "ok" for r in after), [r.get("error") for r in after]
     assert after[: len(before)] == before  # the finished ones untouched
     assert (run / "episode_000" / "timeline.json").read_text() == kept
-    for i in range(EPISODES):
+    for i in range(len(after)):
         assert json.loads((run / f"episode_{i:03d}" / "timeline.json").read_text())[-1]["t"] == 5
     assert f"resume after {HELD} finished episode(s)" in res.stdout
-    assert f"{EPISODES} episode(s), 0 failed" in res.stdout  # the plain run's summary, over the whole run
+    assert f"{len(after)} episode(s), 0 failed" in res.stdout  # the plain run's summary, over the whole run
     assert len((run / "resumes.jsonl").read_text().splitlines()) == 1
-    assert sorted(load_runs([run]).episodes["episode"]) == list(range(EPISODES))  # and it reads as one run
+    assert sorted(load_runs([run]).episodes["episode"]) == used  # and it reads as one run
 
 
 def test_a_plain_run_without_the_teams_state_is_refused_in_one_line(tmp_path):

@@ -9,9 +9,11 @@ import re
 from pathlib import Path
 
 from pillagerbench.llm import read_ledger, summarize
+from pillagerbench.llm.prices import format_cost
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report import tables
+from pillagerbench.rundir import spoiled
 from tests.support.cli import run_cli
 
 PRICE = ["llm.price.input_per_1m=1000", "llm.price.output_per_1m=2000"]
@@ -37,9 +39,9 @@ def test_a_run_ends_with_what_each_team_spent_and_the_report_has_cost_per_win(tm
     runs = load_runs([run])
     row = tables.summary(runs.episodes, {}, runs.ledger).iloc[0]
     assert row["cost"] == stats.cost_text()
-    rec = json.loads((run / "episodes.jsonl").read_text())
-    won = rec["red_score"] > rec["blue_score"]
-    assert row["cost_per_win"] == (stats.cost_text() if won else "– (no win)")
+    records = [json.loads(line) for line in (run / "episodes.jsonl").read_text().splitlines()]
+    wins = sum(r["red_score"] > r["blue_score"] for r in records if not spoiled(r))  # a lagged one is replayed
+    assert row["cost_per_win"] == (format_cost(stats.cost_usd / wins, 0) if wins else "– (no win)")
 
 
 def test_an_unpriced_model_says_so_and_a_run_without_llm_team_prints_no_cost(tmp_path, fake_llm):
