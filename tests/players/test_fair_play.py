@@ -107,7 +107,7 @@ async def test_honest_primitives_trip_nothing(server, area, make_player):
     await server.request("set_chest", pos=area.at(9, 4, -4), items={"gold_nugget": 5})
     q = server.control.subscribe()
     try:
-        await p.run(
+        events = await p.run(
             f"await mineBlock(bot, 'red_mushroom_block', 1)\nawait placeItem(bot, 'dirt', new Vec3({area.x0 + 3}, 4, 0))\n"
             f"await getItemFromChest(bot, new Vec3({area.x0 + 9}, 4, -4), {{gold_nugget: 5}})",
             timeout=60,
@@ -115,8 +115,9 @@ async def test_honest_primitives_trip_nothing(server, area, make_player):
         got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
-    assert (await server.request("get_block", pos=area.at(8, 4, 4)))["name"] == "air"
-    assert (await server.request("get_block", pos=area.at(3, 4, 0)))["name"] == "dirt"
+    said = (errors(events), chat_log(events), got)  # what the run said, should a primitive fail
+    assert (await server.request("get_block", pos=area.at(8, 4, 4)))["name"] == "air", said
+    assert (await server.request("get_block", pos=area.at(3, 4, 0)))["name"] == "dirt", said
     assert await count(server, p.name, "gold_nugget") == 5
     assert got == []
 
