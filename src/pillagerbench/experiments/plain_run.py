@@ -27,9 +27,7 @@ from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.run import scenario_from_config
 from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series, progress, retries_of
-from pillagerbench.teams.entrant import entrant_of
-
-SIDES = ("red", "blue")
+from pillagerbench.teams.entrant import labels_of
 
 
 def make_run_dir(cfg) -> Path:
@@ -75,7 +73,7 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg) -> int:
         print(line)
     for line in summarize_lag(records):
         print(line)
-    for line in spend_lines([(RunDir(run_dir).ledger_path, {s: entrant_of(spec.config, s)["label"] for s in SIDES})]):
+    for line in spend_lines([(RunDir(run_dir).ledger_path, labels_of(spec.config))]):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if (failed and failed == len(records)) or all_without_model else 0

@@ -32,7 +32,7 @@ from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
 from pillagerbench.rundir import RETRIES, RunDir, progress, read_series, retries_of
-from pillagerbench.teams.entrant import entrant_of
+from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
 
@@ -306,10 +306,7 @@ def main_experiment(cfg, argv: list[str]) -> int:
         print(line)
     for line in lag_lines(specs, dirs):
         print(line)
-    for line in spend_lines(
-        (RunDir(dirs[s.id]).ledger_path, {side: entrant_of(s.config, side)["label"] for side in ("red", "blue")})
-        for s in specs
-    ):
+    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config)) for s in specs):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if errors else 0

@@ -130,3 +130,8 @@ def entrant_of(config: dict, side: str) -> dict[str, Any]:
     models = _models(config, node, options) if _uses_llm(team, node) else {}
     canonical = {"team": team, "models": models, "options": options}
     return {"label": label_of(team, models, options), "id": _digest(canonical, 12), **canonical}
+
+
+def labels_of(config: dict) -> dict[str, str]:
+    """Each side's entrant label under a run's resolved config: what its records and tables call it."""
+    return {side: entrant_of(config, side)["label"] for side in ("red", "blue")}
