@@ -54,8 +54,8 @@ def test_a_test_league_plays_every_match_on_fresh_test_layouts(tmp_path):
 @pytest.mark.parametrize(
     "args, expected",
     [
-        (["init", "split=hidden"], "split='hidden' is not a split; valid: paper, dev, test"),
-        (["board", "split=hidden"], "split='hidden' is not a split; valid: paper, dev, test"),
+        (["init", "split=hidden"], "unknown split 'hidden'; known: dev, paper, test"),
+        (["board", "split=hidden"], "unknown split 'hidden'; known: dev, paper, test"),
         (["play", "layout=5"], "'layout=5': a league plays on the paper's layout or on fresh layouts of its split"),
     ],
     ids=["init", "board", "play_with_a_layout"],
