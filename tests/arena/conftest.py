@@ -48,7 +48,7 @@ class Area:
     async def set_block(self, pos: list[float], block: str, seen_by: TestBot):
         """Set a block and wait until `seen_by` sees it: mineflayer plans a dig (how long it takes) from
         the block it sees, and the block update reaches it a tick or more after the server changed it."""
-        await self.arena.request("set_block", pos=pos, block=block)
+        await self.arena.set_block(pos=pos, block=block)
         await seen_by.eval(
             "const at = new Vec3(%d, %d, %d)\n"
             "for (let i = 0; bot.blockAt(at)?.name !== '%s'; i++) {"
@@ -57,8 +57,8 @@ class Area:
 
     async def put(self, bot: TestBot, dx: float, dz: float, items: dict[str, int] | None = None):
         """Teleport a bot onto the ground at (dx, dz), give it exactly `items`, wait until it sees the chunk."""
-        await self.arena.request("set_inventory", player=bot.username, items=items or {})
-        await self.arena.request("teleport", player=bot.username, pos=self.at(dx + 0.5, 4, dz + 0.5))
+        await self.arena.set_inventory(player=bot.username, items=items or {})
+        await self.arena.teleport(player=bot.username, pos=self.at(dx + 0.5, 4, dz + 0.5))
         await bot.eval(
             "for (let i = 0; ; i++) { const b = bot.blockAt(bot.entity.position.offset(0, -1, 0));"
             " if (b && b.name !== 'air' && bot.entity.position.distanceTo(new Vec3(%f, 4, %f)) < 1) return;"
@@ -74,7 +74,7 @@ async def area(arena):
 
 async def count(arena: ArenaServer, player: str, item: str) -> int:
     """How many of `item` the server says the player holds."""
-    return sum(s["count"] for s in await arena.request("inventory", player=player) if s["name"] == item)
+    return sum(s["count"] for s in await arena.inventory(player=player) if s["name"] == item)
 
 
 async def on_ground(arena: ArenaServer, item: str, near: list[float] | None = None, radius: float = 4.0) -> int:
@@ -82,7 +82,7 @@ async def on_ground(arena: ArenaServer, item: str, near: list[float] | None = No
     leave items elsewhere in the shared world)."""
     return sum(
         i["count"]
-        for i in await arena.request("items")
+        for i in await arena.items()
         if i["item"] == item and (near is None or sum((a - b) ** 2 for a, b in zip(i["pos"], near)) < radius**2)
     )
 

@@ -17,8 +17,8 @@ if (!block) throw new Error('no %s in sight')
 async def test_chest_prefilled_withdraw_deposit_and_persist(arena, bots, area):
     alice, bob = bots
     chest = area.at(3, 4, 2)
-    await arena.request("set_block", pos=chest, block="chest")
-    await arena.request("set_chest", pos=chest, items={"egg": 5, "wheat": 70})
+    await arena.set_block(pos=chest, block="chest")
+    await arena.set_chest(pos=chest, items={"egg": 5, "wheat": 70})
     await area.put(alice, 2, 2, {"bread": 4})
     seen = await alice.eval(
         FIND % ("chest", "chest")
@@ -33,7 +33,7 @@ async def test_chest_prefilled_withdraw_deposit_and_persist(arena, bots, area):
     """
     )
     assert sorted(seen) == [["egg", 5], ["wheat", 6], ["wheat", 64]]
-    assert await arena.request("get_chest", pos=chest) == {"egg": 2, "wheat": 70, "bread": 4}
+    assert await arena.get_chest(pos=chest) == {"egg": 2, "wheat": 70, "bread": 4}
     assert await count(arena, "alice", "egg") == 3
     assert await count(arena, "alice", "bread") == 0
     # another player opening it later sees the same contents
@@ -53,8 +53,8 @@ async def test_chest_prefilled_withdraw_deposit_and_persist(arena, bots, area):
 async def test_forged_chest_click_gets_nothing(arena, bots, area):
     alice, _ = bots
     chest = area.at(3, 4, 2)
-    await arena.request("set_block", pos=chest, block="chest")
-    await arena.request("set_chest", pos=chest, items={"egg": 1})
+    await arena.set_block(pos=chest, block="chest")
+    await arena.set_chest(pos=chest, items={"egg": 1})
     await area.put(alice, 2, 2)
     await alice.eval(
         FIND % ("chest", "chest")
@@ -70,14 +70,14 @@ async def test_forged_chest_click_gets_nothing(arena, bots, area):
     """
     )
     assert await count(arena, "alice", "diamond") == 0
-    assert await arena.request("get_chest", pos=chest) == {"egg": 1}
+    assert await arena.get_chest(pos=chest) == {"egg": 1}
 
 
 async def test_furnace_smelts_potato_in_200_ticks_with_prefuel(arena, bots, area):
     alice, _ = bots
     furnace = area.at(3, 4, 2)
-    await arena.request("set_block", pos=furnace, block="furnace")
-    await arena.request("set_furnace", pos=furnace, fuel=["coal", 2])
+    await arena.set_block(pos=furnace, block="furnace")
+    await arena.set_furnace(pos=furnace, fuel=["coal", 2])
     await area.put(alice, 2, 2, {"potato": 2})
     await alice.eval(
         FIND % ("furnace", "furnace")
@@ -91,17 +91,17 @@ async def test_furnace_smelts_potato_in_200_ticks_with_prefuel(arena, bots, area
     async def started_at() -> tuple[dict, int]:
         """The furnace and the tick its current item started cooking (progress is cook ticks / 200;
         a tick may pass between the two reads)."""
-        state = await arena.request("get_furnace", pos=furnace)
+        state = await arena.get_furnace(pos=furnace)
         return state, await tick(arena) - round(state["progress"] * 200)
 
     loop = asyncio.get_running_loop()
     deadline = loop.time() + 60  # wall time only bounds the waits: the server counts ticks
-    while not (state := await arena.request("get_furnace", pos=furnace))["burning"]:
+    while not (state := await arena.get_furnace(pos=furnace))["burning"]:
         assert loop.time() < deadline, f"the furnace never lit: {state}"
         await asyncio.sleep(0.05)
     state, first_start = await started_at()
     assert state["input"] == ["potato", 2] and state["fuel"] == ["coal", 1] and state["burning"], state
-    while (state := await arena.request("get_furnace", pos=furnace))["output"] is None:
+    while (state := await arena.get_furnace(pos=furnace))["output"] is None:
         assert loop.time() < deadline, f"no baked potato after 60 s: {state}"
         await asyncio.sleep(0.25)
     state, second_start = await started_at()
@@ -125,8 +125,8 @@ async def test_furnace_smelts_potato_in_200_ticks_with_prefuel(arena, bots, area
 
 async def test_furnace_without_fuel_does_nothing(arena, bots, area):
     furnace = area.at(3, 4, 2)
-    await arena.request("set_block", pos=furnace, block="furnace")
-    await arena.request("set_furnace", pos=furnace, input=["beef", 3])
+    await arena.set_block(pos=furnace, block="furnace")
+    await arena.set_furnace(pos=furnace, input=["beef", 3])
     await wait_ticks(arena, 20)
-    state = await arena.request("get_furnace", pos=furnace)
+    state = await arena.get_furnace(pos=furnace)
     assert state == {"input": ["beef", 3], "fuel": None, "output": None, "burning": False, "progress": 0}

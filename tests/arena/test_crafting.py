@@ -34,11 +34,11 @@ TABLE_RECIPES = [
 @pytest.mark.parametrize("result,ingredients,times,expected", TABLE_RECIPES, ids=[r[0] for r in TABLE_RECIPES])
 async def test_crafting_table_recipes(arena, bots, area, result, ingredients, times, expected):
     alice, _ = bots
-    await arena.request("set_block", pos=area.at(3, 4, 2), block="crafting_table")
+    await arena.set_block(pos=area.at(3, 4, 2), block="crafting_table")
     await area.put(alice, 2, 2, ingredients)
     believed = await alice.eval(CRAFT % (result, result, times))
-    server = {s["name"]: 0 for s in await arena.request("inventory", player="alice")}
-    for s in await arena.request("inventory", player="alice"):
+    server = {s["name"]: 0 for s in await arena.inventory(player="alice")}
+    for s in await arena.inventory(player="alice"):
         server[s["name"]] += s["count"]
     assert server == expected
     assert dict(believed) == expected  # the client agrees with the server
@@ -58,7 +58,7 @@ async def test_inventory_2x2_crafting_planks_and_sticks(arena, bots, area):
 
 async def test_crafting_without_ingredients_gives_nothing(arena, bots, area):
     alice, _ = bots
-    await arena.request("set_block", pos=area.at(3, 4, 2), block="crafting_table")
+    await arena.set_block(pos=area.at(3, 4, 2), block="crafting_table")
     await area.put(alice, 2, 2, {"wheat": 2})
     # Fake the client's belief that it holds 3 wheat, then click the result slot.
     await alice.eval("""

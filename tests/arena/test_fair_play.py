@@ -25,7 +25,7 @@ async def refusals(arena, bot):
 
 
 async def block(arena, pos) -> str:
-    return (await arena.request("get_block", pos=pos))["name"]
+    return (await arena.get_block(pos=pos))["name"]
 
 
 def raw(packet: str, fields: str) -> str:
@@ -36,7 +36,7 @@ async def test_dig_out_of_reach_is_refused(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0)
     far = area.at(10, 4, 0)
-    await arena.request("set_block", pos=far, block="dirt")
+    await arena.set_block(pos=far, block="dirt")
     async with refusals(arena, alice) as got:
         await alice.eval(
             raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % far[0]
@@ -53,7 +53,7 @@ async def test_dig_faster_than_dig_time_is_refused(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0)
     near = area.at(1, 4, 0)
-    await arena.request("set_block", pos=near, block="stone")  # 7.5 s by hand
+    await arena.set_block(pos=near, block="stone")  # 7.5 s by hand
     async with refusals(arena, alice) as got:
         await alice.eval(
             raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % near[0]
@@ -88,9 +88,7 @@ async def test_place_out_of_reach_occupied_unsupported_or_into_a_player_is_refus
     await area.put(alice, 0, 0, {"dirt": 10})
     await area.put(bob, 2, 0)
     x = area.x0
-    await arena.request(
-        "set_blocks", blocks=[[x + 11, 3, 0, "grass_block"], [x + 1, 4, 2, "stone"], [x + 1, 5, 2, "stone"]]
-    )
+    await arena.set_blocks(blocks=[[x + 11, 3, 0, "grass_block"], [x + 1, 4, 2, "stone"], [x + 1, 5, 2, "stone"]])
     place = "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, %d, %d), direction: %d, cursorX: 0.5, cursorY: 0.5, cursorZ: 0.5, insideBlock: false})\nawait sleep(250)"
     async with refusals(arena, alice) as got:
         await alice.eval("await bot.equip(mcData.itemsByName.dirt.id, 'hand')")
@@ -116,8 +114,8 @@ async def test_chest_out_of_reach_cannot_be_used(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0)
     chest = area.at(10, 4, 3)
-    await arena.request("set_block", pos=chest, block="chest")
-    await arena.request("set_chest", pos=chest, items={"gold_nugget": 64})
+    await arena.set_block(pos=chest, block="chest")
+    await arena.set_chest(pos=chest, items={"gold_nugget": 64})
     async with refusals(arena, alice) as got:
         await alice.eval(
             "bot._client.write('block_place', {hand: 0, location: new Vec3(%d, 4, 3), direction: 1, cursorX: 0.5,"
@@ -125,7 +123,7 @@ async def test_chest_out_of_reach_cannot_be_used(arena, bots, area):
             "bot._client.write('window_click', {windowId: 1, slot: 0, mouseButton: 1, action: 1, mode: 1, item: {present: false}})\n"
             "await sleep(300)" % chest[0]
         )
-    assert await arena.request("get_chest", pos=chest) == {"gold_nugget": 64}
+    assert await arena.get_chest(pos=chest) == {"gold_nugget": 64}
     assert await count(arena, "alice", "gold_nugget") == 0
     assert len(got) == 1 and got[0]["action"] == "use_block" and "too far to use chest" in got[0]["reason"]
 
@@ -134,20 +132,20 @@ async def test_open_chest_closes_when_its_player_goes_out_of_reach(arena, bots, 
     alice, _ = bots
     await area.put(alice, 0, 0)
     chest = area.at(2, 4, 0)
-    await arena.request("set_block", pos=chest, block="chest")
-    await arena.request("set_chest", pos=chest, items={"gold_nugget": 64})
+    await arena.set_block(pos=chest, block="chest")
+    await arena.set_chest(pos=chest, items={"gold_nugget": 64})
     await alice.eval(
         "const at = new Vec3(%d, 4, 0)\n"
         "for (let i = 0; i < 100 && bot.blockAt(at)?.name !== 'chest'; i++) await sleep(50)  // the block update\n"
         "global.c = await bot.openContainer(bot.blockAt(at))" % chest[0]
     )
     async with refusals(arena, alice) as got:
-        await arena.request("teleport", player="alice", pos=area.at(12.5, 4, 0.5))
+        await arena.teleport(player="alice", pos=area.at(12.5, 4, 0.5))
         await alice.eval(
             "await sleep(500)\nbot._client.write('window_click', {windowId: global.c.id, slot: 0, mouseButton: 1, action: 2,"
             " mode: 1, item: {present: false}})\nawait sleep(300)\nreturn bot.currentWindow ? bot.currentWindow.id : null"
         )
-    assert await arena.request("get_chest", pos=chest) == {"gold_nugget": 64}
+    assert await arena.get_chest(pos=chest) == {"gold_nugget": 64}
     assert await count(arena, "alice", "gold_nugget") == 0
     closed = [g for g in got if g["action"] == "use_block"]
     assert len(closed) == 1 and "walked out of reach of the chest" in closed[0]["reason"], got
@@ -156,8 +154,8 @@ async def test_open_chest_closes_when_its_player_goes_out_of_reach(arena, bots, 
 async def test_attack_out_of_reach_is_refused_and_the_cooldown_scales_damage(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0, {"iron_sword": 1})
-    far = await arena.request("summon", mob="cow", pos=area.at(9.5, 4, 0.5))
-    near = await arena.request("summon", mob="cow", pos=area.at(2.5, 4, 0.5))
+    far = await arena.summon(mob="cow", pos=area.at(9.5, 4, 0.5))
+    near = await arena.summon(mob="cow", pos=area.at(2.5, 4, 0.5))
     await alice.eval(
         "for (let i = 0; i < 60 && !(bot.entities[%d] && bot.entities[%d]); i++) await sleep(50)" % (far, near)
     )
@@ -174,12 +172,12 @@ async def test_attack_out_of_reach_is_refused_and_the_cooldown_scales_damage(are
             "bot._client.write('use_entity', {target: %d, mouse: 1, sneaking: false})\n"
             "bot._client.write('use_entity', {target: %d, mouse: 1, sneaking: false})\nawait sleep(300)" % (near, near)
         )
-    mobs = await arena.request("mobs")
+    mobs = await arena.mobs()
     assert health(mobs, far) == 10
     second = 10 - 6 - health(mobs, near)
     assert any(abs(second - 6 * (0.2 + 0.8 * ((k + 0.5) / 12.5) ** 2)) < 0.01 for k in (0, 1)), second
     assert len(got) == 1 and got[0]["action"] == "attack" and "too far to attack cow" in got[0]["reason"]
-    await arena.request("remove_entities")
+    await arena.remove_entities()
 
 
 MOVE = "bot._client.write('position', {x: %f, y: %f, z: %f, onGround: true})"
@@ -200,23 +198,23 @@ async def test_moves_beyond_the_limits_are_put_back(arena, bots, area):
     pos = lambda: next(p["pos"] for p in players if p["name"] == "alice")  # noqa: E731
     async with refusals(arena, alice) as got:
         await moves(alice, MOVE % (x + 16, 4, z + 6))  # 17 blocks in one move
-        players = await arena.request("players")
+        players = await arena.players()
         assert pos() == [x, 4, z]
         await moves(alice, MOVE % (x, 20, z))  # 16 up
-        players = await arena.request("players")
+        players = await arena.players()
         assert pos() == [x, 4, z]
         await moves(
             alice,
             # written at once, so no tick passes between them (the hover rule stays out of it)
             "for (let i = 1; i <= 6; i++) { %s }" % (MOVE % (x, 4, z)).replace("y: 4.000000", "y: 4 + 0.3 * i"),
         )
-        players = await arena.request("players")
+        players = await arena.players()
         assert pos()[1] <= 4 + 1.35, got
         await moves(
             alice,
             "for (let i = 1; i <= 20; i++) { %s }" % (MOVE % (x, 4, z)).replace("x: %f" % x, "x: %f + 0.9 * i" % x),
         )
-    players = await arena.request("players")
+    players = await arena.players()
     # 20 moves of 0.9 written at once: the allowance holds 10 blocks (and refills 10 blocks/s)
     assert pos()[0] < x + 12
     assert [g["action"] for g in got][:3] == ["move"] * 3, got
@@ -233,7 +231,7 @@ async def test_hovering_is_brought_down(arena, bots, area):
     async with refusals(arena, alice) as got:
         # the client's own position says 4.9 and, without physics, stays there (it re-sends it every second)
         await moves(alice, "bot.entity.position.y = 4.9\nawait sleep(2600)")
-    players = await arena.request("players")
+    players = await arena.players()
     assert next(p["pos"] for p in players if p["name"] == "alice") == [x, 4, z], got
     assert len(got) == 1 and "hovered in the air" in got[0]["reason"] and "brought down" in got[0]["reason"], got
 
@@ -242,7 +240,7 @@ async def test_refusals_reach_the_player_as_chat(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0)
     far = area.at(10, 4, 0)
-    await arena.request("set_block", pos=far, block="dirt")
+    await arena.set_block(pos=far, block="dirt")
     said = await alice.eval(
         "const lines = []\nconst on = (m) => lines.push(m)\nbot.on('messagestr', on)\n"
         + raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % far[0]
@@ -312,9 +310,9 @@ async def test_creative_players_are_not_checked(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 0, 0)
     far = area.at(10, 4, 0)
-    await arena.request("set_block", pos=far, block="dirt")
+    await arena.set_block(pos=far, block="dirt")
     x, z = area.x0 + 0.5, 0.5
-    await arena.request("gamemode", player="alice", mode="creative")
+    await arena.gamemode(player="alice", mode="creative")
     try:
         async with refusals(arena, alice) as got:
             await alice.eval(raw("block_dig", "{status: 0, location: new Vec3(%d, 4, 0), face: 1}") % far[0])
@@ -323,10 +321,10 @@ async def test_creative_players_are_not_checked(arena, bots, area):
                 "bot.physicsEnabled = false\nawait sleep(300)\n%s\nbot.entity.position.set(%f, 4, %f)"
                 % (MOVE % (x + 16, 4, z + 6), x + 16, z + 6)
             )
-        players = await arena.request("players")
+        players = await arena.players()
     finally:
         await alice.eval("bot.physicsEnabled = true")
-        await arena.request("gamemode", player="alice", mode="survival")
+        await arena.gamemode(player="alice", mode="survival")
     assert got == []
     assert await block(arena, far) == "air"  # a creative player breaks at once, from anywhere
     assert next(p["pos"] for p in players if p["name"] == "alice") == [x + 16, 4, z + 6]

@@ -16,18 +16,18 @@ await sleep(900)   // drops are picked up after a short delay
 
 
 async def block(arena, pos):
-    return await arena.request("get_block", pos=pos)
+    return await arena.get_block(pos=pos)
 
 
 @contextlib.asynccontextmanager
 async def fast_growth(arena, tps=100, chance=1.0):
-    await arena.request("tick_rate", tps=tps)
-    await arena.request("crop_growth", chance=chance)
+    await arena.tick_rate(tps=tps)
+    await arena.crop_growth(chance=chance)
     try:
         yield
     finally:
-        await arena.request("tick_rate", tps=20)
-        await arena.request("crop_growth", chance=0.0)
+        await arena.tick_rate(tps=20)
+        await arena.crop_growth(chance=0.0)
 
 
 async def wait_block(arena, pos, predicate, timeout=10.0):
@@ -42,9 +42,7 @@ async def wait_block(arena, pos, predicate, timeout=10.0):
 async def test_mushroom_blocks_drop_0_to_2_and_slime_drops_itself(arena, bots, area):
     alice, _ = bots
     cells = [area.at(3 + i % 3, 4, 1 + i // 3) for i in range(6)]
-    await arena.request(
-        "set_blocks", blocks=[[*c, "red_mushroom_block"] for c in cells] + [[*area.at(1, 4, 4), "slime_block"]]
-    )
+    await arena.set_blocks(blocks=[[*c, "red_mushroom_block"] for c in cells] + [[*area.at(1, 4, 4), "slime_block"]])
     await area.put(alice, 2, 2)
     q = arena.control.subscribe()
     try:
@@ -102,7 +100,7 @@ async def test_hoe_tills_seeds_grow_and_ripe_wheat_drops_wheat_and_seeds(arena, 
 async def test_young_crops_drop_only_a_seed(arena, bots, area):
     alice, _ = bots
     crop = area.at(3, 4, 2)
-    await arena.request("set_blocks", blocks=[[*area.at(3, 3, 2), "farmland"], [*crop, "beetroots", {"age": 1}]])
+    await arena.set_blocks(blocks=[[*area.at(3, 3, 2), "farmland"], [*crop, "beetroots", {"age": 1}]])
     await area.put(alice, 2, 2)
     await alice.eval(DIG % (*crop, *crop))
     assert await held_or_on_ground(arena, "alice", "beetroot_seeds") == 1
@@ -128,8 +126,8 @@ async def test_seeds_refuse_to_grow_off_farmland(arena, bots, area):
 async def test_stems_grow_fruit_and_sugar_cane_grows_three_high(arena, bots, area):
     stem = area.at(3, 4, 3)
     cane = area.at(8, 4, 3)
-    await arena.request("fill", **{"from": area.at(2, 3, 2), "to": area.at(4, 3, 4), "block": "farmland"})
-    await arena.request("set_blocks", blocks=[[*stem, "melon_stem", {"age": 6}], [*cane, "sugar_cane"]])
+    await arena.fill(area.at(2, 3, 2), area.at(4, 3, 4), "farmland")
+    await arena.set_blocks(blocks=[[*stem, "melon_stem", {"age": 6}], [*cane, "sugar_cane"]])
     async with fast_growth(arena):
         await wait_block(arena, stem, lambda b: b["name"] == "attached_melon_stem", timeout=15)
         await wait_block(arena, [cane[0], 6, cane[2]], lambda b: b["name"] == "sugar_cane", timeout=15)
@@ -144,7 +142,7 @@ async def test_cocoa_on_jungle_log_and_sweet_berries_by_right_click(arena, bots,
     alice, _ = bots
     log = area.at(4, 4, 2)
     bush = area.at(2, 4, 3)
-    await arena.request("set_blocks", blocks=[[*log, "jungle_log"], [*bush, "sweet_berry_bush", {"age": 3}]])
+    await arena.set_blocks(blocks=[[*log, "jungle_log"], [*bush, "sweet_berry_bush", {"age": 3}]])
     await area.put(alice, 2, 2, {"cocoa_beans": 1})
     await alice.eval(
         """
@@ -182,14 +180,13 @@ async def dug_and_harvested(arena, alice, script):
 
 async def test_sweet_berry_bush_gives_1_to_2_at_age_2_and_2_to_3_at_age_3(arena, bots, area):
     alice, _ = bots
-    await arena.request("seed", seed=11)
+    await arena.seed(seed=11)
     young = [area.at(x, 4, 1) for x in range(7)] + [area.at(x, 4, 5) for x in range(7)]
     # 14 of each: the counts drawn depend on how many draws the server's seeded stream gave to other
     # things first (per-tick pickup orders), so both values must be likely, not just seeded (with 7
     # ripe bushes, all seven gave 2 in one CI run: a chance of 2 in 2^7)
     ripe = [area.at(x, 4, 3) for x in range(7)] + [area.at(x, 4, 7) for x in range(7)]
-    await arena.request(
-        "set_blocks",
+    await arena.set_blocks(
         blocks=[[*p, "sweet_berry_bush", {"age": 2}] for p in young]
         + [[*p, "sweet_berry_bush", {"age": 3}] for p in ripe],
     )
@@ -209,13 +206,12 @@ async def test_sweet_berry_bush_gives_1_to_2_at_age_2_and_2_to_3_at_age_3(arena,
 
 async def test_ripe_crops_drop_vanilla_counts(arena, bots, area):
     alice, _ = bots
-    await arena.request("seed", seed=5)
+    await arena.seed(seed=5)
     carrots = [area.at(x, 4, z) for x in range(1, 6) for z in (1, 2)]
     logs = [area.at(x, 4, 5) for x in range(1, 4)]
     pods = [[x, 4, 4] for x, _, _ in logs]
-    await arena.request("fill", **{"from": area.at(1, 3, 1), "to": area.at(5, 3, 2), "block": "farmland"})
-    await arena.request(
-        "set_blocks",
+    await arena.fill(area.at(1, 3, 1), area.at(5, 3, 2), "farmland")
+    await arena.set_blocks(
         blocks=[[*p, "carrots", {"age": 7}] for p in carrots]
         + [[*p, "jungle_log"] for p in logs]
         + [[*p, "cocoa", {"age": 2, "facing": "south"}] for p in pods],
@@ -231,8 +227,8 @@ async def test_ripe_crops_drop_vanilla_counts(arena, bots, area):
 async def test_a_broken_melon_turns_its_stem_ripe_and_it_grows_a_new_melon(arena, bots, area):
     alice, _ = bots
     stem, melon = area.at(3, 4, 3), area.at(4, 4, 3)
-    await arena.request("fill", **{"from": area.at(2, 3, 2), "to": area.at(4, 3, 4), "block": "farmland"})
-    await arena.request("set_blocks", blocks=[[*stem, "attached_melon_stem", {"facing": "east"}], [*melon, "melon"]])
+    await arena.fill(area.at(2, 3, 2), area.at(4, 3, 4), "farmland")
+    await arena.set_blocks(blocks=[[*stem, "attached_melon_stem", {"facing": "east"}], [*melon, "melon"]])
     await asyncio.sleep(1.5)  # tracked, and nothing happens while the melon is there
     assert (await block(arena, stem))["name"] == "attached_melon_stem"
     await area.put(alice, 1, 1)
@@ -249,15 +245,15 @@ async def test_crops_grow_by_vanilla_random_ticks(arena, area):
     """randomTickSpeed 0: nothing grows; 4096: every block gets a random tick every game tick, so a bush
     (1 in 5 per random tick) ripens within seconds."""
     bush = area.at(2, 4, 2)
-    await arena.request("set_blocks", blocks=[[*bush, "sweet_berry_bush", {"age": 0}]])
-    await arena.request("crop_growth", random_tick_speed=0)
+    await arena.set_blocks(blocks=[[*bush, "sweet_berry_bush", {"age": 0}]])
+    await arena.crop_growth(random_tick_speed=0)
     await asyncio.sleep(1.5)
     assert (await block(arena, bush))["properties"]["age"] == 0
     try:
-        await arena.request("crop_growth", random_tick_speed=4096)
+        await arena.crop_growth(random_tick_speed=4096)
         await wait_block(arena, bush, lambda b: b["properties"]["age"] == 3, timeout=6)
     finally:
-        await arena.request("crop_growth", random_tick_speed=0)
+        await arena.crop_growth(random_tick_speed=0)
 
 
 async def test_growth_speed_of_a_crop_is_vanillas(arena, area):
@@ -265,21 +261,20 @@ async def test_growth_speed_of_a_crop_is_vanillas(arena, area):
     halved inside rows of the same crop."""
     lone, field = area.at(2, 4, 2), [area.at(x, 4, z) for x in range(6, 9) for z in range(1, 4)]
     moist = {"moisture": 7}
-    await arena.request(
-        "set_blocks",
+    await arena.set_blocks(
         blocks=[[*area.at(2, 3, 2), "farmland"], [*lone, "wheat", {"age": 0}]]
         + [[x, 3, z, "farmland", moist] for x, _, z in field]
         + [[*p, "carrots", {"age": 0}] for p in field],
     )
-    assert await arena.request("crop_growth_speed", pos=lone) == 2  # dry farmland under it, grass around
-    assert await arena.request("crop_growth_speed", pos=area.at(7, 4, 2)) == 5  # (1 + 3 + 8 x 3/4) / 2
-    assert await arena.request("crop_growth_speed", pos=area.at(6, 4, 1)) == 3.125  # a corner: (1 + 3 + 3 x 3/4) / 2
+    assert await arena.crop_growth_speed(pos=lone) == 2  # dry farmland under it, grass around
+    assert await arena.crop_growth_speed(pos=area.at(7, 4, 2)) == 5  # (1 + 3 + 8 x 3/4) / 2
+    assert await arena.crop_growth_speed(pos=area.at(6, 4, 1)) == 3.125  # a corner: (1 + 3 + 3 x 3/4) / 2
 
 
 async def test_sugar_cane_is_planted_only_beside_water(arena, bots, area):
     alice, _ = bots
     wet, dry = area.at(2, 3, 2), area.at(6, 3, 2)
-    await arena.request("set_blocks", blocks=[[*wet, "sand"], [wet[0], 3, 1, "water"], [*dry, "sand"]])
+    await arena.set_blocks(blocks=[[*wet, "sand"], [wet[0], 3, 1, "water"], [*dry, "sand"]])
     await area.put(alice, 4, 3, {"sugar_cane": 2})
     await alice.eval(
         "".join(
@@ -298,8 +293,7 @@ async def test_breaking_the_second_cane_block_pops_the_third(arena, bots, area):
     # ground + 2 (upstream's harvestSugarCane) gives two canes
     alice, _ = bots
     col = [area.at(3, y, 3) for y in (4, 5, 6)]
-    await arena.request(
-        "set_blocks",
+    await arena.set_blocks(
         blocks=[[*area.at(3, 3, 3), "sand"], [*area.at(3, 3, 2), "water"]] + [[*p, "sugar_cane"] for p in col],
     )
     await area.put(alice, 1, 3)

@@ -60,7 +60,7 @@ async def test_chat_commands_from_players_are_refused(arena, bots, area):
     assert "refused" in reply
     assert await count(arena, "alice", "diamond") == 0
     await alice.eval("bot.chat('/tp alice 0 100 0'); await sleep(300)")
-    pos = next(p for p in await arena.request("players") if p["name"] == "alice")["pos"]
+    pos = next(p for p in await arena.players() if p["name"] == "alice")["pos"]
     assert pos[1] < 10
 
 

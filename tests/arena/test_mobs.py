@@ -25,12 +25,12 @@ async def test_kill_cow_and_chicken_for_loot_and_nobody_is_kicked(arena, bots, a
     alice, bob = bots
     await area.put(alice, 2, 2, {"iron_sword": 1})
     await area.put(bob, 2, 5)
-    await arena.request("summon", mob="cow", pos=area.at(3.5, 4, 2.5))
+    await arena.summon(mob="cow", pos=area.at(3.5, 4, 2.5))
     await wait_mob(alice, "cow")
     q = arena.control.subscribe()
     try:
         assert await alice.eval(ATTACK % ("cow", "cow", "iron_sword")) is True
-        await arena.request("summon", mob="chicken", pos=area.at(2.5, 4, 3.5))
+        await arena.summon(mob="chicken", pos=area.at(2.5, 4, 3.5))
         await wait_mob(alice, "chicken")
         assert await alice.eval(ATTACK % ("chicken", "chicken", "iron_sword")) is True
         await asyncio.sleep(0.3)
@@ -40,22 +40,20 @@ async def test_kill_cow_and_chicken_for_loot_and_nobody_is_kicked(arena, bots, a
     assert [k["mob"] for k in kills] == ["cow", "chicken"]
     assert all(k["player"] == "alice" for k in kills)
     ground = {}
-    for i in await arena.request("items"):
+    for i in await arena.items():
         ground[i["item"]] = ground.get(i["item"], 0) + i["count"]
     beef = await count(arena, "alice", "beef") + await count(arena, "bob", "beef") + ground.get("beef", 0)
     chicken = await count(arena, "alice", "chicken") + await count(arena, "bob", "chicken") + ground.get("chicken", 0)
     assert 1 <= beef <= 3
     assert chicken == 1
     assert not alice.kicked and not bob.kicked
-    assert not any(
-        m["name"] in ("cow", "chicken") and abs(m["pos"][0] - area.x0) < 16 for m in await arena.request("mobs")
-    )
+    assert not any(m["name"] in ("cow", "chicken") and abs(m["pos"][0] - area.x0) < 16 for m in await arena.mobs())
 
 
 async def test_milk_a_cow_with_a_bucket(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 2, 2, {"bucket": 3})
-    await arena.request("summon", mob="cow", pos=area.at(3.5, 4, 2.5))
+    await arena.summon(mob="cow", pos=area.at(3.5, 4, 2.5))
     await wait_mob(alice, "cow")
     await alice.eval("""
         await bot.equip(mcData.itemsByName.bucket.id, 'hand')
@@ -81,28 +79,28 @@ async def test_milk_a_cow_with_a_bucket(arena, bots, area):
 
 async def test_egg_farm_fills_its_chest_only_while_a_chicken_lives_nearby(arena, area):
     with_chicken, without = area.at(2, 4, 2), area.at(12, 4, 12)
-    await arena.request("set_blocks", blocks=[[*with_chicken, "chest"], [*without, "chest"]])
-    await arena.request("summon", mob="chicken", pos=area.at(3.5, 4, 3.5))
+    await arena.set_blocks(blocks=[[*with_chicken, "chest"], [*without, "chest"]])
+    await arena.summon(mob="chicken", pos=area.at(3.5, 4, 3.5))
     before = await tick(arena)
-    await arena.request("egg_farm", chest=with_chicken, interval_s=0.25)  # 5 ticks
-    await arena.request("egg_farm", chest=without, interval_s=0.25, radius=2)
+    await arena.egg_farm(chest=with_chicken, interval_s=0.25)  # 5 ticks
+    await arena.egg_farm(chest=without, interval_s=0.25, radius=2)
     after = await tick(arena)
     await wait_ticks(arena, 30)
     lo = await tick(arena)
-    eggs = (await arena.request("get_chest", pos=with_chicken)).get("egg", 0)
+    eggs = (await arena.get_chest(pos=with_chicken)).get("egg", 0)
     hi = await tick(arena)
     # the farm's first tick f is in (before, after + 1]; its chicken lays the first egg 0 to 9 ticks
     # after it, then one every 5 to 10 ticks, and the chest is read at a tick t in [lo, hi]
     least, most = (lo - (after + 1) - 9) // 10 + 1, (hi - (before + 1)) // 5 + 1
     assert least >= 3 and least <= eggs <= most, (eggs, least, most)
-    assert await arena.request("get_chest", pos=without) == {}
+    assert await arena.get_chest(pos=without) == {}
 
 
 async def test_login_near_a_mob_and_a_killed_mob_vanishes_for_late_comers(arena, bots, area):
     from tests.support.bots import TestBot
 
     alice, _ = bots
-    await arena.request("summon", mob="pig", pos=area.at(3.5, 4, 2.5))
+    await arena.summon(mob="pig", pos=area.at(3.5, 4, 2.5))
     async with TestBot(arena.port, "dave") as dave:  # logging in while a mob exists must not kick
         await area.put(dave, 5, 5)
         await area.put(alice, 2, 2, {"diamond_sword": 1})  # alice arrives after the pig spawned

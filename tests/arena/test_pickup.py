@@ -57,11 +57,11 @@ async def test_two_players_equally_near_share_contested_items_whatever_the_join_
     await area.put(alice, 1, 4)
     await area.put(bob, 3, 4)
     order = [first, "bob" if first == "alice" else "alice"]
-    assert (await arena.request("player_order", names=order))[:2] == order
+    assert (await arena.player_order(names=order))[:2] == order
     drops = 40
     # one drop between them every 2 ticks, so every drop is decided in a tick of its own
     for i in range(drops):
-        await arena.request("spawn_item", item="stick", pos=area.at(2.5, 4, 4.5), delay_ticks=10 + 2 * i)
+        await arena.spawn_item(item="stick", pos=area.at(2.5, 4, 4.5), delay_ticks=10 + 2 * i)
     assert await wait_until(lambda: equals(on_ground(arena, "stick", area.at(2.5, 4, 4.5)), 0), timeout=20)
     got = {n: await count(arena, n, "stick") for n in ("alice", "bob")}
     assert sum(got.values()) == drops
@@ -73,19 +73,19 @@ async def test_an_item_outside_the_vanilla_box_stays_on_the_ground(arena, bots, 
     alice, _ = bots
     await area.put(alice, 2, 8)
     # 1.5 blocks away on x: inside the old 1.75 sphere, outside the box (1.425)
-    await arena.request("spawn_item", item="feather", pos=area.at(4.0, 4, 8.5), delay_ticks=0)
+    await arena.spawn_item(item="feather", pos=area.at(4.0, 4, 8.5), delay_ticks=0)
     await asyncio.sleep(1.5)
     assert await count(arena, "alice", "feather") == 0
     assert await on_ground(arena, "feather", area.at(4.0, 4, 8.5)) == 1
     # 1.3 blocks away: inside the box
-    await arena.request("spawn_item", item="bone", pos=area.at(3.8, 4, 8.5), delay_ticks=0)
+    await arena.spawn_item(item="bone", pos=area.at(3.8, 4, 8.5), delay_ticks=0)
     assert await wait_until(lambda: equals(count(arena, "alice", "bone"), 1))
 
 
 async def test_an_item_is_not_picked_up_before_its_delay(arena, bots, area):
     alice, _ = bots
     await area.put(alice, 2, 12)
-    await arena.request("spawn_item", item="string", pos=area.at(2.5, 4, 12.5), delay_ticks=40)
+    await arena.spawn_item(item="string", pos=area.at(2.5, 4, 12.5), delay_ticks=40)
     await asyncio.sleep(1.0)  # at most 20 ticks have passed, whatever the load
     assert await count(arena, "alice", "string") == 0
     assert await wait_until(lambda: equals(count(arena, "alice", "string"), 1))
@@ -98,8 +98,8 @@ async def test_spawn_item_and_player_order_refuse_bad_input(arena, bots, area):
         ({"item": "stick", "pos": [0, 4, 0], "delay_ticks": -1}, "delay_ticks must be"),
     ]:
         with pytest.raises(Exception, match=fragment):
-            await arena.request("spawn_item", **args)
+            await arena.spawn_item(**args)
     with pytest.raises(Exception, match="no player named"):
-        await arena.request("player_order", names=["alice", "nobody"])
+        await arena.player_order(names=["alice", "nobody"])
     with pytest.raises(Exception, match="distinct"):
-        await arena.request("player_order", names=["alice", "alice"])
+        await arena.player_order(names=["alice", "alice"])

@@ -10,7 +10,7 @@ HIT = "bot._client.write('use_entity', {target: bot.players.%s.entity.id, mouse:
 
 
 async def health(arena, name: str) -> float:
-    return next(p["health"] for p in await arena.request("players") if p["name"] == name)
+    return next(p["health"] for p in await arena.players() if p["name"] == name)
 
 
 async def full_health(arena, name: str) -> None:
@@ -76,16 +76,14 @@ async def test_walking_through_ripe_berry_bushes_hurts_standing_in_one_does_not(
     alice, _ = bots
     await area.put(alice, 0, 0)
     await full_health(arena, "alice")
-    await arena.request(
-        "set_blocks", blocks=[[*area.at(dx, 4, 0), "sweet_berry_bush", {"age": 3}] for dx in range(1, 10)]
-    )
+    await arena.set_blocks(blocks=[[*area.at(dx, 4, 0), "sweet_berry_bush", {"age": 3}] for dx in range(1, 10)])
     x0 = area.x0
     await alice.eval(
         "for (let i = 0; bot.blockAt(new Vec3(%d, 4, 0))?.name !== 'sweet_berry_bush'; i++) {"
         " if (i > 100) throw new Error('no bush'); await sleep(50) }" % (x0 + 9)
     )
     # standing in a ripe bush hurts nobody
-    await arena.request("teleport", player="alice", pos=area.at(1.5, 4, 0.5))
+    await arena.teleport(player="alice", pos=area.at(1.5, 4, 0.5))
     await alice.eval("await sleep(1500)")
     assert await health(arena, "alice") == 20
     # walking east through nine ripe bushes (about 2 s): hurt every 10 ticks, healed every 20

@@ -15,10 +15,10 @@ from pillagerbench.arena.control import ChannelClosed
 async def test_ready_with_flat_world_and_log(arena):
     assert arena.port and arena.port > 0
     assert arena.log_path.exists()
-    assert (await arena.request("get_block", pos=[5, 3, 5]))["name"] == "grass_block"
-    assert (await arena.request("get_block", pos=[5, 2, 5]))["name"] == "dirt"
-    assert (await arena.request("get_block", pos=[5, 0, 5]))["name"] == "bedrock"
-    assert (await arena.request("get_block", pos=[5, 4, 5]))["name"] == "air"
+    assert (await arena.get_block(pos=[5, 3, 5]))["name"] == "grass_block"
+    assert (await arena.get_block(pos=[5, 2, 5]))["name"] == "dirt"
+    assert (await arena.get_block(pos=[5, 0, 5]))["name"] == "bedrock"
+    assert (await arena.get_block(pos=[5, 4, 5]))["name"] == "air"
 
 
 @pytest.mark.parametrize(
@@ -34,19 +34,22 @@ async def test_ready_with_flat_world_and_log(arena):
         ("summon", {"mob": "dragon", "pos": [0, 4, 0]}, "unknown mob 'dragon'"),
         ("tick_rate", {"tps": 0}, "tps must be between"),
         ("no_such_op", {}, 'unknown op "no_such_op"'),
+        ("toString", {}, 'unknown op "toString"'),
+        ("set_block", {"pos": [0, 4, 0], "block": "stone", "colour": "red"}, 'op set_block has no argument "colour"'),
+        ("get_block", {}, 'op get_block needs the argument "pos"'),
     ],
 )
 async def test_bad_requests_get_an_error_naming_the_problem(arena, op, args, message):
     with pytest.raises(ControlError, match=None) as info:
         await arena.request(op, **args)
     assert message in str(info.value)
-    assert await arena.request("ping") == "pong"  # still running
+    assert await arena.ping() == "pong"  # still running
 
 
 async def test_malformed_lines_get_an_error_reply(arena):
     arena.control._writer.write(b'this is not json\n{"op": 5}\n[1, 2]\n')
     await arena.control._writer.drain()
-    assert await arena.request("ping") == "pong"
+    assert await arena.ping() == "pong"
     errors = [m["error"] for m in arena.control.unmatched[-3:]]
     assert "malformed control message (not JSON)" in errors[0]
     assert 'string "op"' in errors[1]
@@ -55,7 +58,7 @@ async def test_malformed_lines_get_an_error_reply(arena):
 
 async def test_unknown_item_in_give_names_item(arena, bots):
     with pytest.raises(ControlError, match="unknown item 'diamnd'"):
-        await arena.request("give", player="alice", item="diamnd", count=1)
+        await arena.give(player="alice", item="diamnd", count=1)
 
 
 async def test_death_of_the_server_is_reported_clearly(tmp_path):
@@ -65,7 +68,7 @@ async def test_death_of_the_server_is_reported_clearly(tmp_path):
     os.killpg(server.process.pid, signal.SIGKILL)
     with pytest.raises(ChannelClosed, match="exit code"):
         for _ in range(50):
-            await server.request("ping")
+            await server.ping()
             await asyncio.sleep(0.1)
     await server.stop()
 

@@ -51,7 +51,7 @@ def test_the_live_view_renders_the_arena_during_a_match_and_is_no_player(tmp_pat
                 episode = asyncio.create_task(match.play_episode(0))
                 await asyncio.sleep(8)
                 seen["state"] = json.loads(urllib.request.urlopen(server.watch_url + "state.json", timeout=10).read())
-                seen["players"] = [p["name"] for p in await server.request("players")]
+                seen["players"] = [p["name"] for p in await server.players()]
                 seen["log"] = await asyncio.to_thread(
                     screenshot, server.watch_url, tmp_path / "live.png", budget_ms=15000
                 )
@@ -79,8 +79,8 @@ def test_a_view_that_dies_changes_nothing_for_the_game(tmp_path):
             assert len(children) == 1 and "watch" in " ".join(children[0].cmdline())
             children[0].kill()
             await asyncio.sleep(1)
-            await server.request("set_block", pos=[0, 4, 0], block="stone")  # block updates no longer have a reader
-            assert await server.request("watch", t=1, scores={"red": 1}) is False
+            await server.set_block(pos=[0, 4, 0], block="stone")  # block updates no longer have a reader
+            assert await server.watch(t=1, scores={"red": 1}) is False
             await wait_ticks(server, 15, timeout=30)  # the server goes on ticking (fails if it stopped)
             assert server.alive
 

@@ -33,7 +33,7 @@ class Area:
 
     async def blocks(self, *blocks):
         """set_blocks with x relative to the area: (dx, y, z, name[, props])."""
-        await self.server.request("set_blocks", blocks=[[self.x0 + b[0], *b[1:]] for b in blocks])
+        await self.server.set_blocks(blocks=[[self.x0 + b[0], *b[1:]] for b in blocks])
 
 
 @pytest_asyncio.fixture(loop_scope="session")
@@ -57,9 +57,9 @@ async def make_player(server, tmp_path):
     for p in made:
         await p.close()
     # Mobs left in the world make later logins fail (server bug, see docs/players.md): remove them.
-    await server.request("remove_entities")
+    await server.remove_entities()
 
 
 async def count(server: ArenaServer, player: str, item: str) -> int:
     """How many of `item` the server says the player holds."""
-    return sum(s["count"] for s in await server.request("inventory", player=player) if s["name"] == item)
+    return sum(s["count"] for s in await server.inventory(player=player) if s["name"] == item)

@@ -21,7 +21,7 @@ async def _refused(server, q, player) -> list[dict]:
 
 
 async def _pos(server, name):
-    return next(p["pos"] for p in await server.request("players") if p["name"] == name)
+    return next(p["pos"] for p in await server.players() if p["name"] == name)
 
 
 async def test_teleporting_by_setting_the_position_is_put_back_and_cannot_dig_there(server, area, make_player):
@@ -39,7 +39,7 @@ async def test_teleporting_by_setting_the_position_is_put_back_and_cannot_dig_th
     finally:
         server.control.unsubscribe(q)
     assert await _pos(server, p.name) == start
-    assert (await server.request("get_block", pos=area.at(-9, 4, 6)))["name"] == "red_mushroom_block"
+    assert (await server.get_block(pos=area.at(-9, 4, 6)))["name"] == "red_mushroom_block"
     assert got[0]["action"] == "move" and "moved too quickly" in got[0]["reason"], got
     assert any(line.startswith("[refused] move: moved too quickly") for line in chat_log(events))
 
@@ -70,7 +70,7 @@ async def test_digging_a_block_out_of_reach_is_refused(server, area, make_player
         got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
-    assert (await server.request("get_block", pos=area.at(15, 4, 6)))["name"] == "red_mushroom_block"
+    assert (await server.get_block(pos=area.at(15, 4, 6)))["name"] == "red_mushroom_block"
     assert [g["action"] for g in got] == ["dig"] and "too far to dig red_mushroom_block" in got[0]["reason"]
     assert any(line.startswith("[refused] dig: too far") for line in chat_log(events))
 
@@ -79,7 +79,7 @@ async def test_a_chest_out_of_reach_cannot_be_opened(server, area, make_player):
     p = await make_player(area, 0, 0)
     await area.blocks((10, 4, 3, "chest"))  # 10.7 blocks away
     chest = area.at(10, 4, 3)
-    await server.request("set_chest", pos=chest, items={"gold_nugget": 64})
+    await server.set_chest(pos=chest, items={"gold_nugget": 64})
     q = server.control.subscribe()
     try:
         events = await p.run(
@@ -92,7 +92,7 @@ async def test_a_chest_out_of_reach_cannot_be_opened(server, area, make_player):
         got = await _refused(server, q, p)
     finally:
         server.control.unsubscribe(q)
-    assert await server.request("get_chest", pos=chest) == {"gold_nugget": 64}
+    assert await server.get_chest(pos=chest) == {"gold_nugget": 64}
     assert await count(server, p.name, "gold_nugget") == 0
     assert [g["action"] for g in got] == ["use_block"] and "too far to use chest" in got[0]["reason"], (
         got,
@@ -104,7 +104,7 @@ async def test_a_chest_out_of_reach_cannot_be_opened(server, area, make_player):
 async def test_honest_primitives_trip_nothing(server, area, make_player):
     p = await make_player(area, 0, 0, {"dirt": 2}, primitives=["mineBlock", "placeItem", "useChest"])
     await area.blocks((8, 4, 4, "red_mushroom_block"), (9, 4, -4, "chest"))
-    await server.request("set_chest", pos=area.at(9, 4, -4), items={"gold_nugget": 5})
+    await server.set_chest(pos=area.at(9, 4, -4), items={"gold_nugget": 5})
     q = server.control.subscribe()
     try:
         events = await p.run(
@@ -116,8 +116,8 @@ async def test_honest_primitives_trip_nothing(server, area, make_player):
     finally:
         server.control.unsubscribe(q)
     said = (errors(events), chat_log(events), got)  # what the run said, should a primitive fail
-    assert (await server.request("get_block", pos=area.at(8, 4, 4)))["name"] == "air", said
-    assert (await server.request("get_block", pos=area.at(3, 4, 0)))["name"] == "dirt", said
+    assert (await server.get_block(pos=area.at(8, 4, 4)))["name"] == "air", said
+    assert (await server.get_block(pos=area.at(3, 4, 0)))["name"] == "dirt", said
     assert await count(server, p.name, "gold_nugget") == 5
     assert got == []
 

@@ -42,10 +42,10 @@ async def test_a_use_on_a_block_still_turning_at_stop_acts_neither_for_its_run_n
         p = await holding_slime(area, make_player)
         await stop_when_begun(p, code.format(x=area.x0))
         await p.run("await bot.waitForTicks(40)")  # the next run (the next episode) while the head turns
-        assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "air", code
+        assert (await server.get_block(pos=area.at(0, 4, 2)))["name"] == "air", code
         await stop_when_begun(p, FACE_AWAY.format(x=area.x0 + 0.5) + "\n" + code.format(x=area.x0))
         await asyncio.sleep(1.5)  # no next run: the turn ends with no run at all
-        assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "air", code
+        assert (await server.get_block(pos=area.at(0, 4, 2)))["name"] == "air", code
 
 
 DIG = "const p = bot.dig(bot.blockAt(new Vec3({x}, 4, 2)))\nbot.save('began')\nawait p"
@@ -57,10 +57,10 @@ async def test_a_dig_still_turning_at_stop_breaks_nothing_in_its_run_or_the_next
     await face_away(area, p)
     await stop_when_begun(p, DIG.format(x=area.x0))
     await p.run("await bot.waitForTicks(40)")
-    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
+    assert (await server.get_block(pos=area.at(0, 4, 2)))["name"] == "slime_block"
     await stop_when_begun(p, FACE_AWAY.format(x=area.x0 + 0.5) + "\n" + DIG.format(x=area.x0))
     await asyncio.sleep(1.5)
-    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "slime_block"
+    assert (await server.get_block(pos=area.at(0, 4, 2)))["name"] == "slime_block"
 
 
 async def test_a_new_run_starts_with_no_dig_held_over_from_the_stopped_one(server, area, make_player):
@@ -76,5 +76,5 @@ async def test_a_new_run_starts_with_no_dig_held_over_from_the_stopped_one(serve
         f"bot.save(bot.targetDigBlock ? 'held' : 'none')\nawait bot.dig(bot.blockAt(new Vec3({area.x0 + 20}, 4, 2)))"
     )
     assert [e[1]["onSave"] for e in events if e[0] == "onSave"] == ["none"]
-    assert (await server.request("get_block", pos=area.at(20, 4, 2)))["name"] == "air"
-    assert (await server.request("get_block", pos=area.at(0, 4, 2)))["name"] == "stone"
+    assert (await server.get_block(pos=area.at(20, 4, 2)))["name"] == "air"
+    assert (await server.get_block(pos=area.at(0, 4, 2)))["name"] == "stone"

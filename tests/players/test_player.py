@@ -42,7 +42,7 @@ STATUS_KEYS = {
 async def test_observation_fields(server, area, make_player):
     await area.blocks((3, 4, 0, "chest"), (2, 4, 2, "slime_block"))
     p = await make_player(area, 0, 0, {"bread": 3, "iron_helmet": 1})
-    await server.request("summon", mob="pig", pos=area.at(6.5, 4, 3.5))
+    await server.summon(mob="pig", pos=area.at(6.5, 4, 3.5))
     await p.reset(
         position=area.at(0, 4, 0), inventory={"bread": 3}, equipment=["iron_helmet", None, None, None, "bread", None]
     )
@@ -85,7 +85,7 @@ async def test_chat_between_runs_is_delivered_with_the_next_run(server, area, ma
     a = await make_player(area)
     b = await make_player(area, 3, 0)
     await b.run("bot.chat('while you were idle')")
-    await server.request("chat", message="Team 0 is clean!")
+    await server.chat(message="Team 0 is clean!")
     await asyncio.sleep(0.3)
     events = await a.run("return 1")
     lines = [e[1]["onChat"] for e in events if e[0] == "onChat"]
@@ -131,7 +131,7 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     assert took < 1.5 and p.restarts == 0, (took, p.restarts)
 
     async def slime_left() -> int:
-        names = [(await server.request("get_block", pos=area.at(dx, 4, 6)))["name"] for dx in range(12)]
+        names = [(await server.get_block(pos=area.at(dx, 4, 6)))["name"] for dx in range(12)]
         return names.count("slime_block")
 
     left = await slime_left()
@@ -157,7 +157,7 @@ async def test_reset_sets_inventory_and_position(server, area, make_player):
     assert data["inventory"] == {"egg": 4, "wheat": 2}
     assert abs(data["status"]["position"]["x"] - (area.x0 + 5.5)) < 0.01
     assert abs(data["status"]["position"]["z"] - 5.5) < 0.01
-    inv = {s["name"]: s["count"] for s in await server.request("inventory", player=p.name)}
+    inv = {s["name"]: s["count"] for s in await server.inventory(player=p.name)}
     assert inv == {"egg": 4, "wheat": 2}
 
 

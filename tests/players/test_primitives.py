@@ -12,7 +12,7 @@ from tests.players.conftest import count
 
 
 async def test_mine_slime_and_mushroom_blocks(server, area, make_player):
-    await server.request("seed", seed=7)
+    await server.seed(seed=7)
     # a slime plus and a red mushroom (2-high stem, 5 cap blocks) as in Mushroom War
     await area.blocks(*[(4 + dx, 4, dz, "slime_block") for dx, dz in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)]])
     stem = [(8, 4, 4, "mushroom_stem"), (8, 5, 4, "mushroom_stem")]
@@ -28,8 +28,8 @@ async def test_mine_slime_and_mushroom_blocks(server, area, make_player):
     assert saves(events) == ["slime_block_mined", "red_mushroom_block_mined"]
     assert await count(server, p.name, "slime_block") == 5
     for b in cap:
-        assert (await server.request("get_block", pos=area.at(*b[:3])))["name"] == "air"
-    assert (await server.request("get_block", pos=area.at(8, 4, 4)))["name"] == "mushroom_stem"
+        assert (await server.get_block(pos=area.at(*b[:3])))["name"] == "air"
+    assert (await server.get_block(pos=area.at(8, 4, 4)))["name"] == "mushroom_stem"
     obs = last_observation(events)
     assert obs["inventory"].get("slime_block") == 5
     assert obs["inventory"].get("red_mushroom", 0) == await count(server, p.name, "red_mushroom")
@@ -51,7 +51,7 @@ async def test_place_item(server, area, make_player):
         f"await placeItem(bot, 'slime_block', new Vec3({target[0]}, 4, 1))\n"
         "await placeItem(bot, 'slime_block', new Vec3(%d, 9, 1))" % target[0]
     )
-    assert (await server.request("get_block", pos=target))["name"] == "slime_block"
+    assert (await server.get_block(pos=target))["name"] == "slime_block"
     said = chats_by(events, p.name)
     assert "Placed slime_block" in said
     assert "No block to place slime_block on. You cannot place a floating block." in said
@@ -92,7 +92,7 @@ async def test_smelt_potato(server, area, make_player):
 async def test_chest_take_eggs_deposit_and_check(server, area, make_player):
     chest = area.at(3, 4, 0)
     await area.blocks((3, 4, 0, "chest"))
-    await server.request("set_chest", pos=chest, items={"egg": 5, "bucket": 2})
+    await server.set_chest(pos=chest, items={"egg": 5, "bucket": 2})
     p = await make_player(area, 0, 0, {"bowl": 3})
     v = f"new Vec3({chest[0]}, 4, 0)"
     events = await p.run(
@@ -104,7 +104,7 @@ async def test_chest_take_eggs_deposit_and_check(server, area, make_player):
     assert errors(events) == []
     assert "I don't see sugar in this chest" in chats_by(events, p.name)
     assert await count(server, p.name, "egg") == 2
-    assert await server.request("get_chest", pos=chest) == {"egg": 3, "bucket": 2, "bowl": 3}
+    assert await server.get_chest(pos=chest) == {"egg": 3, "bucket": 2, "bowl": 3}
     chests = last_observation(events)["nearbyChests"]
     assert chests[f"({chest[0]}, 4, 0)"] == {"egg": 3, "bucket": 2, "bowl": 3}
     events = await p.run(f"await getItemFromChest(bot, new Vec3({chest[0]}, 4, 5), {{egg: 1}})")
@@ -125,9 +125,9 @@ async def test_harvest_and_replant_wheat(server, area, make_player):
     assert "All available land has been planted with wheat_seeds." in said
     assert await count(server, p.name, "wheat") == 3
     for x, _, z in plots:
-        b = await server.request("get_block", pos=area.at(x, 4, z))
+        b = await server.get_block(pos=area.at(x, 4, z))
         assert b["name"] == "wheat" and int(b["properties"]["age"]) == 0, b
-    young = await server.request("get_block", pos=area.at(8, 4, 0))
+    young = await server.get_block(pos=area.at(8, 4, 0))
     assert int(young["properties"]["age"]) == 3
 
 
@@ -137,10 +137,10 @@ async def test_till_and_plant_potatoes(server, area, make_player):
     events = await p.run("await tillLand(bot, ['dirt'])\nawait plantPotatoes(bot)")
     assert errors(events) == []
     assert "All available land has been tilled." in chats_by(events, p.name)
-    names = {(await server.request("get_block", pos=area.at(x, 3, 0)))["name"] for x in (4, 5)}
+    names = {(await server.get_block(pos=area.at(x, 3, 0)))["name"] for x in (4, 5)}
     assert names == {"farmland"}
     assert await count(server, p.name, "potato") == 0
-    planted = [(await server.request("get_block", pos=area.at(x, 4, 0)))["name"] for x in (4, 5)]
+    planted = [(await server.get_block(pos=area.at(x, 4, 0)))["name"] for x in (4, 5)]
     assert planted.count("potatoes") == 1
 
 
@@ -150,7 +150,7 @@ SEE = "for (let i = 0; i < 40 && !bot.nearestEntity(e => e.name === '%s'); i++) 
 
 async def test_milk_cow(server, area, make_player):
     p = await make_player(area, 0, 0, {"bucket": 3})  # log in first: see the note in conftest
-    await server.request("summon", mob="cow", pos=area.at(5.5, 4, 0.5))
+    await server.summon(mob="cow", pos=area.at(5.5, 4, 0.5))
     # cake_beetroot milks in a loop: each call milks (every other one failed while the server took
     # clicks less than 200 ms apart for one)
     events = await p.run(SEE % "cow" + "for (let i = 0; i < 3; i++) await milkCow(bot)")
@@ -162,16 +162,16 @@ async def test_milk_cow(server, area, make_player):
 
 
 async def test_kill_mob(server, area, make_player):
-    await server.request("seed", seed=3)
+    await server.seed(seed=3)
     p = await make_player(area, 0, 0, {"wooden_sword": 1})
-    mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
+    mob = await server.summon(mob="chicken", pos=area.at(5.5, 4, 0.5))
     events = await p.run(
         SEE % "chicken" + "await bot.equip(bot.inventory.items()[0], 'hand')\nawait killMob(bot, 'chicken', 20)"
     )
     assert errors(events) == []
     assert "Killed chicken!" in chats_by(events, p.name)
     assert saves(events) == ["chicken_killed"]
-    assert mob not in [m["id"] for m in await server.request("mobs")]
+    assert mob not in [m["id"] for m in await server.mobs()]
     assert await count(server, p.name, "chicken") == 1
 
 
@@ -222,7 +222,7 @@ async def test_explore_until(server, area, make_player):
 
 
 async def test_harvest_berries_and_destroy_crop(server, area, make_player):
-    await server.request("seed", seed=11)
+    await server.seed(seed=11)
     await area.blocks(
         (4, 4, 0, "sweet_berry_bush", {"age": 3}),
         (5, 4, 0, "sweet_berry_bush", {"age": 1}),
@@ -237,10 +237,10 @@ async def test_harvest_berries_and_destroy_crop(server, area, make_player):
     said = chats_by(events, p.name)
     assert "Harvested 1 sweet_berry_bush" in said and "Destroying all carrots nearby" in said
     assert await count(server, p.name, "sweet_berries") >= 2
-    bush = await server.request("get_block", pos=area.at(4, 4, 0))
+    bush = await server.get_block(pos=area.at(4, 4, 0))
     assert bush["name"] == "sweet_berry_bush" and int(bush["properties"]["age"]) == 1  # picked, the bush stays
     for x in (4, 5):
-        assert (await server.request("get_block", pos=area.at(x, 4, 3)))["name"] == "air"
+        assert (await server.get_block(pos=area.at(x, 4, 3)))["name"] == "air"
 
 
 async def planted(area, make_player, blocks, item, count_, call):
@@ -259,8 +259,8 @@ async def test_berries_are_planted_on_farmland_and_dirt_never_on_grass(server, a
     p = await planted(area, make_player, blocks, "sweet_berries", 10, "plantSweetBerryBushes")
     assert await count(server, p.name, "sweet_berries") == 8
     for x in (3, 5):
-        assert (await server.request("get_block", pos=area.at(x, 4, 0)))["name"] == "sweet_berry_bush"
-    bushes = await server.request("find_blocks", names=["sweet_berry_bush"], center=area.at(0, 4, 0), radius=32)
+        assert (await server.get_block(pos=area.at(x, 4, 0)))["name"] == "sweet_berry_bush"
+    bushes = await server.find_blocks(names=["sweet_berry_bush"], center=area.at(0, 4, 0), radius=32)
     assert len(bushes) == 2
 
 
@@ -269,7 +269,7 @@ async def test_planting_walks_on_to_every_free_block_after_the_seeds_run_out(ser
     # are gone; it does not stop at the last seed
     blocks = [(x, 3, 0, "farmland") for x in (3, 9, 14)]
     p = await planted(area, make_player, blocks, "sweet_berries", 1, "plantSweetBerryBushes")
-    names = [(await server.request("get_block", pos=area.at(x, 4, 0)))["name"] for x in (3, 9, 14)]
+    names = [(await server.get_block(pos=area.at(x, 4, 0)))["name"] for x in (3, 9, 14)]
     assert names == ["sweet_berry_bush", "air", "air"]
     x = last_observation(await p.observe())["status"]["position"]["x"] - area.x0
     assert x > 10, x  # went on to the farthest block
@@ -279,7 +279,7 @@ async def test_cocoa_planting_clicks_the_logs_top_as_upstreams_and_keeps_the_bea
     # upstream's plantCrop right-clicks every candidate on its top face (activateBlock's default);
     # vanilla puts no cocoa pod on top of a log, so upstream's plantCocoaBeans planted nothing
     p = await planted(area, make_player, [(4, y, 0, "jungle_log") for y in (4, 5)], "cocoa_beans", 3, "plantCocoaBeans")
-    pods = await server.request("find_blocks", names=["cocoa"], center=area.at(4, 4, 0), radius=8)
+    pods = await server.find_blocks(names=["cocoa"], center=area.at(4, 4, 0), radius=8)
     assert pods == [] and await count(server, p.name, "cocoa_beans") == 3
 
 
@@ -288,9 +288,9 @@ async def test_sugar_cane_is_planted_on_sand_beside_water_not_on_grass(server, a
     p = await make_player(area, 0, 2, {"sugar_cane": 10})
     events = await p.run("await plantSugarCane(bot)")
     assert errors(events) == []
-    assert (await server.request("get_block", pos=area.at(3, 4, 0)))["name"] == "sugar_cane"
-    assert (await server.request("get_block", pos=area.at(6, 4, 0)))["name"] == "air"  # no water beside it
-    canes = await server.request("find_blocks", names=["sugar_cane"], center=area.at(0, 4, 0), radius=32)
+    assert (await server.get_block(pos=area.at(3, 4, 0)))["name"] == "sugar_cane"
+    assert (await server.get_block(pos=area.at(6, 4, 0)))["name"] == "air"  # no water beside it
+    canes = await server.find_blocks(names=["sugar_cane"], center=area.at(0, 4, 0), radius=32)
     assert len(canes) == 1
 
 
@@ -379,7 +379,7 @@ async def test_a_target_replanted_before_the_bot_gets_there_is_still_broken(serv
     assert errors(events) == []
     assert dug == [2, 10]
     assert "Harvested 2 wheat" in chats_by(events, p.name)  # the targets found, as upstream's chat
-    assert (await server.request("get_block", pos=area.at(10, 4, 0)))["name"] == "air"
+    assert (await server.get_block(pos=area.at(10, 4, 0)))["name"] == "air"
 
 
 async def test_wait_signal_calls_its_task_with_bot_and_chats_when_it_happens(server, area, make_player):
@@ -401,14 +401,14 @@ async def test_mine_block_turns_to_the_block_at_head_speed_before_digging(server
     await area.blocks((0, 4, 2, "slime_block"))
     p = await make_player(area, 0, 0)
     await p.run(f"await bot.lookAt(new Vec3({area.x0 + 0.5}, 5.6, -20), true)\nawait bot.waitForTicks(5)")
-    await server.request("replay_frame", start=True)
+    await server.replay_frame(start=True)
     mining = asyncio.create_task(p.run("await mineBlock(bot, 'slime_block', 1)"))
     yaws = []
     while not mining.done():
-        frame = await server.request("replay_frame")
+        frame = await server.replay_frame()
         yaws += [pl[4] % 360 for pl in frame["players"] if pl[0] == p.name]
         await asyncio.sleep(0.01)
-    await server.request("replay_frame", stop=True)
+    await server.replay_frame(stop=True)
     assert errors(await mining) == []
     assert await count(server, p.name, "slime_block") == 1
     assert abs(yaws[0] - 180) < 10, yaws[:5]

@@ -28,12 +28,12 @@ bot.chat('left ' + bot.findBlocks({ matching: mcData.blocksByName.oak_planks.id,
     assert chats_by(events, p.name) == ["held wooden_axe", "left 0"]
     assert await count(server, p.name, "oak_planks") == 2  # dug and picked up, as the server saw it
     for dz in (0, 2):
-        assert (await server.request("get_block", pos=area.at(3, 4, dz)))["name"] == "air"
+        assert (await server.get_block(pos=area.at(3, 4, dz)))["name"] == "air"
 
 
 async def test_pvp_attacks_until_the_mob_dies(server, area, make_player):
     p = await make_player(area, 0, 0, {"wooden_sword": 1})
-    mob = await server.request("summon", mob="chicken", pos=area.at(5.5, 4, 0.5))
+    mob = await server.summon(mob="chicken", pos=area.at(5.5, 4, 0.5))
     events = await p.run(
         SEE % "chicken"
         + """
@@ -46,12 +46,12 @@ bot.chat('target ' + (bot.pvp.target ? 'still there' : 'gone'))
     )
     assert errors(events) == [], errors(events)
     assert chats_by(events, p.name) == ["target gone"]
-    assert mob not in [m["id"] for m in await server.request("mobs")]
+    assert mob not in [m["id"] for m in await server.mobs()]
 
 
 async def test_a_stopped_run_stops_pvp(server, area, make_player):
     p = await make_player(area, 0, 0)
-    mob = await server.request("summon", mob="cow", pos=area.at(5.5, 4, 0.5))  # 10 HP: bare hands need a while
+    mob = await server.summon(mob="cow", pos=area.at(5.5, 4, 0.5))  # 10 HP: bare hands need a while
     events = await p.run(
         SEE % "cow"
         + """
@@ -64,4 +64,4 @@ await bot.waitForTicks(400)
     await asyncio.sleep(1.5)
     after = await p.run("bot.chat('target ' + (bot.pvp.target ? 'kept' : 'none'))")
     assert chats_by(after, p.name) == ["target none"]
-    assert mob in [m["id"] for m in await server.request("mobs")]  # nobody went on hitting it
+    assert mob in [m["id"] for m in await server.mobs()]  # nobody went on hitting it

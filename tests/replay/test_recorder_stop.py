@@ -10,12 +10,13 @@ from __future__ import annotations
 
 import asyncio
 
+from pillagerbench.control import Control
 from pillagerbench.replay.record import Recorder
 
 FRAME = {"tick": 1, "players": [], "blocks": [], "items": [], "mobs": []}
 
 
-class _Channel:
+class _Channel(Control):
     """Answers `replay_frame` only when the test says so (`answer()`), through asyncio.wait_for."""
 
     def __init__(self):

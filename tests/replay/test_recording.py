@@ -33,7 +33,7 @@ def episode(tmp_path_factory):
             try:
                 await match.setup()
                 rec = await match.play_episode(0)
-                truth["players"] = await server.request("players")  # where the server says they stand now
+                truth["players"] = await server.players()  # where the server says they stand now
                 return rec
             finally:
                 await match.close()

@@ -17,16 +17,14 @@ EGG_CHEST = DD_PAPER.poi("egg_chest")
 
 
 async def blocks_named(server, name, center):
-    return {
-        tuple(b[:3]) for b in await server.request("find_blocks", names=[name], center=list(center), radius=AREA_RADIUS)
-    }
+    return {tuple(b[:3]) for b in await server.find_blocks(names=[name], center=list(center), radius=AREA_RADIUS)}
 
 
 async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server):
     sc = make_scenario("mushroom_war")
     await sc.arena.build(server)
     red_caps = caps(RED)
-    await server.request("set_blocks", blocks=[[*p, "air"] for p in red_caps[:5]])
+    await server.set_blocks(blocks=[[*p, "air"] for p in red_caps[:5]])
     gm = sc.game_master(server, Always(0.0))  # every chance happens
     await gm.start()
     # 15 slime blocks in the red area: too dirty, nothing regrows (slime respawn is a no-op: all present);
@@ -38,7 +36,7 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     # clean 8 of them: 7 left, the area counts as clean and every missing cap regrows
     gm_clean = sc.game_master(server, Always(0.99))  # no slime comes back while we check
     await gm_clean.start()
-    await server.request("set_blocks", blocks=[[*p, "air"] for p in slime(RED)[:8]])
+    await server.set_blocks(blocks=[[*p, "air"] for p in slime(RED)[:8]])
     await gm_clean.step()
     assert len(await blocks_named(server, "slime_block", RED_CENTER)) == 7
     assert len(await blocks_named(server, "red_mushroom_block", RED_CENTER)) == 10  # p=0.99 draws: no regrowth
@@ -48,7 +46,7 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
     assert {"chat": "Team 0 is clean!"} in gm_sure.log  # upstream's naming: red 0, blue 1
     assert await blocks_named(server, "red_mushroom_block", RED_CENTER) == set(red_caps)
     assert len(await blocks_named(server, "slime_block", RED_CENTER)) == 7  # 0.05 > P_SLIME: no respawn
-    await server.request("set_blocks", blocks=[[*p, "slime_block"] for p in slime(RED)])
+    await server.set_blocks(blocks=[[*p, "slime_block"] for p in slime(RED)])
     await gm_sure.step()
     assert gm_sure.log[-1] == {"chat": "Team 0 is too dirty!"}
 
@@ -56,7 +54,7 @@ async def test_mushrooms_regrow_only_while_the_area_holds_at_most_7_slime(server
 async def test_slime_respawns_at_its_original_positions(server):
     sc = make_scenario("mushroom_war")
     await sc.arena.build(server)
-    await server.request("set_blocks", blocks=[[*p, "air"] for p in slime(RED)])
+    await server.set_blocks(blocks=[[*p, "air"] for p in slime(RED)])
     gm = sc.game_master(server, Always(0.01))  # below P_SLIME
     await gm.start()
     await gm.step()
@@ -66,12 +64,12 @@ async def test_slime_respawns_at_its_original_positions(server):
 async def test_mushroom_war_score_is_own_colour_mushrooms_held(server):
     sc = make_scenario("mushroom_war")
     async with TestBot(server.port, "Ryn"), TestBot(server.port, "Byte"):
-        await server.request("set_inventory", player="Ryn", items={"red_mushroom": 3, "brown_mushroom": 5})
-        await server.request("set_inventory", player="Byte", items={"brown_mushroom": 2})
+        await server.set_inventory(player="Ryn", items={"red_mushroom": 3, "brown_mushroom": 5})
+        await server.set_inventory(player="Byte", items={"brown_mushroom": 2})
         gm = sc.game_master(server, Always(0.99))
         await gm.start()
         assert await gm.scores() == {"red": 3.0, "blue": 2.0}
-        await server.request("take", player="Ryn", item="red_mushroom", count=2)
+        await server.take(player="Ryn", item="red_mushroom", count=2)
         assert (await gm.scores())["red"] == 1.0  # giving away or dropping lowers the score
 
 
@@ -81,12 +79,12 @@ async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
         gm = sc.game_master(server, Always(0.99))
         await gm.start()
         # an opponent's gift locks potato into the red server; then three more types arrive
-        await server.request("set_inventory", player="Red_Server", items={"potato": 2, "stick": 5})
+        await server.set_inventory(player="Red_Server", items={"potato": 2, "stick": 5})
         await gm.step()
         assert gm.locked["red"] == ["potato"]
         assert gm.points["red"] == 2 * REWARDS["potato"]
-        assert await server.request("inventory", player="Red_Server") == []  # emptied, sticks lost too
-        await server.request("set_inventory", player="Red_Server", items={"bread": 1, "beef": 2, "cake": 1})
+        assert await server.inventory(player="Red_Server") == []  # emptied, sticks lost too
+        await server.set_inventory(player="Red_Server", items={"bread": 1, "beef": 2, "cake": 1})
         await gm.step()
         assert len(gm.locked["red"]) == 3 and gm.locked["red"][0] == "potato"
         first_two = gm.locked["red"][1:]
@@ -96,7 +94,7 @@ async def test_dash_and_dine_lock_in_first_three_types_by_whoever_gives(server):
         assert gm.log[0] == {"chat": "starting dining scenario..."}
         assert any("Locked-in potato as a submission item for team_red" == e.get("chat") for e in gm.log)
         # raw beef scores (upstream's keys never matched it)
-        await server.request("set_inventory", player="Blue_Server", items={"beef": 1})
+        await server.set_inventory(player="Blue_Server", items={"beef": 1})
         await gm.step()
         assert gm.points["blue"] == REWARDS["beef"] == 4.8
         assert (await gm.scores())["blue"] == 4.8
@@ -108,13 +106,13 @@ async def test_mushroom_war_upstream_score_counts_held_mushrooms_once_per_run_st
     # ran one step upstream: counted once); Byte 2.
     sc = make_scenario("mushroom_war")
     async with TestBot(server.port, "Ryn"), TestBot(server.port, "Raze"), TestBot(server.port, "Byte"):
-        await server.request("set_inventory", player="Ryn", items={"red_mushroom": 2})
-        await server.request("set_inventory", player="Raze", items={"red_mushroom": 4, "brown_mushroom": 9})
-        await server.request("set_inventory", player="Byte", items={"brown_mushroom": 1})
+        await server.set_inventory(player="Ryn", items={"red_mushroom": 2})
+        await server.set_inventory(player="Raze", items={"red_mushroom": 4, "brown_mushroom": 9})
+        await server.set_inventory(player="Byte", items={"brown_mushroom": 1})
         gm = sc.game_master(server, Always(0.99))
         await gm.start()
         assert await gm.upstream_scores({"Ryn": 1, "Byte": 2}) == {"red": 2 * 1 + 4 * 1, "blue": 1 * 2}
-        await server.request("set_inventory", player="Ryn", items={"red_mushroom": 3})
+        await server.set_inventory(player="Ryn", items={"red_mushroom": 3})
         assert await gm.upstream_scores({"Ryn": 3, "Byte": 2}) == {"red": 3 * 3 + 4, "blue": 2}
         assert await gm.scores() == {"red": 7.0, "blue": 1.0}  # clean: what they hold
 
@@ -127,7 +125,7 @@ async def test_dash_and_dine_upstream_score_rounds_each_scan(server):
         gm = sc.game_master(server, Always(0.99))
         await gm.start()
         for items in ({"sweet_berries": 3}, {"sweet_berries": 1}, {"bread": 1, "sweet_berries": 2}):
-            await server.request("set_inventory", player="Red_Server", items=items)
+            await server.set_inventory(player="Red_Server", items=items)
             await gm.step()
         assert REWARDS["sweet_berries"] == 2.4 and REWARDS["bread"] == 11
         assert (await gm.scores())["red"] == 25.4
@@ -147,10 +145,10 @@ async def test_dash_and_dine_world_as_the_reference(server):
     """14 chickens laying into an egg chest that starts empty, one cow, creative (unkillable) servers."""
     sc = make_scenario("dash_and_dine")
     await sc.arena.build(server)
-    mobs = await server.request("mobs")
+    mobs = await server.mobs()
     assert sum(m["name"] == "chicken" for m in mobs) == 14
     assert sum(m["name"] == "cow" for m in mobs) == 1
-    assert await server.request("get_chest", pos=list(EGG_CHEST)) == {}
+    assert await server.get_chest(pos=list(EGG_CHEST)) == {}
     assert all(p.gamemode == "creative" for p in sc.extra_players)
     assert {p.gamemode for s in sc.sides for p in s.players} == {"survival"}
     # per-farm yields, the random tick speed, 14 chickens and the reference's food rows, no added hints
@@ -176,7 +174,7 @@ async def test_dash_and_dine_stems_as_the_builders_seeds_each_free_on_four_sides
         stems = await blocks_named(server, f"attached_{fruit}_stem", centre)
         assert len(stems) == n
         for x, y, z in stems:
-            sides = [await server.request("get_block", pos=[x + dx, y, z + dz]) for dx, dz in SIDES.values()]
+            sides = [await server.get_block(pos=[x + dx, y, z + dz]) for dx, dz in SIDES.values()]
             assert sorted(b["name"] for b in sides) == sorted([fruit, "air", "air", "air"])
-            soils = [await server.request("get_block", pos=[x + dx, y - 1, z + dz]) for dx, dz in SIDES.values()]
+            soils = [await server.get_block(pos=[x + dx, y - 1, z + dz]) for dx, dz in SIDES.values()]
             assert {b["name"] for b in soils} <= {"farmland", "grass_block", "dirt"}

@@ -41,7 +41,7 @@ async def one_episode(
         try:
             await match.setup()
             rec = await match.play_episode(0)
-            modes = {p["name"]: p["gamemode"] for p in await server.request("players")}
+            modes = {p["name"]: p["gamemode"] for p in await server.players()}
             # Dash & Dine's servers are creative (unkillable), every team player survival
             assert modes == {p.name: 1 if p.gamemode == "creative" else 0 for p in sc.all_players()}
             return rec

@@ -17,7 +17,7 @@ _markers = itertools.count(1)
 
 async def tick(server) -> int:
     """The server's tick counter (ticks run since it started)."""
-    return (await server.request("status"))["tick"]
+    return (await server.status())["tick"]
 
 
 async def wait_ticks(server, n: int, timeout: float = 60.0) -> int:

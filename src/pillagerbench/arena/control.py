@@ -1,8 +1,8 @@
 """Client side of the control channel: JSON lines over a socket shared with the server process.
 
 Requests are `{"id", "op", "args"}`; replies `{"id", "ok", "result"|"error"}`; anything with an
-`event` key is a pushed event (block dug, item tossed, player joined, ...). The op list is in
-`js/server/control.js`.
+`event` key is a pushed event (block dug, item tossed, player joined, ...). The ops are declared in
+`js/server/control_ops.json`; the typed methods (`set_block`, `inventory`, ...) come from `Control`.
 """
 
 from __future__ import annotations
@@ -13,6 +13,8 @@ import json
 from collections.abc import Callable
 from typing import Any
 
+from pillagerbench.control import Control
+
 
 class ControlError(RuntimeError):
     """The server refused a control request; the message names the problem."""
@@ -22,7 +24,7 @@ class ChannelClosed(ControlError):
     """The control channel closed (the server stopped or died)."""
 
 
-class ControlChannel:
+class ControlChannel(Control):
     def __init__(
         self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter, on_close: Callable[[], str] | None = None
     ):

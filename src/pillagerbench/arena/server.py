@@ -1,7 +1,7 @@
 """Start, watch and stop the arena server process (node + flying-squid + our plugins).
 
     async with ArenaServer() as server:          # free port on 127.0.0.1
-        await server.control.request("set_block", pos=[0, 4, 0], block="chest")
+        await server.set_block([0, 4, 0], "chest")    # the ops: pillagerbench.control.Control
 
 The server log goes to a file (`log_path`); the control channel is a socket pair inherited by
 the child. If the process dies, pending and later requests fail with the exit code and the
@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.arena.control import ControlChannel
+from pillagerbench.control import Control
 from pillagerbench.node import JS_DIR, node_binary, node_env, profile_args
 
 MAIN_JS = JS_DIR / "server" / "main.js"
@@ -33,7 +34,7 @@ class ArenaServerError(RuntimeError):
     """The arena server could not start or died."""
 
 
-class ArenaServer:
+class ArenaServer(Control):
     @classmethod
     def from_config(cls, server_cfg, log_path: str | Path | None = None, watch: int | None = None) -> ArenaServer:
         """Build from the `server` section of the Hydra config (and the top-level `watch` port)."""

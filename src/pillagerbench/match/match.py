@@ -164,16 +164,16 @@ class Match:
     async def _reset(self, rec: EpisodeRecord) -> dict[str, list]:
         """The arena put back in place and every player reset; returns each player's observations."""
         sc = self.scenario
-        await self.server.request("seed", seed=rec.seed)
-        rec.player_order = await self.server.request("player_order", names=self.player_order(rec.episode))
+        await self.server.seed(rec.seed)
+        rec.player_order = await self.server.player_order(self.player_order(rec.episode))
         t0 = time.monotonic()
         await sc.arena.build(self.server)
-        await self.server.request("crop_growth", chance=sc.crop_growth_chance, random_tick_speed=sc.random_tick_speed)
+        await self.server.crop_growth(sc.crop_growth_chance, sc.random_tick_speed)
         names = [p.name for p in sc.all_players()]
         resets = (self.players[p.name].reset(position=p.spawn, inventory={}) for p in sc.all_players())
         observations = dict(zip(names, await asyncio.gather(*resets)))
         for p in sc.all_players():
-            await self.server.request("gamemode", player=p.name, mode=p.gamemode)
+            await self.server.gamemode(p.name, p.gamemode)
         rec.reset_s = round(time.monotonic() - t0, 3)
         return observations
 

@@ -110,7 +110,7 @@ class LiveView(Part):
     def _tell(game: Game, **state: Any) -> None:
         if not getattr(game.server, "watch_url", None):
             return
-        task = asyncio.ensure_future(game.server.request("watch", **state))
+        task = asyncio.ensure_future(game.server.watch(**state))
         task.add_done_callback(lambda t: t.cancelled() or t.exception())  # a view that fails changes nothing
 
     async def start(self, game: Game) -> None:
@@ -194,12 +194,12 @@ class LagMeter(Part):
 
     async def start(self, game: Game) -> None:
         await bot_lag(game.players, reset=True)
-        self.first_tick = (await game.server.request("status"))["tick"]
+        self.first_tick = (await game.server.status())["tick"]
 
     async def stopped(self, game: Game) -> None:
         rec = game.rec
         rec.game_s = round(time.monotonic() - game.start, 3)
-        rec.server_tps = round(((await game.server.request("status"))["tick"] - self.first_tick) / rec.game_s, 2)
+        rec.server_tps = round(((await game.server.status())["tick"] - self.first_tick) / rec.game_s, 2)
         rec.bot_lag = await bot_lag(game.players)
         rec.lagged, rec.lag_reason = lag_verdict(rec.server_tps, rec.bot_lag)
 

@@ -349,10 +349,10 @@ class Player:
         if self.server is None:
             return None
         try:
-            players = await asyncio.wait_for(self.server.request("players"), 2)
+            players = await asyncio.wait_for(self.server.players(), 2)
             pos = next((p["pos"] for p in players if p["name"] == self.name), None)
             if pos is not None:
-                inv = await asyncio.wait_for(self.server.request("inventory", player=self.name), 2)
+                inv = await asyncio.wait_for(self.server.inventory(self.name), 2)
                 items: dict[str, int] = {}
                 for slot in inv:
                     items[slot["name"]] = items.get(slot["name"], 0) + slot["count"]
@@ -381,7 +381,7 @@ class Player:
     async def _restore(self, snapshot: dict | None) -> None:
         if not snapshot or self.server is None:
             return
-        await self.server.request("set_inventory", player=self.name, items=snapshot["items"])
+        await self.server.set_inventory(self.name, snapshot["items"])
         if snapshot["pos"]:
             await self._teleport(snapshot["pos"])
 
@@ -392,7 +392,7 @@ class Player:
 
     async def _teleport(self, pos: list[float]) -> None:
         for _attempt in range(3):
-            await self._control().request("teleport", player=self.name, pos=pos)
+            await self._control().teleport(self.name, pos)
             settled = await self._request("settle", pos=pos, timeout=3, wait=6)
             if settled is True:
                 return
@@ -475,7 +475,7 @@ class Player:
                 for name in _equipment_names(equipment):
                     if name not in (inventory or {}):  # equipment not listed in the inventory is extra
                         items[name] = items.get(name, 0) + 1
-                await self._control().request("set_inventory", player=self.name, items=items)
+                await self._control().set_inventory(self.name, items)
             if position is not None:
                 await self._teleport(_centred(position))
             if equipment is not None:

@@ -66,7 +66,7 @@ class Recorder:
         self._write({**self.header, "started": round(time.time(), 3)})
         if self.box:
             (x0, _, z0), (x1, y1, z1) = self.box
-            blocks = await self.server.control.request("scan", **{"from": [x0, GROUND_Y, z0], "to": [x1, y1, z1]})
+            blocks = await self.server.control.scan([x0, GROUND_Y, z0], [x1, y1, z1])
             palette: dict[str, int] = {}
             rows = [[x, y, z, palette.setdefault(name, len(palette))] for x, y, z, name, *_ in blocks]
             self._write(
@@ -103,7 +103,7 @@ class Recorder:
             self._write({"type": "event", "t": t, "event": e})
 
     async def _frame(self, start: bool = False, stop: bool = False) -> None:
-        f = await self.server.control.request("replay_frame", start=start, stop=stop)
+        f = await self.server.control.replay_frame(start, stop)
         t = self.now()
         self._drain_events(t)
         self.frames += 1

@@ -47,22 +47,22 @@ class Arena:
 
     async def build(self, server) -> None:
         """Build the arena, or put it back exactly as it was built (chests, crops, mobs, items)."""
-        await server.request("reset_state")
+        await server.reset_state()
         (x0, y0, z0), (x1, y1, z1) = self.box
         layers = [(1, 2, "dirt"), (GROUND_Y, GROUND_Y, "grass_block"), (GROUND_Y + 1, y1, "air")]
         for lo, hi, name in layers:
             for a, b in _split([x0, lo, z0], [x1, hi, z1]):
-                await server.request("fill", **{"from": a, "to": b, "block": name})
+                await server.fill(a, b, name)
         for batch in _batched(self.blocks, 2000):
-            await server.request("set_blocks", blocks=[list(b) for b in batch])
+            await server.set_blocks([list(b) for b in batch])
         for pos, items in self.chests.items():
-            await server.request("set_chest", pos=list(pos), items=items)
+            await server.set_chest(list(pos), items)
         for pos, contents in self.furnaces.items():
-            await server.request("set_furnace", pos=list(pos), **contents)
+            await server.set_furnace(list(pos), **contents)
         for name, at in self.mobs:
-            await server.request("summon", mob=name, pos=list(at))
+            await server.summon(name, list(at))
         for chest, interval in self.egg_farms:
-            await server.request("egg_farm", chest=list(chest), interval_s=interval)
+            await server.egg_farm(list(chest), interval)
 
 
 def _split(a: list[int], b: list[int]):

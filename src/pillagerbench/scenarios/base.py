@@ -35,7 +35,7 @@ class Side:
 
 class GameMaster(ABC):
     """The scenario's rules during the game. It talks to the world only through the control
-    channel (`server.request`), so a faster twin of the world can stand in for the server."""
+    channel (`server`: the typed ops of `Control`), so a faster twin of the world can stand in for the server."""
 
     period_s: ClassVar[float] = 1.0
 
@@ -61,7 +61,7 @@ class GameMaster(ABC):
 
     async def say(self, message: str) -> None:
         self.log.append({"chat": message})
-        await self.server.request("chat", message=message)
+        await self.server.chat(message)
 
 
 @dataclass

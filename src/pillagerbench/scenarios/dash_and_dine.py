@@ -193,13 +193,13 @@ class DashAndDineMaster(GameMaster):
     async def step(self) -> None:
         for key, server_player in self.servers.items():
             try:
-                inventory = await self.server.request("inventory", player=server_player.name)
+                inventory = await self.server.inventory(server_player.name)
             except Exception as exc:  # noqa: BLE001 - logged; the other server is still emptied
                 self.log.append({"error": f"{server_player.name}: {exc}"})
                 continue
             if not inventory:
                 continue
-            await self.server.request("clear", player=server_player.name)
+            await self.server.clear(server_player.name)
             gained = 0.0
             for slot in inventory:
                 item = slot["name"]

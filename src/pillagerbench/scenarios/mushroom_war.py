@@ -104,35 +104,28 @@ class MushroomWarMaster(GameMaster):
     async def step(self) -> None:
         for key, area in self.areas.items():
             center = list(standing(area.center))
-            waste = await self.server.request("find_blocks", names=["slime_block"], center=center, radius=AREA_RADIUS)
+            waste = await self.server.find_blocks(["slime_block"], center, AREA_RADIUS)
             clean = len(waste) <= WASTE_CUTOFF
             if clean != self.clean[key]:
                 self.clean[key] = clean
                 index = list(self.areas).index(key)
                 await self.say(f"Team {index} is clean!" if clean else f"Team {index} is too dirty!")
             if clean:
-                present = {
-                    tuple(b[:3])
-                    for b in await self.server.request(
-                        "find_blocks", names=[CAP[key]], center=center, radius=AREA_RADIUS
-                    )
-                }
+                present = {tuple(b[:3]) for b in await self.server.find_blocks([CAP[key]], center, AREA_RADIUS)}
                 regrow = [p for p in caps(area) if p not in present and self.rng.random() < P_REGROW]
                 if regrow:
-                    await self.server.request("set_blocks", blocks=[[*p, CAP[key]] for p in regrow])
+                    await self.server.set_blocks([[*p, CAP[key]] for p in regrow])
                     self.log.append({"regrow": key, "blocks": len(regrow)})
         respawn = [p for p in self.original_slime if self.rng.random() < P_SLIME]
         if respawn:
-            await self.server.request("set_blocks", blocks=[[*p, "slime_block"] for p in respawn])
+            await self.server.set_blocks([[*p, "slime_block"] for p in respawn])
 
     async def held(self) -> dict[str, int]:
         """Own-colour mushrooms each player holds. Every inventory is asked at once: the server answers
         them in one turn, so neither side's holdings are read before the other's (a mushroom changing
         hands is counted once)."""
         names = {n: side.key for side in self.scenario.sides for n in side.player_names}
-        replies = await asyncio.gather(
-            *(self.server.request("inventory", player=n) for n in names), return_exceptions=True
-        )
+        replies = await asyncio.gather(*(self.server.inventory(n) for n in names), return_exceptions=True)
         return {
             n: 0 if isinstance(r, BaseException) else sum(s["count"] for s in r if s["name"] == ITEM[key])
             for (n, key), r in zip(names.items(), replies)

@@ -5,9 +5,14 @@
 //   event:   {"event": "block_dug", ...}
 // The game master and the arena builder use only this. Every op validates its input; a bad request
 // gets an error reply and never affects players.
+// The ops are declared once, in control_ops.json (each op's arguments and answer, read by Python too:
+// pillagerbench/control.py). A request is dispatched from that declaration: an undeclared op or
+// argument, or a missing one, is refused before its handler runs; the handlers below are the
+// declared ops exactly (checked when this module loads; tests/arena/test_control_ops.py).
 const { Vec3 } = require('vec3')
 const { ControlError, toPos, toBlockPos, stateIdOf, itemByName, blockByName } = require('./util')
 const { PICKUP } = require('./tables')
+const DECLARED = require('./control_ops.json').ops
 
 function playerNamed (serv, name) {
   const p = serv.players.find(pl => pl.username === name)
@@ -163,6 +168,34 @@ const OPS = {
   }
 }
 
+// What differs between the handlers and the declaration (nothing, or the server does not start).
+function undeclared (ops, declared) {
+  return [
+    ...Object.keys(declared).filter(op => !Object.hasOwn(ops, op)).map(op => `op ${op} is declared but has no handler`),
+    ...Object.keys(ops).filter(op => !Object.hasOwn(declared, op)).map(op => `op ${op} has a handler but is not declared`)
+  ]
+}
+const PROBLEMS = undeclared(OPS, DECLARED)
+if (PROBLEMS.length) throw new Error(`control.js and control_ops.json disagree: ${PROBLEMS.join('; ')}`)
+
+// The handler of a declared op (an unknown op is refused naming the declared ones).
+function handlerOf (op) {
+  if (!Object.hasOwn(DECLARED, op)) throw new ControlError(`unknown op ${JSON.stringify(op)} (valid: ${Object.keys(DECLARED).join(', ')})`)
+  return OPS[op]
+}
+
+// A request's arguments against its op's declaration: each one declared, none required missing ('?': optional).
+function checkArgs (op, args) {
+  const declared = DECLARED[op].args
+  const names = Object.keys(declared)
+  for (const name of Object.keys(args)) {
+    if (!Object.hasOwn(declared, name)) throw new ControlError(`op ${op} has no argument ${JSON.stringify(name)} (valid: ${names.join(', ') || 'none'})`)
+  }
+  for (const name of names) {
+    if (!declared[name].endsWith('?') && args[name] === undefined) throw new ControlError(`op ${op} needs the argument ${JSON.stringify(name)}`)
+  }
+}
+
 function attach (serv, { input, write }) {
   const reply = (obj) => write(JSON.stringify(obj) + '\n')
   serv.on('control_event', (ev) => reply(ev))
@@ -183,10 +216,10 @@ function attach (serv, { input, write }) {
     const id = msg && typeof msg === 'object' ? msg.id ?? null : null
     try {
       if (!msg || typeof msg !== 'object' || typeof msg.op !== 'string') throw new ControlError('control message must be an object with a string "op"')
-      const fn = OPS[msg.op]
-      if (!fn) throw new ControlError(`unknown op ${JSON.stringify(msg.op)} (valid: ${Object.keys(OPS).join(', ')})`)
+      const fn = handlerOf(msg.op)
       const args = msg.args ?? {}
       if (typeof args !== 'object' || Array.isArray(args)) throw new ControlError('"args" must be an object')
+      checkArgs(msg.op, args)
       reply({ id, ok: true, result: (await fn(serv, args)) ?? null })
     } catch (err) {
       if (!(err instanceof ControlError)) serv.emit('pluginError', err, `control op ${msg && msg.op}`)
@@ -196,4 +229,4 @@ function attach (serv, { input, write }) {
   input.on('end', () => serv.emit('control_closed'))
 }
 
-module.exports = { attach, OPS }
+module.exports = { attach, OPS, undeclared }
