@@ -84,6 +84,24 @@ def digest(events: Sequence[list], *, keep_observe: int = 3, max_events: int = 6
     return out
 
 
+def digest_episode(
+    events: Mapping[str, Sequence[list]], players: Sequence[str], agents: Iterable[str]
+) -> tuple[dict[str, list[list]], dict[str, Any]]:
+    """Each player's events deduplicated and digested for memory, and the deduplication counts
+    (per player and `total`) for the record."""
+    agents = list(agents)
+    total = DedupStats()
+    digests: dict[str, list[list]] = {}
+    counts: dict[str, Any] = {}
+    for name in players:
+        deduped, stats = dedupe(events.get(name, []), agents)
+        total = total.add(stats)
+        counts[name] = stats.to_dict()
+        digests[name] = digest(deduped)
+    counts["total"] = total.to_dict()
+    return digests, counts
+
+
 def last_observation(events: Sequence[list]) -> dict:
     for e in reversed(events):
         if e and e[0] == "observe" and isinstance(e[1], Mapping) and ("status" in e[1] or "voxels" in e[1]):
