@@ -19,7 +19,7 @@ import random
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import ClassVar
 
 from pydantic import Field
 
@@ -74,7 +74,7 @@ FUEL = "coal"
 SMELTABLE = frozenset(json.loads((JS_DIR / "server" / "smelting.json").read_text(encoding="utf-8")))
 
 
-def js(value: Any) -> str:
+def js(value: object) -> str:
     """A Python value as a JavaScript literal."""
     return json.dumps(value)
 
@@ -149,7 +149,7 @@ def _code(code: str) -> Builder:
 class RandomActions:
     """Seeded random actions for one player. `next(obs)` -> Action."""
 
-    def __init__(self, seed: Any, primitives: Sequence[str], players: Sequence[str] = ()):
+    def __init__(self, seed: object, primitives: Sequence[str], players: Sequence[str] = ()):
         self.rng = random.Random(f"random-team/{seed}")
         self.available = set(prim.functions(list(primitives)))
         self.players = tuple(players)  # who the player can give to: teammates and its team's server
@@ -352,7 +352,7 @@ class RandomTeam(Team):
     max_actions: ClassVar[int] = 100_000
     Options = RandomOptions
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         super().__init__(**options)
         o = RandomOptions.model_validate(options)
         self.pause_every, self.pause_s, self.action_timeout_s = o.pause_every, o.pause_s, o.action_timeout_s

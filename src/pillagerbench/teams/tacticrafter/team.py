@@ -26,7 +26,7 @@ from typing import Any
 from pydantic import Field, field_validator
 
 from pillagerbench.agents import context as C
-from pillagerbench.agents.asking import Asked, RoleLLM
+from pillagerbench.agents.asking import Asked, RoleLLM, role_settings
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
@@ -100,7 +100,7 @@ class TactiCrafterOptions(TeamOptions):
         unknown = sorted(set(roles) - set(ROLES))
         if unknown:
             raise ValueError(f"tacticrafter: unknown role(s) {unknown}; valid: {list(ROLES)}")
-        RoleLLM(None, {k: v or {} for k, v in roles.items()})  # validates the keys of each role
+        role_settings(roles)  # validates the keys of each role
         return roles
 
 
@@ -109,7 +109,7 @@ class TactiCrafter(Team):
     uses_llm = True
     Options = TactiCrafterOptions
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         super().__init__(**options)
         o = TactiCrafterOptions.model_validate(options)
         self.max_iterations = o.iterations
@@ -225,8 +225,8 @@ class TactiCrafter(Team):
         elif has_events:
             if self._llm_ok():
                 evidence = own_chat_with_inventory(digests, max_lines=self.max_chat_lines)
-                new, asked = await causal.update(self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts)
-                rec = self._module_record("causal", asked, step="update")
+                new, added = await causal.update(self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts)
+                rec = self._module_record("causal", added, step="update")
                 if new is not None:
                     rec["merge"] = mem.graph.merge(new)
             else:
@@ -263,7 +263,7 @@ class TactiCrafter(Team):
             max_items=3,
         )
         self._module_record("opponent", asked, step="update")
-        if asked.ok:
+        if asked.value is not None:
             mem.opponent_tactics, mem.opponent_source = asked.value, "inferred"
         else:
             mem.opponent_source = "kept"
