@@ -154,8 +154,9 @@ class BotChannel:
         except (ConnectionResetError, BrokenPipeError) as exc:
             raise PlayerError(f"{self.name}: bot process is not running ({exc})") from None
 
-    async def request(self, op: str, wait: float = 10.0, **args: Any) -> Any:
-        """Send request `op` with `args`; wait up to `wait` seconds for the answer."""
+    async def request(self, op: str, wait: float = 10.0, **args: object) -> object:
+        """Send request `op` with `args` (JSON values); wait up to `wait` seconds for the answer (the
+        JSON value js/bot/main.js's op returns)."""
         timeout = wait
         rid = self.next_id()
         fut = asyncio.get_running_loop().create_future()

@@ -5,17 +5,18 @@ wait until a reset's inventory has reached the bot."""
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Sequence
+from collections.abc import Awaitable, Callable, Sequence
 from typing import Any
 
 from pillagerbench.control import Control
 
 from .channel import BotChannel, PlayerError
+from .observation import Observation
 
 Equipment = Sequence[str | None] | dict[str, Any] | None
 
 
-async def snapshot(server: Control | None, name: str, last_observation: dict) -> dict | None:
+async def snapshot(server: Control | None, name: str, last_observation: Observation) -> dict | None:
     """Inventory and position to restore: from the server while the player is still connected,
     else from the last observation seen."""
     if server is None:
@@ -57,13 +58,15 @@ async def teleport(server: Control, channel: BotChannel, name: str, pos: list[fl
     raise PlayerError(f"{name}: teleport to {pos} did not arrive (bot at {settled})")
 
 
-async def wait_inventory(channel: BotChannel, inventory: dict[str, int], equipment: Equipment) -> None:
+async def wait_inventory(
+    observe: Callable[[], Awaitable[Observation]], inventory: dict[str, int], equipment: Equipment
+) -> None:
     """Wait (up to 100 observations) until the bot holds the inventory and equipment a reset gave it."""
     want = dict(inventory)
     for name in equipment_names(equipment):
         want.setdefault(name, 1)
     for _ in range(100):
-        inv = (await channel.request("observe"))["inventory"]
+        inv = (await observe())["inventory"]
         if all(inv.get(k, 0) >= v for k, v in want.items()):
             return
         await asyncio.sleep(0.02)

@@ -21,12 +21,12 @@ import asyncio
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
 
 from pillagerbench.control import Control
 
 from . import placement
 from .channel import BotChannel, PlayerError
+from .observation import Observation, observation
 
 __all__ = ["Player", "PlayerError"]
 
@@ -84,7 +84,7 @@ class Player:
         self._closed = False
         self._generation = 0
         self.position: list[float | None] | None = None
-        self._last_obs: dict = {}
+        self._last_obs: Observation = {}  # the last seen: a restart restores from it when the server cannot say
 
     # ---- process ----------------------------------------------------------------------------
     @property
@@ -164,7 +164,7 @@ class Player:
         if "ev" in msg:
             run = self._run
             if isinstance(msg["ev"], list) and len(msg["ev"]) == 2 and isinstance(msg["ev"][1], dict):
-                self._last_obs = msg["ev"][1]
+                self._last_obs = observation(msg["ev"][1])  # an event's data is an observation and its own key
             if run is not None and msg.get("run") == run.rid:
                 run.add(msg["ev"])
             return
@@ -182,14 +182,16 @@ class Player:
             if not run.done.done():
                 run.done.set_result(msg)
             return
-        result = msg.get("result")
-        if isinstance(result, dict) and "status" in result and "inventory" in result:
-            self._last_obs = result
         self.channel.answer(msg)
 
-    async def _request(self, op: str, wait: float = 10.0, **args: Any) -> Any:
+    async def _request(self, op: str, wait: float = 10.0, **args: object) -> object:
         """Send request `op` with `args` to the bot; wait up to `wait` seconds for the answer."""
         return await self.channel.request(op, wait, **args)
+
+    async def _observe(self) -> Observation:
+        """The bot's observation now (the `observe` request), kept as the last one seen."""
+        self._last_obs = observation(await self._request("observe"))
+        return self._last_obs
 
     # ---- watchdog and recovery -------------------------------------------------------------
     async def _watchdog(self) -> None:
@@ -215,11 +217,11 @@ class Player:
             await self.channel.kill()
             self.channel.fail_pending(reason)
             self.restarts += 1
-            obs: dict = {}
+            obs: Observation = {}
             try:
                 await self._relogin()
                 await placement.restore(self.server, self.channel, self.name, saved)
-                obs = await self._request("observe")
+                obs = await self._observe()
             except Exception as exc:  # noqa: BLE001 - report it in the run's events
                 reason = f"{reason}; restarting failed: {exc}"
             run = self._run
@@ -293,12 +295,13 @@ class Player:
             await self._recover("Error: the bot did not stop within 2 s and was restarted", self._generation)
 
     async def observe(self) -> list:
-        return [["observe", await self._request("observe")]]
+        return [["observe", await self._observe()]]
 
     async def lag(self, *, reset: bool = False) -> dict:
         """How late this bot's 50 ms physics ticks were since the last `lag(reset=True)`, measured in
         the bot process (js/bot/lag.js): ticks, wall_s, tick_rate, late_mean_ms, late_max_ms, late_pct."""
-        return await self._request("lag", reset=reset)
+        found = await self._request("lag", reset=reset)
+        return found if isinstance(found, dict) else {}
 
     async def reset(
         self,
@@ -324,7 +327,7 @@ class Player:
             if position is not None:
                 await placement.teleport(self._control(), self.channel, self.name, placement.centred(position))
             if equipment is not None:
-                await placement.wait_inventory(self.channel, inventory or {}, equipment)
+                await placement.wait_inventory(self._observe, inventory or {}, equipment)
                 await self._request("equip", equipment=equipment, wait=15)
             await self._request("clear")
             return await self.observe()

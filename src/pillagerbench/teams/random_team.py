@@ -26,6 +26,7 @@ from pydantic import Field
 from pillagerbench.node import JS_DIR
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
+from pillagerbench.players.observation import Observation
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
@@ -79,7 +80,7 @@ def js(value: object) -> str:
     return json.dumps(value)
 
 
-def compact(obs: dict) -> dict:
+def compact(obs: Observation) -> dict:
     """The parts of an observation the random choices read (stored with each action in random.json)."""
     status = obs.get("status") or {}
     return {
@@ -110,7 +111,7 @@ class Seen:
     pos: tuple[int, int, int]
 
     @classmethod
-    def of(cls, obs: dict) -> Seen:
+    def of(cls, obs: Observation) -> Seen:
         status = obs.get("status") or {}
         p = status.get("position") or {"x": 0, "y": 4, "z": 0}
         chests = []
@@ -186,7 +187,7 @@ class RandomActions:
             if ok(self, s) and (kind in self.available or kind.startswith("bot."))
         ]
 
-    def next(self, obs: dict) -> Action:
+    def next(self, obs: Observation) -> Action:
         seen = Seen.of(obs)
         kind, build = self.rng.choice(self.candidates(seen))
         return Action(kind, build(self, seen))

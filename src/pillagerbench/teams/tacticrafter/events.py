@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from pillagerbench.agents import context as C
+from pillagerbench.players.observation import Observation, is_whole, observation
 from pillagerbench.scenarios import Scenario, Side
 
 
@@ -102,10 +103,11 @@ def digest_episode(
     return digests, counts
 
 
-def last_observation(events: Sequence[list]) -> dict:
+def last_observation(events: Sequence[list]) -> Observation:
+    """The last whole observation (a digest keeps only the last few whole)."""
     for e in reversed(events):
-        if e and e[0] == "observe" and isinstance(e[1], Mapping) and ("status" in e[1] or "voxels" in e[1]):
-            return dict(e[1])
+        if e and e[0] == "observe" and isinstance(e[1], Mapping) and is_whole(obs := observation(dict(e[1]))):
+            return obs
     return C.last_observation(list(events)) if events else {}
 
 
