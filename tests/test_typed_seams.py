@@ -91,7 +91,7 @@ def test_no_any_in_the_public_signatures_of_the_seams():
 
 
 def test_the_check_finds_any_at_a_seam():
-    source = '''
+    source = """
 from typing import Any, Optional
 
 def fine(data: dict[str, Any], n: int) -> list[Any]: ...
@@ -108,7 +108,7 @@ class Scenario:
 
     def __init__(self, client: Any): ...
     def _helper(self, x: Any) -> Any: ...
-'''
+"""
     assert any_in_signatures(source) == [
         "param(llm: Any)",
         "maybe(llm: 'Any | None')",
