@@ -26,9 +26,8 @@ import re
 from pathlib import Path
 from typing import Any
 
-from omegaconf import DictConfig, OmegaConf
-
 from pillagerbench.config import ConfigError, load_config, to_dict
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
@@ -76,23 +75,20 @@ def check_overrides(argv: list[str]) -> list[str]:
 
 
 class _Composer:
-    """Composes one series config per (scenario, red, blue, llm preset); cached."""
+    """Composes one series config per (scenario, red, blue, llm preset), as plain data; cached."""
 
     def __init__(self, overrides: list[str]):
         self.overrides = overrides
-        self.cache: dict[tuple, DictConfig] = {}
+        self.cache: dict[tuple, RunConfig] = {}
 
-    def __call__(self, scenario: str, red: str, blue: str, llm: str | None) -> DictConfig:
+    def __call__(self, scenario: str, red: str, blue: str, llm: str | None) -> RunConfig:
         key = (scenario, red, blue, llm)
         if key not in self.cache:
             own = [o for o in self.overrides if not (llm and override_key(o) == "llm")]
             extra = [f"scenario={scenario}", f"red={red}", f"blue={blue}"] + ([f"llm={llm}"] if llm else [])
-            cfg = load_config(own + extra)
-            OmegaConf.set_struct(cfg, False)
-            for k in RUNNER_KEYS:
-                cfg.pop(k, None)
-            self.cache[key] = cfg
-        return self.cache[key].copy()
+            cfg = to_dict(load_config(own + extra))
+            self.cache[key] = RunConfig.of({k: v for k, v in cfg.items() if k not in RUNNER_KEYS})
+        return self.cache[key]
 
 
 def _known_team(name: Any, key: str) -> str:
@@ -107,7 +103,7 @@ def _known_team(name: Any, key: str) -> str:
     return str(name)
 
 
-def _variants(exp: DictConfig) -> dict[str, dict]:
+def _variants(exp: dict[str, Any]) -> dict[str, dict]:
     base = {
         "team": exp.get("team"),
         "team_options": exp.get("team_options") or {},
@@ -131,19 +127,19 @@ def _variants(exp: DictConfig) -> dict[str, dict]:
     return out
 
 
-def _opponents(exp: DictConfig, key: str, scenario: str) -> list[str]:
+def _opponents(exp: dict[str, Any], key: str, scenario: str) -> list[str]:
     chosen = exp.get(key)
     return [_known_team(t, f"experiment.{key}") for t in chosen] if chosen else builtin_teams(scenario)
 
 
-def _sides(exp: DictConfig, what: str, default: str) -> list[str]:
+def _sides(exp: dict[str, Any], what: str, default: str) -> list[str]:
     sides = list(exp.get("sides") or [default])
     if any(s not in ("blue", "red") for s in sides):
         raise ConfigError(f"experiment.sides={sides}: each side is blue or red ({what}; e.g. [blue, red])")
     return sides
 
 
-def _arenas(exp: DictConfig, overrides: list[str]) -> dict[str, int]:
+def _arenas(exp: dict[str, Any], overrides: list[str]) -> dict[str, int]:
     """`arenas`: split -> episodes per opponent and side (paper: the paper's layout; dev, test: each
     episode on a layout of the split). The experiment chooses each series' layout itself."""
     chosen = [o for o in overrides if override_key(o) in ("layout", "split")]
@@ -163,11 +159,11 @@ def _arenas(exp: DictConfig, overrides: list[str]) -> dict[str, int]:
 
 
 class _Builder:
-    def __init__(self, cfg: DictConfig, argv: list[str]):
-        self.cfg, self.exp = cfg, cfg.experiment
+    def __init__(self, cfg: RunConfig, argv: list[str]):
+        self.exp: dict[str, Any] = cfg.experiment or {}
         self.compose = _Composer(check_overrides(argv))
         self.series: list[SeriesSpec] = []
-        self.seed = int(cfg.seed)
+        self.seed = cfg.seed
 
     def add(
         self,
@@ -184,14 +180,13 @@ class _Builder:
         **extra,
     ) -> SeriesSpec:
         own = variant or blue_variant or {}  # the experiment's team: its model is the series' llm
-        cfg = self.compose(scenario, red_team, blue_team, own.get("llm"))
-        for side, v in (("red", variant), ("blue", blue_variant)):
-            if v:
-                cfg[side] = OmegaConf.merge(cfg[side], v.get("team_options") or {})
+        changes: dict[str, Any] = {
+            side: v.get("team_options") or {} for side, v in (("red", variant), ("blue", blue_variant)) if v
+        }
         if own:
-            cfg.llm = OmegaConf.merge(cfg.llm, own.get("llm_options") or {})
+            changes["llm"] = own.get("llm_options") or {}
         if arena:  # every episode on the paper's layout, or each on a fresh one of the split
-            cfg.layout, cfg.split = PAPER, arena
+            changes |= {"layout": PAPER, "split": arena}
         extra["variant"] = extra.pop("variant_label", None)
         index = len(self.series)
         red, blue = red or red_team, blue or blue_team
@@ -201,13 +196,14 @@ class _Builder:
                 parts.append(slug(tag))
         if int(self.exp.get("repetitions", 1) or 1) > 1:
             parts.append(f"r{extra.get('repetition', 0)}")
-        cfg.episodes = int(episodes)
         seed = self.seed * 1000 + index
-        cfg.seed = seed
+        cfg = self.compose(scenario, red_team, blue_team, own.get("llm")).updated(
+            {**changes, "episodes": int(episodes), "seed": seed}
+        )
         spec = SeriesSpec(
             id="_".join(parts),
             index=index,
-            design=str(self.exp.design),
+            design=str(self.exp["design"]),
             scenario=scenario,
             red=red,
             blue=blue,
@@ -215,7 +211,7 @@ class _Builder:
             blue_team=blue_team,
             episodes=int(episodes),
             seed=seed,
-            config=to_dict(cfg),
+            config=cfg.stored(),
             **extra,
         )
         self.series.append(spec)
@@ -224,10 +220,10 @@ class _Builder:
     # -- designs ---------------------------------------------------------------------------------
     def round_robin(self) -> None:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
-            for sc in self.exp.scenarios:
+            for sc in self.exp["scenarios"]:
                 for red in _opponents(self.exp, "red_teams", sc):
                     for blue in _opponents(self.exp, "blue_teams", sc):
-                        self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+                        self.add(sc, red, blue, self.exp["episodes"], repetition=rep)
 
     def symmetry(self) -> None:
         pairings = self.exp.get("pairings") or []
@@ -244,26 +240,26 @@ class _Builder:
                 )
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for p in pairings:
-                orders = [(p.a, p.b)] if p.a == p.b else [(p.a, p.b), (p.b, p.a)]
+                orders = [(p["a"], p["b"])] if p["a"] == p["b"] else [(p["a"], p["b"]), (p["b"], p["a"])]
                 for red, blue in orders:
-                    self.add(p.scenario, red, blue, self.exp.episodes, repetition=rep)
+                    self.add(p["scenario"], red, blue, self.exp["episodes"], repetition=rep)
 
     def fidelity(self) -> None:
         sides = _sides(self.exp, "the opponent's side", "blue")
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
-            for sc in self.exp.scenarios:
+            for sc in self.exp["scenarios"]:
                 for team in _opponents(self.exp, "opponents", sc):
                     if team == "do_nothing":
                         continue
                     for side in sides:
                         red, blue = ("do_nothing", team) if side == "blue" else (team, "do_nothing")
-                        self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+                        self.add(sc, red, blue, self.exp["episodes"], repetition=rep)
 
     def generalization(self) -> None:
         arenas, sides = _arenas(self.exp, self.compose.overrides), _sides(self.exp, "the team's side", "red")
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for label, v in _variants(self.exp).items():
-                for sc in self.exp.scenarios:
+                for sc in self.exp["scenarios"]:
                     for opponent in _opponents(self.exp, "opponents", sc):
                         for side in sides:
                             red, blue = (v["team"], opponent) if side == "red" else (opponent, v["team"])
@@ -278,13 +274,13 @@ class _Builder:
     def benchmark(self) -> None:
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for label, v in _variants(self.exp).items():
-                for sc in self.exp.scenarios:
+                for sc in self.exp["scenarios"]:
                     for blue in _opponents(self.exp, "opponents", sc):
                         self.add(
                             sc,
                             v["team"],
                             blue,
-                            self.exp.episodes,
+                            self.exp["episodes"],
                             red=label,
                             variant=v,
                             variant_label=label,
@@ -294,10 +290,10 @@ class _Builder:
 
     def self_play(self) -> None:
         every = self.exp.get("checkpoint_every")
-        episodes = int(self.exp.episodes)
+        episodes = int(self.exp["episodes"])
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for label, v in _variants(self.exp).items():
-                for sc in self.exp.scenarios:
+                for sc in self.exp["scenarios"]:
                     play = self.add(
                         sc,
                         v["team"],
@@ -338,7 +334,7 @@ class _Builder:
         from_run = self.exp.get("from_run")
         for rep in range(int(self.exp.get("repetitions", 1) or 1)):
             for label, v in _variants(self.exp).items():
-                for sc in self.exp.scenarios:
+                for sc in self.exp["scenarios"]:
                     opponents = _opponents(self.exp, "opponents", sc)
                     for trained_on in opponents:
                         if from_run:
@@ -403,9 +399,9 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
     raise ConfigError(f"from_run: {run_dir} has no series {scenario} {red} vs {blue} (repetition {repetition})")
 
 
-def build_series(cfg: DictConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
+def build_series(cfg: RunConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
     """The series of the experiment selected in cfg.experiment (argv: the user's overrides)."""
-    exp = cfg.get("experiment")
+    exp = cfg.experiment
     if not exp:
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
     design = exp.get("design")
