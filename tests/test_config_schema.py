@@ -130,3 +130,16 @@ def test_no_module_below_the_edge_reads_a_config_by_string_key():
         if pattern.search(line)
     ]
     assert not found, "read the typed configuration's fields instead:\n" + "\n".join(found)
+
+
+def test_the_llm_settings_defaults_are_the_base_presets():
+    """LLMSettings reads an `llm` node from before a key with its own defaults: conf/llm/base.yaml's."""
+    from dataclasses import fields
+
+    from pillagerbench.llm.settings import LLMSettings
+
+    base = yaml.safe_load((SRC / "conf" / "llm" / "base.yaml").read_text())
+    base |= {f"price_{k}": v for k, v in base.pop("price").items()}
+    base.pop("budget")  # {} and a table of nulls both mean no limit
+    ours = {f.name: getattr(LLMSettings(), f.name) for f in fields(LLMSettings) if f.name != "budget"}
+    assert ours == base
