@@ -143,3 +143,31 @@ def test_the_llm_settings_defaults_are_the_base_presets():
     base.pop("budget")  # {} and a table of nulls both mean no limit
     ours = {f.name: getattr(LLMSettings(), f.name) for f in fields(LLMSettings) if f.name != "budget"}
     assert ours == base
+
+
+def test_calibrate_hands_the_experiment_a_checked_typed_config_with_its_run_directory(monkeypatch, tmp_path):
+    import pillagerbench.experiments.runner as runner
+    from pillagerbench.metrics.calibration import main as calibrate
+
+    given = []
+    monkeypatch.setattr(runner, "main_experiment", lambda cfg, argv: given.append((cfg, argv)) or 1)
+    assert calibrate([f"run_dir={tmp_path / 'cal'}", "episode_length=30"]) == 1
+    [(cfg, argv)] = given
+    assert isinstance(cfg, RunConfig) and cfg.experiment and cfg.experiment["name"] == "calibration"
+    assert (cfg.run_dir, cfg.episode_length, argv[0]) == (str(tmp_path / "cal"), 30, "experiment=calibration")
+    given.clear()
+    monkeypatch.chdir(tmp_path)
+    calibrate([])
+    [(cfg, argv)] = given
+    assert cfg.run_dir and argv[-1] == f"run_dir={cfg.run_dir}" and cfg.stored()["run_dir"] == cfg.run_dir
+
+
+def test_a_stored_config_that_does_not_read_is_one_line_per_problem():
+    from pillagerbench.config import ConfigError
+
+    stored = to_dict(load_config([]))
+    stored["server"] = {**stored["server"], "tps": "fast"}
+    del stored["seed"]  # a default: not a problem
+    with pytest.raises(ConfigError) as err:
+        RunConfig.of(stored)
+    assert str(err.value) == "server.tps='fast': input should be a valid number, unable to parse string as a number"

@@ -152,7 +152,11 @@ class RunConfig(RunnerConfig):
     def of(cls, data: Any) -> RunConfig:
         """The typed configuration of `data` (a composed DictConfig, or a stored dict)."""
         stored = plain(data)
-        model = cls.model_validate(_normalised(stored))
+        try:
+            model = cls.model_validate(_normalised(stored))
+        except ValidationError:  # a stored config that no longer reads: one line per problem
+            check(problems(cls, _normalised(stored)))
+            raise
         model._stored = stored
         return model
 
