@@ -1,6 +1,9 @@
-"""The configuration's schema: every top-level key and the `llm` node typed with pydantic (types,
-ranges, choices). `problems(model, data)` gives one line per problem, naming the key, the bad value
-and what is valid. Groups (scenario, teams) are checked against their registries in validate.py.
+"""The configuration's schema, and the configuration typed: `RunConfig` (every top-level key, the
+groups `scenario`, `red`/`blue` and `llm`, each default written once) is what the command's edge
+(cli, validate.check_run_config) makes of the command line and conf/, and what every layer below
+takes, whole or in part (RunnerConfig, TeamConfig, ServerConfig, LLMCacheConfig, LLMLedgerConfig).
+`problems(model, data)` gives one line per problem, naming the key, the bad value and what is valid.
+Groups (scenario, teams) are checked against their registries in validate.py.
 """
 
 from __future__ import annotations

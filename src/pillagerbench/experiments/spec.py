@@ -75,7 +75,7 @@ def check_overrides(argv: list[str]) -> list[str]:
 
 
 class _Composer:
-    """Composes one series config per (scenario, red, blue, llm preset), as plain data; cached."""
+    """Composes one series config per (scenario, red, blue, llm preset), typed; cached."""
 
     def __init__(self, overrides: list[str]):
         self.overrides = overrides
