@@ -14,8 +14,8 @@ import pytest
 import yaml  # type: ignore[import-untyped]
 from pydantic import BaseModel
 
-from pillagerbench.config import load_config, to_dict
-from pillagerbench.config_schema import RETRIES, RunConfig, default
+from pillagerbench.config import ConfigError, config_options, load_config, to_dict
+from pillagerbench.config_schema import RETRIES, ExperimentConfig, RunConfig, default
 from pillagerbench.validate import check_run_config
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "pillagerbench"
@@ -163,11 +163,28 @@ def test_calibrate_hands_the_experiment_a_checked_typed_config_with_its_run_dire
 
 
 def test_a_stored_config_that_does_not_read_is_one_line_per_problem():
-    from pillagerbench.config import ConfigError
-
     stored = to_dict(load_config([]))
     stored["server"] = {**stored["server"], "tps": "fast"}
     del stored["seed"]  # a default: not a problem
     with pytest.raises(ConfigError) as err:
         RunConfig.of(stored)
     assert str(err.value) == "server.tps='fast': input should be a valid number, unable to parse string as a number"
+
+
+@pytest.mark.parametrize("name", config_options("experiment"))
+def test_every_experiment_reads_typed(name):
+    from pillagerbench.experiments.spec import DESIGNS
+
+    exp = ExperimentConfig.of(RunConfig.of(load_config([f"experiment={name}"])).experiment)
+    assert exp.name == name and exp.design in DESIGNS and exp.repetitions
+
+
+def test_a_bad_value_of_an_experiment_is_one_line():
+    from pillagerbench.experiments.spec import build_series
+
+    argv = ["experiment=round_robin_mushroom_war", "experiment.repetitions=twice"]
+    with pytest.raises(ConfigError) as err:
+        build_series(RunConfig.of(load_config(argv)), argv)
+    assert str(err.value) == (
+        "experiment.repetitions='twice': input should be a valid integer, unable to parse string as an integer"
+    )

@@ -108,6 +108,41 @@ class TeamConfig(BaseModel):
         return dict(self.model_extra or {})
 
 
+class ExperimentConfig(BaseModel):
+    """The `experiment` node (conf/experiment/NAME.yaml), each default written once. What a design
+    checks with a message of its own (its design, variants, pairings, sides, arenas) is read as given
+    and checked in experiments/spec.py."""
+
+    model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # a team named 7: unknown team '7'
+
+    name: str
+    design: str
+    scenarios: list[str] = []
+    episodes: int | None = Field(None, ge=0)  # per series (adaptation: train_episodes, generalization: arenas)
+    repetitions: int | None = 1  # null or 0: once
+    team: str | None = None
+    team_options: dict[str, Any] | None = None
+    llm: str | None = None  # an LLM preset for the experiment's team; null = the run's llm=...
+    llm_options: dict[str, Any] | None = None
+    variants: dict[str, Any] | None = None
+    opponents: list[str] | None = None  # null = the scenario's built-in opponents
+    red_teams: list[str] | None = None
+    blue_teams: list[str] | None = None
+    pairings: list[Any] | None = None
+    sides: list[Any] | None = None
+    arenas: dict[str, Any] | None = None
+    checkpoint_every: int | None = None
+    evaluate: bool = False
+    train_episodes: int = 5
+    from_run: str | None = None
+
+    @classmethod
+    def of(cls, data: Any) -> ExperimentConfig:
+        """The typed experiment node of `data`, or one ConfigError line per problem."""
+        check(problems(cls, data, "experiment"))
+        return cls.model_validate(plain(data))
+
+
 class RunnerConfig(BaseModel):
     """How an experiment's series are played (not what): the part of the configuration its runner reads."""
 

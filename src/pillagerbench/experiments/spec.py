@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config_schema import ExperimentConfig, RunConfig
 from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
@@ -103,17 +103,17 @@ def _known_team(name: Any, key: str) -> str:
     return str(name)
 
 
-def _variants(exp: dict[str, Any]) -> dict[str, dict]:
+def _variants(exp: ExperimentConfig) -> dict[str, dict]:
     base = {
-        "team": exp.get("team"),
-        "team_options": exp.get("team_options") or {},
-        "llm": exp.get("llm"),
-        "llm_options": exp.get("llm_options") or {},
+        "team": exp.team,
+        "team_options": exp.team_options or {},
+        "llm": exp.llm,
+        "llm_options": exp.llm_options or {},
     }
-    raw = exp.get("variants")
+    raw = exp.variants
     if not raw:
         if not base["team"]:
-            raise ConfigError(f"experiment {exp.get('name')!r} needs `team` (experiment.team=NAME)")
+            raise ConfigError(f"experiment {exp.name!r} needs `team` (experiment.team=NAME)")
         return {_known_team(base["team"], "experiment.team"): base}
     out = {}
     for label, v in raw.items():
@@ -121,34 +121,34 @@ def _variants(exp: dict[str, Any]) -> dict[str, dict]:
         merged = dict(base)
         merged.update({k: v[k] for k in ("team", "team_options", "llm", "llm_options") if k in v})
         if not merged["team"]:
-            raise ConfigError(f"variant {label!r} of experiment {exp.get('name')!r} names no team")
+            raise ConfigError(f"variant {label!r} of experiment {exp.name!r} names no team")
         _known_team(merged["team"], f"experiment.variants.{label}.team" if "team" in v else "experiment.team")
         out[str(label)] = merged
     return out
 
 
-def _opponents(exp: dict[str, Any], key: str, scenario: str) -> list[str]:
-    chosen = exp.get(key)
+def _opponents(chosen: list[str] | None, key: str, scenario: str) -> list[str]:
+    """The teams the experiment's `key` names (each checked), or else the scenario's built-in ones."""
     return [_known_team(t, f"experiment.{key}") for t in chosen] if chosen else builtin_teams(scenario)
 
 
-def _sides(exp: dict[str, Any], what: str, default: str) -> list[str]:
-    sides = list(exp.get("sides") or [default])
+def _sides(exp: ExperimentConfig, what: str, default: str) -> list[str]:
+    sides = list(exp.sides or [default])
     if any(s not in ("blue", "red") for s in sides):
         raise ConfigError(f"experiment.sides={sides}: each side is blue or red ({what}; e.g. [blue, red])")
     return sides
 
 
-def _arenas(exp: dict[str, Any], overrides: list[str]) -> dict[str, int]:
+def _arenas(exp: ExperimentConfig, overrides: list[str]) -> dict[str, int]:
     """`arenas`: split -> episodes per opponent and side (paper: the paper's layout; dev, test: each
     episode on a layout of the split). The experiment chooses each series' layout itself."""
     chosen = [o for o in overrides if override_key(o) in ("layout", "split")]
     if chosen:
         raise ConfigError(
-            f"{chosen[0]!r}: experiment {exp.get('name')!r} chooses each series' layout itself; "
+            f"{chosen[0]!r}: experiment {exp.name!r} chooses each series' layout itself; "
             "use experiment.arenas.SPLIT=EPISODES (splits: " + ", ".join(SPLITS) + ")"
         )
-    arenas = dict(exp.get("arenas") or {})
+    arenas = dict(exp.arenas or {})
     bad = [k for k, n in arenas.items() if k not in SPLITS or isinstance(n, bool) or not isinstance(n, int) or n < 0]
     if bad or not any(arenas.values()):
         raise ConfigError(
@@ -159,11 +159,19 @@ def _arenas(exp: dict[str, Any], overrides: list[str]) -> dict[str, int]:
 
 
 class _Builder:
-    def __init__(self, cfg: RunConfig, argv: list[str]):
-        self.exp: dict[str, Any] = cfg.experiment or {}
+    def __init__(self, cfg: RunConfig, exp: ExperimentConfig, argv: list[str]):
+        self.exp = exp
+        self.repetitions = range(exp.repetitions or 1)
         self.compose = _Composer(check_overrides(argv))
         self.series: list[SeriesSpec] = []
         self.seed = cfg.seed
+
+    @property
+    def episodes(self) -> int:
+        """The episodes of each series (`experiment.episodes`; designs that play it need it)."""
+        if self.exp.episodes is None:
+            raise ConfigError(f"experiment {self.exp.name!r} needs `episodes` (experiment.episodes=N)")
+        return self.exp.episodes
 
     def add(
         self,
@@ -194,7 +202,7 @@ class _Builder:
         for tag in (extra.get("group"), arena):
             if tag:
                 parts.append(slug(tag))
-        if int(self.exp.get("repetitions", 1) or 1) > 1:
+        if len(self.repetitions) > 1:
             parts.append(f"r{extra.get('repetition', 0)}")
         seed = self.seed * 1000 + index
         cfg = self.compose(scenario, red_team, blue_team, own.get("llm")).updated(
@@ -203,7 +211,7 @@ class _Builder:
         spec = SeriesSpec(
             id="_".join(parts),
             index=index,
-            design=str(self.exp["design"]),
+            design=self.exp.design,
             scenario=scenario,
             red=red,
             blue=blue,
@@ -219,17 +227,17 @@ class _Builder:
 
     # -- designs ---------------------------------------------------------------------------------
     def round_robin(self) -> None:
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
-            for sc in self.exp["scenarios"]:
-                for red in _opponents(self.exp, "red_teams", sc):
-                    for blue in _opponents(self.exp, "blue_teams", sc):
-                        self.add(sc, red, blue, self.exp["episodes"], repetition=rep)
+        for rep in self.repetitions:
+            for sc in self.exp.scenarios:
+                for red in _opponents(self.exp.red_teams, "red_teams", sc):
+                    for blue in _opponents(self.exp.blue_teams, "blue_teams", sc):
+                        self.add(sc, red, blue, self.episodes, repetition=rep)
 
     def symmetry(self) -> None:
-        pairings = self.exp.get("pairings") or []
+        pairings = self.exp.pairings or []
         if not pairings:
             raise ConfigError(
-                f"experiment {self.exp.get('name')!r} needs `pairings`: a list of {{scenario: NAME, a: TEAM, b: TEAM}}"
+                f"experiment {self.exp.name!r} needs `pairings`: a list of {{scenario: NAME, a: TEAM, b: TEAM}}"
             )
         for i, p in enumerate(pairings):
             missing = [k for k in ("scenario", "a", "b") if not (p or {}).get(k)]
@@ -238,29 +246,29 @@ class _Builder:
                     f"experiment.pairings[{i}] needs {', '.join(missing)} "
                     f"(a pairing is {{scenario: NAME, a: TEAM, b: TEAM}}), got {p}"
                 )
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for p in pairings:
                 orders = [(p["a"], p["b"])] if p["a"] == p["b"] else [(p["a"], p["b"]), (p["b"], p["a"])]
                 for red, blue in orders:
-                    self.add(p["scenario"], red, blue, self.exp["episodes"], repetition=rep)
+                    self.add(p["scenario"], red, blue, self.episodes, repetition=rep)
 
     def fidelity(self) -> None:
         sides = _sides(self.exp, "the opponent's side", "blue")
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
-            for sc in self.exp["scenarios"]:
-                for team in _opponents(self.exp, "opponents", sc):
+        for rep in self.repetitions:
+            for sc in self.exp.scenarios:
+                for team in _opponents(self.exp.opponents, "opponents", sc):
                     if team == "do_nothing":
                         continue
                     for side in sides:
                         red, blue = ("do_nothing", team) if side == "blue" else (team, "do_nothing")
-                        self.add(sc, red, blue, self.exp["episodes"], repetition=rep)
+                        self.add(sc, red, blue, self.episodes, repetition=rep)
 
     def generalization(self) -> None:
         arenas, sides = _arenas(self.exp, self.compose.overrides), _sides(self.exp, "the team's side", "red")
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
-                for sc in self.exp["scenarios"]:
-                    for opponent in _opponents(self.exp, "opponents", sc):
+                for sc in self.exp.scenarios:
+                    for opponent in _opponents(self.exp.opponents, "opponents", sc):
                         for side in sides:
                             red, blue = (v["team"], opponent) if side == "red" else (opponent, v["team"])
                             team: dict[str, Any] = (
@@ -272,28 +280,28 @@ class _Builder:
                                 )
 
     def benchmark(self) -> None:
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
-                for sc in self.exp["scenarios"]:
-                    for blue in _opponents(self.exp, "opponents", sc):
+                for sc in self.exp.scenarios:
+                    for blue in _opponents(self.exp.opponents, "opponents", sc):
                         self.add(
                             sc,
                             v["team"],
                             blue,
-                            self.exp["episodes"],
+                            self.episodes,
                             red=label,
                             variant=v,
                             variant_label=label,
                             repetition=rep,
-                            checkpoint_every=self.exp.get("checkpoint_every"),
+                            checkpoint_every=self.exp.checkpoint_every,
                         )
 
     def self_play(self) -> None:
-        every = self.exp.get("checkpoint_every")
-        episodes = int(self.exp["episodes"])
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        every = self.exp.checkpoint_every
+        episodes = self.episodes
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
-                for sc in self.exp["scenarios"]:
+                for sc in self.exp.scenarios:
                     play = self.add(
                         sc,
                         v["team"],
@@ -307,13 +315,13 @@ class _Builder:
                         repetition=rep,
                         checkpoint_every=every,
                     )
-                    if not self.exp.get("evaluate"):
+                    if not self.exp.evaluate:
                         continue
                     stages = [0] + (list(range(every, episodes + 1, every)) if every else [episodes])
                     for k in stages:
                         ckpt = {"red": {"series": play.id, "episode": k - 1}} if k else {}
                         play.checkpoint_at = sorted(set(play.checkpoint_at) | ({k - 1} if k else set()))
-                        for blue in _opponents(self.exp, "opponents", sc):
+                        for blue in _opponents(self.exp.opponents, "opponents", sc):
                             self.add(
                                 sc,
                                 v["team"],
@@ -330,12 +338,12 @@ class _Builder:
                             )
 
     def adaptation(self) -> None:
-        train = int(self.exp.get("train_episodes", 5))
-        from_run = self.exp.get("from_run")
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        train = self.exp.train_episodes
+        from_run = self.exp.from_run
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
-                for sc in self.exp["scenarios"]:
-                    opponents = _opponents(self.exp, "opponents", sc)
+                for sc in self.exp.scenarios:
+                    opponents = _opponents(self.exp.opponents, "opponents", sc)
                     for trained_on in opponents:
                         if from_run:
                             ckpt: dict[str, dict[str, Any]] = {
@@ -401,14 +409,13 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
 
 def build_series(cfg: RunConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
     """The series of the experiment selected in cfg.experiment (argv: the user's overrides)."""
-    exp = cfg.experiment
-    if not exp:
+    if not cfg.experiment:
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
-    design = exp.get("design")
-    if design not in DESIGNS:
-        raise ConfigError(f"experiment {exp.get('name')!r}: unknown design {design!r}; valid: {', '.join(DESIGNS)}")
-    builder = _Builder(cfg, list(argv or []))
-    getattr(builder, design)()
+    exp = ExperimentConfig.of(cfg.experiment)
+    if exp.design not in DESIGNS:
+        raise ConfigError(f"experiment {exp.name!r}: unknown design {exp.design!r}; valid: {', '.join(DESIGNS)}")
+    builder = _Builder(cfg, exp, list(argv or []))
+    getattr(builder, exp.design)()
     if not builder.series:
-        raise ConfigError(f"experiment {exp.get('name')!r} has no series (check scenarios/opponents)")
+        raise ConfigError(f"experiment {exp.name!r} has no series (check scenarios/opponents)")
     return builder.series
