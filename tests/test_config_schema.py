@@ -188,3 +188,10 @@ def test_a_bad_value_of_an_experiment_is_one_line():
     assert str(err.value) == (
         "experiment.repetitions='twice': input should be a valid integer, unable to parse string as an integer"
     )
+
+
+def test_a_team_or_scenario_named_by_a_number_is_one_line_about_the_name():
+    with pytest.raises(ConfigError) as err:
+        check_run_config(load_config(["red=7"]))
+    [line] = str(err.value).splitlines()
+    assert line.startswith("red=7: unknown team '7'; valid teams: ")

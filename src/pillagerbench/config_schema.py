@@ -87,7 +87,7 @@ RETRIES = 2  # replays of a spoiled episode (rundir/schedule.py)
 class ScenarioConfig(BaseModel):
     """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry in validate.py."""
 
-    model_config = ConfigDict(extra="ignore")
+    model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # scenario=5: unknown scenario, once
 
     name: str
     crop_growth_chance: float = Field(ge=0, le=1)  # what a match plays (server.crop_growth_chance is the start value)
@@ -97,7 +97,7 @@ class TeamConfig(BaseModel):
     """A side's node (`red`, `blue`): the team's name, its own `llm` keys, and its options (every other
     key, checked against the team's options model in validate.py)."""
 
-    model_config = ConfigDict(extra="allow")
+    model_config = ConfigDict(extra="allow", coerce_numbers_to_str=True)  # red=7: unknown team '7', once
 
     name: str
     llm: dict[str, Any] = {}  # keys of the run's `llm` this side plays with otherwise (red.llm.model=...)
