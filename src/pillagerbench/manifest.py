@@ -13,10 +13,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-from omegaconf import OmegaConf
-
 from pillagerbench import __version__
 from pillagerbench.conditions import conditions_of
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.rundir import RunDir
 from pillagerbench.suite import current
 
@@ -33,14 +32,14 @@ def git_revision() -> str | None:
         return None
 
 
-def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
+def write_manifest(run_dir: Path, cfg: RunConfig, scenario: Any) -> None:
     """`run_dir/manifest.json` for one match; `scenario` is the Scenario played (key, title, version)."""
     from pillagerbench.node import node_binary
 
     node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
     manifest = {
         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "config": OmegaConf.to_container(cfg, resolve=True),
+        "config": cfg.stored(),
         "scenario": {"key": scenario.key, "title": scenario.title, "version": scenario.version},
         "versions": {
             "pillagerbench": __version__,
@@ -51,6 +50,6 @@ def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
         "seed": cfg.seed,
         "git_revision": git_revision(),
         "suite": current(),
-        "conditions": conditions_of(lambda key: OmegaConf.select(cfg, key), scenario.key),
+        "conditions": conditions_of(cfg.select, scenario.key),
     }
     RunDir(run_dir).write_manifest(manifest)

@@ -18,6 +18,7 @@ from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from pillagerbench.config_schema import default
 from pillagerbench.rundir import RunDir, progress, retries_of, spoiled
 
 
@@ -38,7 +39,7 @@ class ExperimentProgress:
         title: str,
         *,
         parallel: int = 1,
-        mode: str = "auto",
+        mode: str = default("display"),
         episode_length: float = 120.0,
         interval: float = 1.0,
         plain_every: float = 60.0,

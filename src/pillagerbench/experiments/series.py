@@ -18,10 +18,9 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-from omegaconf import OmegaConf
-
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec
-from pillagerbench.rundir import RunDir, episodes_to_play, progress, retries_of
+from pillagerbench.rundir import RunDir, episodes_to_play, progress
 
 
 class ResumeError(RuntimeError):
@@ -54,13 +53,13 @@ async def run_series(
 
     rundir = RunDir(series_dir)
     rundir.path.mkdir(parents=True, exist_ok=True)
-    cfg = OmegaConf.create(spec.config)
+    cfg = RunConfig.of(spec.config)
     if not rundir.series_path.exists() and run_dir is not None and Path(run_dir) != rundir.path:
         rundir.series_path.write_text(json.dumps({k: v for k, v in spec.to_dict().items() if k != "config"}, indent=1))
     finished, discarded = rundir.recover()
     if discarded:
         say(f"[{spec.id}] resume: discarded {', '.join(discarded)}")
-    retries = retries_of(cfg)
+    retries = cfg.retries
     summary = {"id": spec.id, "played": 0}
     if not progress(finished, spec.episodes, retries).complete:
         scenario = scenario_from_config(cfg)
@@ -101,7 +100,7 @@ def _restore(rundir: RunDir, teams: dict, episode: int) -> None:
 
 async def _play(
     spec: SeriesSpec,
-    cfg,
+    cfg: RunConfig,
     rundir: RunDir,
     scenario,
     teams: dict,

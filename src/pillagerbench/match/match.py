@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench import upstream
+from pillagerbench.config_schema import default
 from pillagerbench.control import Server
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
@@ -41,12 +42,12 @@ class Match:
         teams: dict[str, Team],
         run_dir: Path,
         *,
-        episode_length: float = 120.0,
-        seed: int = 0,
+        episode_length: float = default("episode_length"),
+        seed: int = default("seed"),
         on_tick: Callable[[dict], None] | None = None,
         llms: dict[str, LLMClient] | None = None,
-        scoring: str = "clean",
-        protocol: str = "pillagerbench",
+        scoring: str = default("scoring"),
+        protocol: str = default("protocol"),
         step_wait_s: float | None = None,
         split: str | None = None,
         conditions: dict[str, Any] | None = None,

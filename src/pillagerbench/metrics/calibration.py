@@ -203,18 +203,21 @@ def main(argv: list[str]) -> int:
     else:  # play the calibration experiment first
         from pillagerbench.config import load_config
         from pillagerbench.experiments.runner import main_experiment, make_experiment_dir
+        from pillagerbench.validate import check_run_config
 
         overrides = list(argv)
         if not any(o.startswith(("experiment=", "resume=")) for o in overrides):
             overrides.insert(0, "experiment=calibration")
-        cfg = load_config(overrides)
-        if not cfg.get("resume") and not cfg.get("run_dir"):
-            cfg.run_dir = str(make_experiment_dir(cfg))
-            overrides.append(f"run_dir={cfg.run_dir}")
+        composed = load_config(overrides)
+        cfg = check_run_config(composed, teams=False)
+        if not cfg.resume and not cfg.run_dir:
+            composed.run_dir = str(make_experiment_dir(cfg))
+            overrides.append(f"run_dir={composed.run_dir}")
+            cfg = check_run_config(composed, teams=False)
         code = main_experiment(cfg, overrides)
         if code:
             return code
-        run_dir = Path(cfg.get("resume") or cfg.run_dir)
+        run_dir = Path(cfg.resume or cfg.run_dir or "")
         runs = load_runs([run_dir])
         out = run_dir / CALIBRATION
     cal = calibration_from_runs(runs)

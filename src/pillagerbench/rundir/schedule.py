@@ -10,10 +10,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from pillagerbench.config_schema import RETRIES  # the config's default `retries` (runs from before the key: this)
 from pillagerbench.rundir.directory import RunDir
 from pillagerbench.rundir.faults import spoiled
-
-RETRIES = 2  # the config's default `retries` (runs from before the key: this)
 
 
 @dataclass
