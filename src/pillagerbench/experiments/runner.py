@@ -242,10 +242,10 @@ def check_series(specs: list[SeriesSpec]) -> None:
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
     """The episodes played under lag (pillagerbench/machine.py): a count, then up to `show` of them."""
     hit = [
-        (s.id, i, rec.get("lag_reason"))
+        (s.id, i, rec.lag_reason)
         for s in specs
         for i, rec in sorted(RunDir(dirs[s.id]).finished().items())
-        if rec.get("lagged")
+        if rec.lagged
     ]
     if not hit:
         return []

@@ -22,7 +22,6 @@ counts a series' used episodes, so a spoiled one leaves no hole.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
@@ -37,9 +36,11 @@ from pillagerbench.metrics.faults import name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import (
     EPISODES,
+    EpisodeDir,
     EpisodeRecord,
     RunDir,
     SeriesSpec,
+    TimelinePoint,
     faults,
     progress,
     read_series,
@@ -166,21 +167,21 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list, spoilt: 
     for i in sorted(finished):
         rec = finished[i]
         found += [{"run": str(s.run), "series": s.id, "episode": i, **f} for f in faults(rec)]
-        ep = RunDir(s.dir).episode(i)
+        ep = RunDir(s.dir).files(i)
         timeline = _timeline(s, rec, ep, skipped)
         if timeline is None:
             continue
-        row = _row(s, i, rec, ep, timeline, scale, used + s.episode_offset)
+        row = _row(s, i, rec, ep.path, timeline, scale, used + s.episode_offset)
         kind = spoiled(rec)
         if kind:
-            skipped.append((str(ep), f"spoiled on our side ({kind}): in no score (the Failures table lists it)"))
+            skipped.append((str(ep.path), f"spoiled on our side ({kind}): in no score (the Failures table lists it)"))
             spoilt.append(row)
         else:
             rows.append(row)
             used += 1
 
 
-def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
+def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, EpisodeRecord]:
     """The series' finished episodes by index; what is not started, half-written or missing goes to `skipped`."""
     where = str(s.dir)
     if not s.dir.exists():
@@ -209,34 +210,33 @@ def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
     return finished
 
 
-def _timeline(s: SeriesInfo, rec: dict, ep: Path, skipped: list) -> list | None:
+def _timeline(s: SeriesInfo, rec: EpisodeRecord, ep: EpisodeDir, skipped: list) -> list[TimelinePoint] | None:
     """An ok episode's score timeline (upstream's rewards file for its scoring), or None with the reason in
     `skipped` (failed, half-written or cut short before the whistle)."""
-    if rec.get("status") != "ok":
-        skipped.append((str(ep), f"failed: {rec.get('error')}"))
+    where, name = str(ep.path), ep.timeline_path().name
+    if not rec.ok:
+        skipped.append((where, f"failed: {rec.error}"))
         return None
     try:
-        timeline = json.loads((ep / "timeline.json").read_text())
+        timeline = ep.timeline()
     except FileNotFoundError:
-        skipped.append((str(ep), "half-written: no timeline.json"))
+        skipped.append((where, f"half-written: no {name}"))
         return None
     except ValueError:
-        skipped.append((str(ep), "half-written: timeline.json cut short"))
+        skipped.append((where, f"half-written: {name} cut short"))
         return None
     if not timeline or float(timeline[-1]["t"]) < s.episode_length:
         end = timeline[-1]["t"] if timeline else None
-        skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
+        skipped.append((where, f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
         return None
-    if rec.get("scoring") == "upstream" and (ep / "timeline_upstream.json").exists():
+    if rec.scoring == "upstream" and ep.timeline_path("upstream").exists():
         # as upstream's analysis read it: line i of its rewards file stands for second i
-        lines = json.loads((ep / "timeline_upstream.json").read_text())
-        timeline = [{**p, "t": p["line"]} for p in lines]
+        timeline = [{**p, "t": p["line"]} for p in ep.timeline("upstream")]
     return timeline
 
 
-def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: float, index: int) -> dict:
+def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, scale: float, index: int) -> dict:
     """One episode's row of the table (`index`: its place among the series' used episodes, for curves)."""
-    rec = EpisodeRecord.from_dict(data)  # whichever version wrote it
     red_it = rec.iterations.get("red") or []
     by_mode = rec.scores
     alternatives = {

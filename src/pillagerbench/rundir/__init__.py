@@ -10,11 +10,13 @@ package.
 """
 
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
-from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, winner_of
+from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, TimelinePoint, last_seen_json, winner_of
+from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
 from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
 from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress, retries_of
-from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series
+from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
+from pillagerbench.rundir.team_state import TeamState, has_team_state, team_state_path
 
 __all__ = [
     "EPISODES",
@@ -23,19 +25,26 @@ __all__ = [
     "LEDGER",
     "RETRIES",
     "TEAM",
+    "EpisodeDir",
     "EpisodeRecord",
     "LastEpisode",
     "Progress",
     "RunDir",
     "SeriesSpec",
+    "TeamState",
+    "TimelinePoint",
     "episode_index",
     "episodes_to_play",
     "faults",
+    "has_team_state",
+    "last_seen_json",
     "plain_series",
     "progress",
     "read_experiment",
     "read_series",
     "retries_of",
     "spoiled",
+    "team_state_path",
+    "write_series",
     "winner_of",
 ]

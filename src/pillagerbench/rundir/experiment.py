@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-EXPERIMENT = "experiment.json"
+from pillagerbench.rundir.names import EXPERIMENT
 
 
 def read_experiment(run_dir: str | Path) -> dict[str, Any]:

@@ -11,6 +11,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from pillagerbench.rundir.directory import RunDir
+from pillagerbench.rundir.episode import EpisodeRecord
 from pillagerbench.rundir.faults import spoiled
 
 RETRIES = 2  # the config's default `retries` (runs from before the key: this)
@@ -31,7 +32,7 @@ class Progress:
         return self.next is None
 
 
-def progress(records: dict[int, dict], planned: int, retries: int = RETRIES) -> Progress:
+def progress(records: dict[int, EpisodeRecord], planned: int, retries: int = RETRIES) -> Progress:
     """Walk the finished records in index order: each planned episode takes tries until one is not
     spoiled or 1 + `retries` were."""
     out = Progress(planned)

@@ -3,6 +3,7 @@ series of any run directory, an experiment's or a plain `pillagerbench run`'s.""
 
 from __future__ import annotations
 
+import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -50,6 +51,11 @@ class SeriesSpec:
     @classmethod
     def from_dict(cls, d: dict) -> SeriesSpec:
         return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
+
+
+def write_series(rundir: RunDir, spec: SeriesSpec) -> None:
+    """An experiment's series directory's series.json: its spec without the config (the manifest has it)."""
+    rundir.series_path.write_text(json.dumps({k: v for k, v in spec.to_dict().items() if k != "config"}, indent=1))
 
 
 def read_series(
