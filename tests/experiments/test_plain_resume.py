@@ -45,11 +45,11 @@ def command(run: Path, hold: Path, at: str) -> list[str]:
     ]
 
 
-def kill_when_held(run: Path, hold: Path, at: str) -> list[dict]:
-    """Start the run, SIGKILL its process group once the team holds (or, at "record", once episode 0
-    is recorded); the records then."""
+def kill_when_held(run: Path, hold: Path, at: str, args: list[str] | None = None) -> list[dict]:
+    """Start the run (`args`: its command, default `command`'s), SIGKILL its process group once the team
+    holds (or, at "record", once episode 0 is recorded); the records then."""
     hold.write_text("")
-    proc = start_cli("run", *command(run, hold, at), cwd=ROOT)
+    proc = start_cli("run", *(args or command(run, hold, at)), cwd=ROOT)
     reached = hold.with_name(hold.name + ".reached")
     deadline = time.monotonic() + 150
     try:
