@@ -14,6 +14,7 @@ from pathlib import Path
 from pillagerbench.rundir import RunDir, last_seen_json
 from tests.experiments.held_team import SEEN
 from tests.experiments.test_plain_resume import HELD, ROOT, kill_when_held
+from tests.experiments.test_run_directory import unnamed
 from tests.support.cli import run_cli
 
 TEAM = "tests.experiments.held_team:SeeingPassive"
@@ -56,3 +57,4 @@ def test_a_resumed_team_is_given_what_it_would_have_been_given_without_the_kill(
             f"episode {i}: {sorted(k for k in expected['record'] if given['record'].get(k) != expected['record'][k])}"
         )
         assert given["record"]["duration_s"] > 0 and given["record"]["episode"] == i - 1
+    assert all(unnamed(rundir.episode(i)) == [] for i in finished)  # a run of today's: every file named by rundir

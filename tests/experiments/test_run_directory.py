@@ -8,6 +8,7 @@ import ast
 import json
 import re
 import shutil
+from fnmatch import fnmatch
 from pathlib import Path
 from typing import get_args
 
@@ -17,16 +18,27 @@ from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import main as report_main
 from pillagerbench.rundir import EpisodeRecord, RunDir, progress, read_experiment, spoiled
+from pillagerbench.rundir import names as N
+from pillagerbench.suite import SCORE_FILES
 from tests.support.cli import run_cli
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
 FIXTURE = Path(__file__).parent / "fixtures" / "run_6198d49"
 SERIES = "000_mushroom_war_do_nothing_vs_passive"
-# a path literal of the run directory (a message may name a file; a path is the name alone or its tail)
-NAMES = re.compile(
-    r"^/?(episodes\.jsonl|llm_calls\.jsonl|live\.json|experiment\.json|manifest\.json|series\.json|resumes\.jsonl)$"
-    r"|^/?episode_($|\d|[{\[*])"
+# every file of a run directory, of an episode's directory and of a team's saved state, by its name in
+# rundir/names.py (a message may name a file; a path literal is the name alone or its tail)
+FILES = (
+    *(N.EPISODES, N.LEDGER, N.LIVE, N.EXPERIMENT, N.MANIFEST, N.SERIES, N.RESUMES, f"{N.SERVER_LOG}.log"),
+    *(N.RECORD, N.timeline_name("clean"), N.timeline_name("upstream"), N.CHAT, N.WORLD_EVENTS, N.GAME_MASTER),
+    *(N.REPLAY, N.REPLAY_PAGE, N.TASK_ERROR, N.TEAM_STATE, N.LEDGER_OFFSET),
 )
+NAMES = re.compile(r"^/?(" + "|".join(map(re.escape, FILES)) + r")$|^/?episode_($|\d|[{\[*])|^/?events/")
+# files the suite's hash covers (suite.SCORE_FILES) write three of an episode's files themselves: a change
+# there is a new suite version, so they keep their literals, held here to the names of rundir/names.py
+SCORED_WRITERS = {
+    Path("match/scoring.py"): {N.timeline_name("clean"), N.timeline_name("upstream")},
+    Path("match/game.py"): {N.GAME_MASTER, N.TASK_ERROR},
+}
 
 
 def literals(path: Path) -> list[tuple[int, str]]:
@@ -46,9 +58,34 @@ def test_only_the_rundir_package_spells_the_run_directorys_names():
         for path in sorted(SRC.rglob("*.py"))
         if "rundir" not in path.parts
         for line, text in literals(path)
-        if NAMES.search(text)
+        if NAMES.search(text) and text not in SCORED_WRITERS.get(path.relative_to(SRC), set())
     ]
     assert not found, "ask pillagerbench.rundir.RunDir for these paths:\n" + "\n".join(found)
+
+
+def test_the_scored_writers_spell_the_names_of_rundir():
+    for path, names in SCORED_WRITERS.items():
+        assert any(fnmatch(str(path), glob) for glob in SCORE_FILES), f"{path} is no longer scored: ask RunDir"
+        assert names <= {text for _, text in literals(SRC / path)}, path
+
+
+def unnamed(episode_dir: Path) -> list[str]:
+    """The files of an episode's directory that rundir/names.py does not name (a side's directory and a
+    player's events file are named by the side and the player)."""
+    named = {N.RECORD, N.CHAT, N.WORLD_EVENTS, N.GAME_MASTER, N.REPLAY, N.REPLAY_PAGE}
+    out = []
+    for path in sorted(p for p in episode_dir.rglob("*") if p.is_file()):
+        top, *rest = path.relative_to(episode_dir).parts
+        if top in N.SIDES or top == N.EVENTS and len(rest) == 1 and path.suffix == ".jsonl":
+            continue
+        if top not in named and not re.fullmatch(r"timeline(_\w+)?\.json", top) and not top.endswith(N.TASK_ERROR):
+            out.append(path.relative_to(episode_dir).as_posix())
+    return out
+
+
+def test_every_file_of_an_episode_directory_is_named_by_rundir():
+    episodes = [d for _, d in RunDir(FIXTURE / "series" / SERIES).episode_dirs()]
+    assert episodes and all(unnamed(d) == [] for d in episodes), [unnamed(d) for d in episodes]
 
 
 def test_a_record_of_an_earlier_version_reads_with_todays_defaults():

@@ -22,6 +22,9 @@ from typing import Any
 
 from pillagerbench.arena.control import ControlChannel
 from pillagerbench.node import JS_DIR, node_binary, node_env, profile_args
+from pillagerbench.rundir.names import SERVER_LOG
+
+LOG = f"{SERVER_LOG}.log"  # the server's log where no path is given (a run directory keeps its own: RunDir)
 
 MAIN_JS = JS_DIR / "server" / "main.js"
 MC_VERSION = "1.16.5"
@@ -41,7 +44,7 @@ class ArenaServer:
         return cls(
             host=server_cfg.host,
             port=int(server_cfg.port),
-            log_path=log_path or (Path(log_dir) / "server.log" if log_dir else None),
+            log_path=log_path or (Path(log_dir) / LOG if log_dir else None),
             view_distance=int(server_cfg.view_distance),
             crop_growth_chance=float(server_cfg.crop_growth_chance),
             tps=int(server_cfg.tps),
@@ -63,9 +66,7 @@ class ArenaServer:
         self.host = host
         self.requested_port = port
         self.port: int | None = None
-        self.log_path = (
-            Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
-        )
+        self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / LOG
         self.settings = {
             "host": host,
             "port": port,

@@ -29,7 +29,7 @@ from typing import Any
 from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
+from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
 DESIGNS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity", "generalization")
@@ -394,7 +394,7 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
             repetition,
         ) and spec.group is None:
             path = RunDir(RunDir(run_dir).series_dir(spec.id)).checkpoint(episode, "red")
-            if (path / "team.json").exists():
+            if has_team_state(path):
                 return path.resolve()
             raise ConfigError(
                 f"from_run: series {spec.id} of {run_dir} kept no checkpoint after episode {episode} "
