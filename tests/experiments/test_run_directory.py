@@ -136,3 +136,14 @@ def test_the_design_of_an_experiment_written_when_it_was_called_protocol_reads_b
 
 def test_the_scorings_are_named_once():
     assert get_args(RunConfig.model_fields["scoring"].annotation) == SCORINGS
+
+
+def test_a_manifest_of_an_earlier_version_reads_and_writes_back_as_it_was(tmp_path):
+    for path in sorted(FIXTURE.rglob(N.MANIFEST)):
+        manifest = RunDir(path.parent).manifest()
+        assert manifest is not None and manifest.config["seed"] == 0
+        RunDir(tmp_path).write_manifest(manifest)
+        assert json.loads(RunDir(tmp_path).manifest_path.read_text()) == json.loads(path.read_text())
+        assert list(json.loads(RunDir(tmp_path).manifest_path.read_text())) == list(json.loads(path.read_text()))
+    series = RunDir(FIXTURE / "series" / SERIES).manifest()
+    assert series is not None and series.scenario_version != "?" and series.suite_label == "unversioned"

@@ -31,7 +31,7 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RETRIES, RunDir, progress, read_series, retries_of
+from pillagerbench.rundir import RETRIES, Manifest, RunDir, progress, read_series, retries_of
 from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
@@ -67,14 +67,14 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
         "series": [s.to_dict() for s in specs],
     }
     RunDir(run_dir).experiment_path.write_text(json.dumps(data, indent=1, default=str))
-    manifest = {
-        "created": data["created"],
-        "config": top,
-        "versions": {"pillagerbench": __version__},
-        "git_revision": git_revision(),
-        "suite": current(),
-        "experiment": cfg.experiment.name,
-    }
+    manifest = Manifest(
+        created=data["created"],
+        config=top,
+        versions={"pillagerbench": __version__},
+        git_revision=git_revision(),
+        suite=current(),
+        experiment=cfg.experiment.name,
+    )
     RunDir(run_dir).write_manifest(manifest)
 
 

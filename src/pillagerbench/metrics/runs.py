@@ -38,6 +38,7 @@ from pillagerbench.rundir import (
     EPISODES,
     EpisodeDir,
     EpisodeRecord,
+    Manifest,
     RunDir,
     SeriesSpec,
     TimelinePoint,
@@ -66,7 +67,7 @@ class SeriesInfo(SeriesSpec):
     dir: Path = field(default_factory=Path)  # the series' own directory
     version: str = "?"  # the scenario's version (its manifest)
     episode_length: float = 120.0
-    manifest: dict = field(default_factory=dict)  # the series' manifest.json ({} when not started)
+    manifest: Manifest | None = None  # the series' manifest.json (None when not started)
     entrants: dict = field(default_factory=dict)  # side -> its entrant from the config (metrics/entrants.py)
 
 
@@ -151,7 +152,7 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
                 run=name,
                 root=run,
                 dir=series_dir,
-                version=str(manifest.get("scenario", {}).get("version", "?")),
+                version=manifest.scenario_version if manifest else "?",
                 episode_length=float(spec.config.get("episode_length", 120)),
                 manifest=manifest,
                 entrants=series_entrants(spec.config),

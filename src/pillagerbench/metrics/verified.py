@@ -101,9 +101,9 @@ def manifest_problems(runs: Runs, records: dict[Path, list[EpisodeRecord]]) -> l
     out = []
     for top, recs in covers.items():
         manifest = RunDir(top).manifest()
-        if not manifest:
+        if manifest is None:
             continue
-        says = str((manifest.get("suite") or {}).get("label") or UNVERSIONED)
+        says = manifest.suite_label
         several = len({series for series, _ in recs}) > 1  # an experiment's manifest: name the series too
         other: dict[str, list[str]] = {}
         for series, rec in recs:

@@ -8,7 +8,7 @@ from __future__ import annotations
 import pandas as pd
 
 from pillagerbench.metrics.runs import Runs, SeriesInfo
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import Manifest, RunDir
 from pillagerbench.teams import TEAMS
 
 COLUMNS = [
@@ -69,17 +69,17 @@ def provenance(runs: Runs) -> pd.DataFrame:
     df = runs.episodes
     rows = []
     for run in runs.runs:
-        top = RunDir(runs.roots.get(run, run)).manifest()
+        top = RunDir(runs.roots.get(run, run)).manifest() or Manifest()
         series = [s for s in runs.series if s.run == run]
         used = int((df["run"] == str(run)).sum()) if len(df) else 0
         rows.append(
             {
                 "run": str(run),
-                "what": f"experiment {top['experiment']}" if top.get("experiment") else "run",
-                "created": top.get("created", "–"),
+                "what": f"experiment {top.experiment}" if top.experiment else "run",
+                "created": top.created if "created" in top.model_fields_set else "–",
                 "revision": _distinct(
                     str(r)[:12]
-                    for r in [top.get("git_revision")] + [s.manifest.get("git_revision") for s in series]
+                    for r in [top.git_revision] + [s.manifest.git_revision for s in series if s.manifest]
                     if r
                 ),
                 "suite": _distinct(df.loc[df["run"] == str(run), "suite"]) if len(df) else "–",  # its episodes'

@@ -14,6 +14,7 @@ from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, TimelinePoi
 from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
 from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
+from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
 from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress, retries_of
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
 from pillagerbench.rundir.team_state import TeamState, has_team_state, team_state_path
@@ -28,8 +29,10 @@ __all__ = [
     "EpisodeDir",
     "EpisodeRecord",
     "LastEpisode",
+    "Manifest",
     "Progress",
     "RunDir",
+    "ScenarioStamp",
     "SeriesSpec",
     "TeamState",
     "TimelinePoint",

@@ -27,6 +27,7 @@ from typing import Any
 from pillagerbench.rundir import names as N
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
 from pillagerbench.rundir.episode_dir import EpisodeDir
+from pillagerbench.rundir.manifest_file import Manifest
 
 EPISODES = N.EPISODES
 LEDGER = N.LEDGER
@@ -107,13 +108,15 @@ class RunDir:
     def is_experiment(self) -> bool:
         return self.experiment_path.exists()
 
-    def manifest(self) -> dict[str, Any]:
-        """manifest.json ({} when the run has not written one yet)."""
-        return json.loads(self.manifest_path.read_text()) if self.manifest_path.exists() else {}
+    def manifest(self) -> Manifest | None:
+        """manifest.json, whichever version wrote it (None when the run has not written one yet)."""
+        if not self.manifest_path.exists():
+            return None
+        return Manifest.model_validate(json.loads(self.manifest_path.read_text()))
 
-    def write_manifest(self, manifest: dict[str, Any]) -> None:
+    def write_manifest(self, manifest: Manifest) -> None:
         self.path.mkdir(parents=True, exist_ok=True)
-        self.manifest_path.write_text(json.dumps(manifest, indent=1, default=str))
+        self.manifest_path.write_text(json.dumps(manifest.to_json(), indent=1, default=str))
 
     def episode(self, index: int) -> Path:
         return self.path / f"{_EPISODE}{index:03d}"

@@ -68,9 +68,10 @@ def read_series(
         data = read_experiment(rundir.path)  # whichever version wrote it
         specs = [SeriesSpec.from_dict(s) for s in data["series"]]
         return data["name"], [(s, rundir.series_dir(s.id)) for s in specs]
-    if not rundir.manifest_path.exists():
+    manifest = rundir.manifest()
+    if manifest is None:
         return None
-    config = {k: v for k, v in rundir.manifest()["config"].items() if k not in runner_keys}
+    config = {k: v for k, v in manifest.config.items() if k not in runner_keys}
     return "run", [(plain_series(config, rundir.path.name), rundir.path)]
 
 
