@@ -31,6 +31,7 @@ import pandas as pd
 
 from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
+from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
 from pillagerbench.metrics.faults import name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
@@ -241,51 +242,51 @@ def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, sc
     red_it = rec.iterations.get("red") or []
     by_mode = rec.scores
     alternatives = {
-        f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
+        Col.by_scoring(side, mode): float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
         for mode in SCORINGS
-        for side in ("red", "blue")
+        for side in SIDES
     }
     return {
-        "run": str(s.run),
-        "dir": str(ep),
-        "series": s.id,
-        "scenario": s.scenario,
-        "version": s.version,
-        "episode_length": s.episode_length,
-        "red": s.red,  # the entrants' names once every row is read (metrics/entrants.py)
-        "blue": s.blue,
+        Col.RUN: str(s.run),
+        Col.DIR: str(ep),
+        Col.SERIES: s.id,
+        Col.SCENARIO: s.scenario,
+        Col.VERSION: s.version,
+        Col.EPISODE_LENGTH: s.episode_length,
+        Col.RED: s.red,  # the entrants' names once every row is read (metrics/entrants.py)
+        Col.BLUE: s.blue,
         **columns({"red": rec.red_entrant, "blue": rec.blue_entrant}, s.entrants, {"red": s.red, "blue": s.blue}),
-        "red_team": s.red_team,
-        "blue_team": s.blue_team,
-        "design": s.design,
-        "variant": s.variant,
-        "repetition": s.repetition,
-        "group": s.group,
-        "group_x": s.group_x,
-        "episode": i,
-        "index": index,
-        "red_raw": float(rec.red_score or 0.0),
-        "blue_raw": float(rec.blue_score or 0.0),
-        "scale": scale,
-        "red_score": float(rec.red_score or 0.0) * scale,
-        "blue_score": float(rec.blue_score or 0.0) * scale,
-        "scoring": rec.scoring,
-        "suite": rec.suite,
-        "stamp": rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
-        "rules": describe(rec.conditions),
-        "conditions": dict(rec.conditions),
-        "layout": rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
-        "split": rec.split,
+        Col.RED_TEAM: s.red_team,
+        Col.BLUE_TEAM: s.blue_team,
+        Col.DESIGN: s.design,
+        Col.VARIANT: s.variant,
+        Col.REPETITION: s.repetition,
+        Col.GROUP: s.group,
+        Col.GROUP_X: s.group_x,
+        Col.EPISODE: i,
+        Col.INDEX: index,
+        Col.RED_RAW: float(rec.red_score or 0.0),
+        Col.BLUE_RAW: float(rec.blue_score or 0.0),
+        Col.SCALE: scale,
+        Col.RED_SCORE: float(rec.red_score or 0.0) * scale,
+        Col.BLUE_SCORE: float(rec.blue_score or 0.0) * scale,
+        Col.SCORING: rec.scoring,
+        Col.SUITE: rec.suite,
+        Col.STAMP: rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
+        Col.RULES: describe(rec.conditions),
+        Col.CONDITIONS: dict(rec.conditions),
+        Col.LAYOUT: rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
+        Col.SPLIT: rec.split,
         **alternatives,
-        "team_protocol": rec.protocol,
-        "iterations": float(np.mean(red_it)) if red_it else np.nan,
-        "problems": {k: list(v) for k, v in rec.problems.items()},
-        "server_tps": rec.server_tps,
-        "lagged": bool(rec.lagged),
-        "lag_reason": rec.lag_reason,
-        "t": np.array([p["t"] for p in timeline], dtype=float),
-        "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
-        "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
+        Col.TEAM_PROTOCOL: rec.protocol,
+        Col.ITERATIONS: float(np.mean(red_it)) if red_it else np.nan,
+        Col.PROBLEMS: {k: list(v) for k, v in rec.problems.items()},
+        Col.SERVER_TPS: rec.server_tps,
+        Col.LAGGED: bool(rec.lagged),
+        Col.LAG_REASON: rec.lag_reason,
+        Col.T: np.array([p["t"] for p in timeline], dtype=float),
+        Col.RED_T: np.array([p["red"] for p in timeline], dtype=float) * scale,
+        Col.BLUE_T: np.array([p["blue"] for p in timeline], dtype=float) * scale,
     }
 
 
