@@ -126,9 +126,9 @@ def test_the_design_of_an_experiment_written_when_it_was_called_protocol_reads_b
     shutil.copytree(FIXTURE, run)
     assert '"protocol": "round_robin"' in (run / "experiment.json").read_text()
     data = read_experiment(run)
-    (series,) = data["series"]
-    assert data["experiment"]["design"] == series["design"] == "round_robin"
-    assert "protocol" not in data["experiment"] and "protocol" not in series
+    (series,) = data.series
+    assert data.experiment["design"] == series["design"] == "round_robin"
+    assert "protocol" not in data.experiment and "protocol" not in series
     assert series["config"]["protocol"] == "pillagerbench"  # the series' team loop, as it was
     assert [s.design for s in load_experiment(run)[1]] == ["round_robin"]
     assert [s.design for s in load_runs([run]).series] == ["round_robin"]

@@ -18,7 +18,6 @@ its team objects and what they learn persist from episode to episode.
 from __future__ import annotations
 
 import asyncio
-import json
 import shutil
 import time
 import traceback
@@ -31,7 +30,16 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RETRIES, Manifest, RunDir, progress, read_series, retries_of
+from pillagerbench.rundir import (
+    RETRIES,
+    ExperimentFile,
+    Manifest,
+    RunDir,
+    progress,
+    read_series,
+    retries_of,
+    write_experiment_file,
+)
 from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
@@ -59,16 +67,16 @@ def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec
 
     run_dir.mkdir(parents=True, exist_ok=True)
     top = to_dict(cfg)
-    data = {
-        "name": cfg.experiment.name,
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "experiment": top["experiment"],
-        "overrides": list(argv),
-        "series": [s.to_dict() for s in specs],
-    }
-    RunDir(run_dir).experiment_path.write_text(json.dumps(data, indent=1, default=str))
+    data = ExperimentFile(
+        name=cfg.experiment.name,
+        created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        experiment=top["experiment"],
+        overrides=list(argv),
+        series=[s.to_dict() for s in specs],
+    )
+    write_experiment_file(run_dir, data)
     manifest = Manifest(
-        created=data["created"],
+        created=data.created,
         config=top,
         versions={"pillagerbench": __version__},
         git_revision=git_revision(),

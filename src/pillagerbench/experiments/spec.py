@@ -381,7 +381,7 @@ class _Builder:
 
 def read_series_index(run_dir: Path) -> list[SeriesSpec]:
     """The series of an experiment's run directory, from its experiment.json."""
-    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir)["series"]]
+    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir).series]
 
 
 def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:

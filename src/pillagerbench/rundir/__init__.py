@@ -12,7 +12,7 @@ package.
 from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_index
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, TimelinePoint, last_seen_json, winner_of
 from pillagerbench.rundir.episode_dir import EpisodeDir
-from pillagerbench.rundir.experiment import EXPERIMENT, read_experiment
+from pillagerbench.rundir.experiment import EXPERIMENT, ExperimentFile, read_experiment, write_experiment_file
 from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
 from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
 from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress, retries_of
@@ -28,6 +28,7 @@ __all__ = [
     "TEAM",
     "EpisodeDir",
     "EpisodeRecord",
+    "ExperimentFile",
     "LastEpisode",
     "Manifest",
     "Progress",
@@ -48,6 +49,7 @@ __all__ = [
     "retries_of",
     "spoiled",
     "team_state_path",
+    "write_experiment_file",
     "write_series",
     "winner_of",
 ]

@@ -66,8 +66,8 @@ def read_series(
     rundir = RunDir(run_dir)
     if rundir.is_experiment():
         data = read_experiment(rundir.path)  # whichever version wrote it
-        specs = [SeriesSpec.from_dict(s) for s in data["series"]]
-        return data["name"], [(s, rundir.series_dir(s.id)) for s in specs]
+        specs = [SeriesSpec.from_dict(s) for s in data.series]
+        return data.name, [(s, rundir.series_dir(s.id)) for s in specs]
     manifest = rundir.manifest()
     if manifest is None:
         return None
