@@ -28,7 +28,17 @@ SERIES = "000_mushroom_war_do_nothing_vs_passive"
 # every file of a run directory, of an episode's directory and of a team's saved state, by its name in
 # rundir/names.py (a message may name a file; a path literal is the name alone or its tail)
 FILES = (
-    *(N.EPISODES, N.LEDGER, N.LIVE, N.EXPERIMENT, N.MANIFEST, N.SERIES, N.RESUMES, f"{N.SERVER_LOG}.log"),
+    *(
+        N.EPISODES,
+        N.LEDGER,
+        N.LIVE,
+        N.EXPERIMENT,
+        N.MANIFEST,
+        N.SERIES,
+        N.RESUMES,
+        f"{N.SERVER_LOG}.log",
+        N.CALIBRATION,
+    ),
     *(N.RECORD, N.timeline_name("clean"), N.timeline_name("upstream"), N.CHAT, N.WORLD_EVENTS, N.GAME_MASTER),
     *(N.REPLAY, N.REPLAY_PAGE, N.TASK_ERROR, N.TEAM_STATE, N.LEDGER_OFFSET),
 )

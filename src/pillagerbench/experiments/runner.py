@@ -296,7 +296,7 @@ def main_experiment(cfg, argv: list[str]) -> int:
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
         write_experiment(run_dir, cfg, argv, specs)
         if cfg.get("calibration"):
-            shutil.copyfile(cfg.calibration, run_dir / "calibration.json")
+            shutil.copyfile(cfg.calibration, RunDir(run_dir).calibration_path)
         title, dirs = str(cfg.experiment.name), {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
     print(f"run directory: {run_dir}", flush=True)
     try:

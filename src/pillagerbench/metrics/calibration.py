@@ -28,8 +28,9 @@ from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
 from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, reader_switches
 from pillagerbench.metrics.verified import load_runs
+from pillagerbench.rundir import names
 
-CALIBRATION = "calibration.json"
+CALIBRATION = names.CALIBRATION
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
 REFERENCE_FALLBACK = (
     "upstream's reference scores, as these runs carry no calibration for it "

@@ -347,8 +347,8 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     roots = {name: run for run, name in _inputs(inputs)}
     for name, run in roots.items():
         series += _series_of(run, name)
-        if (run / "calibration.json").exists():
-            cals.append(run / "calibration.json")
+        if RunDir(run).calibration_path.exists():
+            cals.append(RunDir(run).calibration_path)
     _check_comparable(series)
     for s in series:
         _load_series(s, rows, skipped, found, spoilt)

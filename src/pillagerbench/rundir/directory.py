@@ -97,6 +97,11 @@ class RunDir:
         """An experiment's top: experiment.json (read it with `read_experiment`)."""
         return self.path / N.EXPERIMENT
 
+    @property
+    def calibration_path(self) -> Path:
+        """σ_blue measured from this run (calibration.json, written by `pillagerbench calibrate`)."""
+        return self.path / N.CALIBRATION
+
     def series_dir(self, series_id: str) -> Path:
         """One series of an experiment."""
         return self.path / N.SERIES_DIR / series_id

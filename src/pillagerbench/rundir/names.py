@@ -21,6 +21,7 @@ CHECKPOINTS = "checkpoints"
 LOGS = "logs"
 DISCARDED = "discarded"
 REPORT = "report"
+CALIBRATION = "calibration.json"  # σ_blue measured from the run (pillagerbench calibrate)
 SERVER_LOG = "server"  # server.log, server.1.log, ...
 EPISODE = "episode_"  # episode_NNN
 
