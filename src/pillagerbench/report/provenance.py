@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.runs import Runs, SeriesInfo
 from pillagerbench.rundir import Manifest, RunDir
 from pillagerbench.teams import TEAMS
@@ -71,7 +72,7 @@ def provenance(runs: Runs) -> pd.DataFrame:
     for run in runs.runs:
         top = RunDir(runs.roots.get(run, run)).manifest() or Manifest()
         series = [s for s in runs.series if s.run == run]
-        used = int((df["run"] == str(run)).sum()) if len(df) else 0
+        used = int((df[Col.RUN] == str(run)).sum()) if len(df) else 0
         rows.append(
             {
                 "run": str(run),
@@ -82,13 +83,13 @@ def provenance(runs: Runs) -> pd.DataFrame:
                     for r in [top.git_revision] + [s.manifest.git_revision for s in series if s.manifest]
                     if r
                 ),
-                "suite": _distinct(df.loc[df["run"] == str(run), "suite"]) if len(df) else "–",  # its episodes'
+                "suite": _distinct(df.loc[df[Col.RUN] == str(run), Col.SUITE]) if len(df) else "–",  # its episodes'
                 "scenarios": _distinct(f"{s.scenario} v{s.version}" for s in series),
                 "seeds": seed_range([int(s.config["seed"]) for s in series if s.config.get("seed") is not None]),
                 "episode_length": _distinct(f"{s.episode_length:g} s" for s in series),
                 "episodes": f"{used} of {sum(s.episodes for s in series)}",
                 "models": _distinct((m for s in series for m in models(s)), "no LLM team"),
-                "entrants": _distinct(entrants(df[df["run"] == str(run)]) if len(df) else []),
+                "entrants": _distinct(entrants(df[df[Col.RUN] == str(run)]) if len(df) else []),
                 "scoring": _distinct(s.config.get("scoring", "clean") for s in series),
                 "protocol": _distinct(s.config.get("protocol", "pillagerbench") for s in series),
             }
