@@ -24,6 +24,9 @@ from tests.support.cli import run_cli
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
 FIXTURE = Path(__file__).parent / "fixtures" / "run_6198d49"
+# a plain run written at 672b488 (before records were typed), SIGKILLed once two of its three episodes
+# were recorded (episode 0 played under lag: spoiled; episode_002 half-written); logs not committed
+PLAIN = Path(__file__).parent / "fixtures" / "plain_672b488"
 SERIES = "000_mushroom_war_do_nothing_vs_passive"
 # every file of a run directory, of an episode's directory and of a team's saved state, by its name in
 # rundir/names.py (a message may name a file; a path literal is the name alone or its tail)
@@ -149,7 +152,7 @@ def test_the_scorings_are_named_once():
 
 
 def test_a_manifest_of_an_earlier_version_reads_and_writes_back_as_it_was(tmp_path):
-    for path in sorted(FIXTURE.rglob(N.MANIFEST)):
+    for path in sorted([*FIXTURE.rglob(N.MANIFEST), *PLAIN.rglob(N.MANIFEST)]):
         manifest = RunDir(path.parent).manifest()
         assert manifest is not None and manifest.config["seed"] == 0
         RunDir(tmp_path).write_manifest(manifest)
@@ -157,3 +160,30 @@ def test_a_manifest_of_an_earlier_version_reads_and_writes_back_as_it_was(tmp_pa
         assert list(json.loads(RunDir(tmp_path).manifest_path.read_text())) == list(json.loads(path.read_text()))
     series = RunDir(FIXTURE / "series" / SERIES).manifest()
     assert series is not None and series.scenario_version != "?" and series.suite_label == "unversioned"
+
+
+def test_a_plain_run_written_before_records_were_typed_loads_reports_and_resumes(tmp_path, capsys):
+    run = tmp_path / "run"
+    shutil.copytree(PLAIN, run)
+    rundir = RunDir(run)
+    before = rundir.episodes_path.read_text()
+    finished = rundir.finished()
+    assert sorted(finished) == [0, 1] and spoiled(finished[0]) == "lagged" and not spoiled(finished[1])
+    assert finished[1].red_entrant is not None and finished[1].suite != "unversioned"
+
+    runs = load_runs([run])
+    assert list(runs.episodes["episode"]) == [1] and list(runs.spoiled["episode"]) == [0]
+    assert report_main([str(run), "--out", str(tmp_path / "report"), "--no-replays"]) == 0
+    capsys.readouterr()
+
+    res = run_cli(tmp_path, "run", f"resume={run}", "display=plain", timeout=240)
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "resume after 2 finished episode(s)" in res.stdout
+    assert rundir.episodes_path.read_text().startswith(before)  # the finished ones untouched
+    assert progress(rundir.finished(), 3).complete and all(r.ok for r in rundir.records())
+    assert any(p.name.startswith("episode_002") for p in (run / "discarded").iterdir())  # the half-written one
+
+
+def test_every_file_of_the_plain_runs_episodes_is_named_by_rundir():
+    episodes = [d for _, d in RunDir(PLAIN).episode_dirs()]
+    assert len(episodes) == 3 and all(unnamed(d) == [] for d in episodes), [unnamed(d) for d in episodes]
