@@ -18,7 +18,7 @@ class ScenarioStamp(BaseModel):
 
     key: str | None = None
     title: str | None = None
-    version: str | int | None = None
+    version: str | int | float | None = None
 
 
 class Manifest(BaseModel):
@@ -30,7 +30,7 @@ class Manifest(BaseModel):
     versions: dict[str, Any] = {}  # pillagerbench, python, node, minecraft
     seed: int | None = None
     git_revision: str | None = None
-    suite: dict[str, str] | None = None  # suite.current(): name, sha256, label
+    suite: dict[str, Any] | None = None  # suite.current(): name, sha256, label
     conditions: dict[str, Any] | None = None  # the rules differing from the suite's (conditions.py)
     experiment: str | None = None  # an experiment's top-level manifest: its name
 
