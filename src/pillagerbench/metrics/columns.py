@@ -85,8 +85,24 @@ class Col:
     def over_time(side: str) -> str:
         return f"{side}_t"
 
+    @staticmethod
+    def entrant(side: str) -> str:
+        """A side's entrant label (metrics/entrants.py)."""
+        return f"{side}_entrant"
 
-ENTRANT_COLUMNS: Final = tuple(f"{side}_{c}" for side in SIDES for c in ("entrant", "entrant_id", "name"))
+    @staticmethod
+    def entrant_id(side: str) -> str:
+        return f"{side}_entrant_id"
+
+    @staticmethod
+    def series_name(side: str) -> str:
+        """The name the series gave the side (a variant label, a league entrant's name)."""
+        return f"{side}_name"
+
+
+ENTRANT_COLUMNS: Final = tuple(
+    c for side in SIDES for c in (Col.entrant(side), Col.entrant_id(side), Col.series_name(side))
+)
 EPISODE_COLUMNS: Final = (
     *(Col.RUN, Col.DIR, Col.SERIES, Col.SCENARIO, Col.VERSION, Col.EPISODE_LENGTH, Col.RED, Col.BLUE),
     *ENTRANT_COLUMNS,

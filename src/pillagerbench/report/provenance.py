@@ -62,7 +62,7 @@ def entrants(df: pd.DataFrame) -> list[str]:
     return [
         f"{label} ({i})"
         for side in ("red", "blue")
-        for label, i in zip(df[f"{side}_entrant"], df[f"{side}_entrant_id"])
+        for label, i in zip(df[Col.entrant(side)], df[Col.entrant_id(side)])
     ]
 
 
