@@ -108,7 +108,7 @@ def test_every_manifest_names_the_suite(tmp_path):
     write_manifest(tmp_path / "run", RunConfig.of(load_config([])), scenario)
     write_experiment(tmp_path / "exp", {"experiment": {"name": "x"}}, [], [])
     for run in ("run", "exp"):
-        assert RunDir(tmp_path / run).manifest()["suite"] == current()
+        assert RunDir(tmp_path / run).manifest().suite == current()
 
 
 def test_the_same_files_named_before_and_after_their_hash_was_recorded_are_one_version(tmp_path):

@@ -23,6 +23,9 @@ from typing import TYPE_CHECKING, Any
 from pillagerbench.arena.control import ControlChannel
 from pillagerbench.control import Control
 from pillagerbench.node import JS_DIR, node_binary, node_env, profile_args
+from pillagerbench.rundir.names import SERVER_LOG
+
+LOG = f"{SERVER_LOG}.log"  # the server's log where no path is given (a run directory keeps its own: RunDir)
 
 if TYPE_CHECKING:
     from pillagerbench.config_schema import ServerConfig
@@ -47,7 +50,7 @@ class ArenaServer(Control):
         return cls(
             host=server_cfg.host,
             port=server_cfg.port,
-            log_path=log_path or (Path(log_dir) / "server.log" if log_dir else None),
+            log_path=log_path or (Path(log_dir) / LOG if log_dir else None),
             view_distance=server_cfg.view_distance,
             crop_growth_chance=server_cfg.crop_growth_chance,
             tps=int(server_cfg.tps),
@@ -69,9 +72,7 @@ class ArenaServer(Control):
         self.host = host
         self.requested_port = port
         self.port: int | None = None
-        self.log_path = (
-            Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
-        )
+        self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / LOG
         self.settings = {
             "host": host,
             "port": port,

@@ -24,7 +24,7 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.run import scenario_from_config
-from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series, progress
+from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series, progress, retries_of
 from pillagerbench.teams.entrant import labels_of
 
 
@@ -55,7 +55,7 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
         )
         print(f"run directory: {run_dir}")
         return 130
-    records = [EpisodeRecord.from_dict(r) for r in RunDir(run_dir).finished().values()]
+    records = RunDir(run_dir).records()
     failed = sum(r.status != "ok" for r in records)
     problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")

@@ -18,7 +18,6 @@ its team objects and what they learn persist from episode to episode.
 from __future__ import annotations
 
 import asyncio
-import json
 import shutil
 import time
 import traceback
@@ -33,7 +32,16 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RunDir, progress, read_series, retries_of
+from pillagerbench.rundir import (
+    RETRIES,
+    ExperimentFile,
+    Manifest,
+    RunDir,
+    progress,
+    read_series,
+    retries_of,
+    write_experiment_file,
+)
 from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
@@ -66,22 +74,22 @@ def write_experiment(run_dir: Path, top: dict[str, Any], argv: list[str], specs:
     from pillagerbench.suite import current
 
     run_dir.mkdir(parents=True, exist_ok=True)
-    data = {
-        "name": top["experiment"]["name"],
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "experiment": top["experiment"],
-        "overrides": list(argv),
-        "series": [s.to_dict() for s in specs],
-    }
-    RunDir(run_dir).experiment_path.write_text(json.dumps(data, indent=1, default=str))
-    manifest = {
-        "created": data["created"],
-        "config": top,
-        "versions": {"pillagerbench": __version__},
-        "git_revision": git_revision(),
-        "suite": current(),
-        "experiment": data["name"],
-    }
+    data = ExperimentFile(
+        name=top["experiment"]["name"],
+        created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        experiment=top["experiment"],
+        overrides=list(argv),
+        series=[s.to_dict() for s in specs],
+    )
+    write_experiment_file(run_dir, data)
+    manifest = Manifest(
+        created=data.created,
+        config=top,
+        versions={"pillagerbench": __version__},
+        git_revision=git_revision(),
+        suite=current(),
+        experiment=data.name,
+    )
     RunDir(run_dir).write_manifest(manifest)
 
 
@@ -247,10 +255,10 @@ def check_series(specs: list[SeriesSpec]) -> None:
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
     """The episodes played under lag (pillagerbench/machine.py): a count, then up to `show` of them."""
     hit = [
-        (s.id, i, rec.get("lag_reason"))
+        (s.id, i, rec.lag_reason)
         for s in specs
         for i, rec in sorted(RunDir(dirs[s.id]).finished().items())
-        if rec.get("lagged")
+        if rec.lagged
     ]
     if not hit:
         return []
@@ -293,7 +301,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
         write_experiment(run_dir, cfg.stored(), argv, specs)
         if cfg.calibration:
-            shutil.copyfile(cfg.calibration, run_dir / "calibration.json")
+            shutil.copyfile(cfg.calibration, RunDir(run_dir).calibration_path)
         title, dirs = experiment_name(cfg), {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
     print(f"run directory: {run_dir}", flush=True)
     try:

@@ -30,7 +30,7 @@ from typing import Any
 from pillagerbench.config import ConfigError, load_config, to_dict
 from pillagerbench.config_schema import ExperimentConfig, RunConfig
 from pillagerbench.registry import Registry
-from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
+from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
 # keys of the top-level config that belong to the experiment machinery, not to one series
@@ -396,7 +396,7 @@ DESIGNS: Registry[Callable[[_Builder], None]] = Registry(
 
 def read_series_index(run_dir: Path) -> list[SeriesSpec]:
     """The series of an experiment's run directory, from its experiment.json."""
-    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir)["series"]]
+    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir).series]
 
 
 def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:
@@ -409,7 +409,7 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
             repetition,
         ) and spec.group is None:
             path = RunDir(RunDir(run_dir).series_dir(spec.id)).checkpoint(episode, "red")
-            if (path / "team.json").exists():
+            if has_team_state(path):
                 return path.resolve()
             raise ConfigError(
                 f"from_run: series {spec.id} of {run_dir} kept no checkpoint after episode {episode} "

@@ -24,12 +24,14 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.args import Parser
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
 from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, reader_switches
 from pillagerbench.metrics.verified import load_runs
+from pillagerbench.rundir import names
 
-CALIBRATION = "calibration.json"
+CALIBRATION = names.CALIBRATION
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
 REFERENCE_FALLBACK = (
     "upstream's reference scores, as these runs carry no calibration for it "
@@ -44,36 +46,36 @@ def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
     if not len(df):
         return
     other = "red" if side == "blue" else "blue"
-    ref = df[(df[f"{other}_team"] == "do_nothing") & df["group"].isna()]
-    yield from ((sc, team, g) for (sc, team), g in ref.groupby(["scenario", side], sort=False))
+    ref = df[(df[Col.team(other)] == "do_nothing") & df[Col.GROUP].isna()]
+    yield from ((sc, team, g) for (sc, team), g in ref.groupby([Col.SCENARIO, Col.name(side)], sort=False))
 
 
 def opponent_groups(df: pd.DataFrame, sigma: dict) -> list:
     """Per opponent (blue entrant) of the red rows in df: (red scores, blue scores, σ_blue, σ estimate),
     the input of formulas.over_opponents."""
     out = []
-    for (scenario, blue), g in df.groupby(["scenario", "blue"], sort=False):
+    for (scenario, blue), g in df.groupby([Col.SCENARIO, Col.BLUE], sort=False):
         s = sigma.get((scenario, blue))
-        out.append((g["red_score"].to_numpy(), g["blue_score"].to_numpy(), s.mean if s else None, s))
+        out.append((g[Col.RED_SCORE].to_numpy(), g[Col.BLUE_SCORE].to_numpy(), s.mean if s else None, s))
     return out
 
 
 def calibration_from_runs(runs: Runs) -> dict:
     scenarios: dict[str, dict] = {}
     for scenario, blue, g in against_do_nothing(runs.episodes, "blue"):
-        e = mean_ci(g["blue_raw"])
+        e = mean_ci(g[Col.BLUE_RAW])
         entry = scenarios.setdefault(
             scenario,
             {
-                "version": str(g["version"].iloc[0]),
-                "episode_length": float(g["episode_length"].iloc[0]),
+                "version": str(g[Col.VERSION].iloc[0]),
+                "episode_length": float(g[Col.EPISODE_LENGTH].iloc[0]),
                 "opponents": {},
             },
         )
         entry["opponents"][blue] = {
             "sigma_blue": e.mean,
             "ci": None if math.isnan(e.ci) else e.ci,
-            "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None,
+            "std": float(np.std(g[Col.BLUE_RAW], ddof=1)) if e.n > 1 else None,
             "n": e.n,
         }
     return {
@@ -136,7 +138,10 @@ def resolve(
     want = (
         {}
         if not len(df)
-        else {sc: (str(g["version"].iloc[0]), float(g["episode_length"].iloc[0])) for sc, g in df.groupby("scenario")}
+        else {
+            sc: (str(g[Col.VERSION].iloc[0]), float(g[Col.EPISODE_LENGTH].iloc[0]))
+            for sc, g in df.groupby(Col.SCENARIO)
+        }
     )
     sources = (
         ([(explicit, explicit_calibration(explicit, want), True)] if explicit else [])
