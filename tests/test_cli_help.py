@@ -90,7 +90,7 @@ def test_run_help_shows_the_crop_growth_each_scenario_plays(capsys):
     assert "a match plays its scenario's (scenario.crop_growth_chance)" in server
 
 
-def test_the_choices_come_from_the_registries_and_config_folders(capsys, monkeypatch):
+def test_the_choices_come_from_the_registries_and_config_folders(capsys):
     from pillagerbench.scenarios import SCENARIOS
     from pillagerbench.teams import TEAMS, Team
 
@@ -98,10 +98,11 @@ def test_the_choices_come_from_the_registries_and_config_folders(capsys, monkeyp
         name = "zz_zebra"
         scenarios = ("mushroom_war",)
 
-    monkeypatch.setitem(TEAMS, "zz_zebra", Zebra)  # a team registered now is listed: no hand-written list
-    out = helped(capsys, "run", "--help")
-    for name in [*SCENARIOS, *TEAMS, *config_options("experiment"), *config_options("llm")]:
-        assert re.search(rf"^  {re.escape(name)} ", out, re.M), name
+    with TEAMS.registered("zz_zebra", Zebra):  # a team registered now is listed: no hand-written list
+        out = helped(capsys, "run", "--help")
+        for name in [*SCENARIOS, *TEAMS, *config_options("experiment"), *config_options("llm")]:
+            assert re.search(rf"^  {re.escape(name)} ", out, re.M), name
+    assert "zz_zebra" not in TEAMS
     assert "  zz_zebra " in out and "  base " not in out  # conf/llm/base.yaml is not a preset
 
 

@@ -11,7 +11,7 @@ import platform
 import subprocess
 import time
 from pathlib import Path
-from typing import Any, cast
+from typing import Any
 
 from pillagerbench import __version__
 from pillagerbench.conditions import conditions_of

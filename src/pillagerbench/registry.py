@@ -8,6 +8,7 @@ there fails in the same words (`unknown team 'cott'; known: aggressive, balanced
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator, Mapping
+from contextlib import contextmanager
 from typing import TypeVar, overload
 
 from pillagerbench.config import ConfigError, unknown
@@ -39,6 +40,15 @@ class Registry(Mapping[str, T]):
             raise ValueError(f"two {self.kind}s are registered under the name {name!r}")
         self._items[name] = item
         return item
+
+    @contextmanager
+    def registered(self, name: str, item: T) -> Iterator[T]:
+        """An item under a name for the length of a `with` block (a test's own team), then gone."""
+        self.register(name, item)
+        try:
+            yield item
+        finally:
+            del self._items[name]
 
     def find(self, name: object, also: Iterable[str] = ()) -> T:
         """The item of that name; a ConfigError in the one form, naming every known name (with

@@ -20,7 +20,7 @@ from pillagerbench.teams.entrant import entrant_of
 from tests.support.cli import run_cli
 
 MODELS = {"cot_4o": "gpt-4o", "cot_mini": "gpt-4o-mini"}
-PLAY = ["play", "budget.episodes=1", "episodes_per_match=1", "episode_length=5", "parallel=1", "display=plain"]
+PLAY = ["play", "budget.episodes=2", "episodes_per_match=1", "episode_length=5", "parallel=1", "display=plain"]
 
 
 @pytest.fixture(scope="module")
@@ -46,21 +46,23 @@ def series_dirs(root: Path) -> list[Path]:
 
 
 def test_every_episode_records_the_entrant_its_config_gives(league):
-    (series,) = series_dirs(league)
-    config = json.loads((series / "manifest.json").read_text())["config"]
-    (record,) = [json.loads(x) for x in (series / "episodes.jsonl").read_text().splitlines()]
-    for side in ("red", "blue"):
-        assert record[f"{side}_entrant"] == entrant_of(config, side)
-    labels = {record["red_entrant"]["label"], record["blue_entrant"]["label"]}
-    assert labels == {"cot@gpt-4o", "cot@gpt-4o-mini"}
-    assert record["red_entrant"]["id"] != record["blue_entrant"]["id"]
+    both = series_dirs(league)
+    assert len(both) == 2  # the match and its side-swapped twin
+    for series in both:
+        config = json.loads((series / "manifest.json").read_text())["config"]
+        (record,) = [json.loads(x) for x in (series / "episodes.jsonl").read_text().splitlines()]
+        for side in ("red", "blue"):
+            assert record[f"{side}_entrant"] == entrant_of(config, side)
+        labels = {record["red_entrant"]["label"], record["blue_entrant"]["label"]}
+        assert labels == {"cot@gpt-4o", "cot@gpt-4o-mini"}
+        assert record["red_entrant"]["id"] != record["blue_entrant"]["id"]
 
 
 def test_the_board_has_a_row_per_entrant_with_its_label_and_id(league):
     rows = {r["entrant"]: r for r in csv.DictReader((league / "leaderboard.csv").open())}
     assert {n: rows[n]["label"] for n in MODELS} == {n: f"cot@{m}" for n, m in MODELS.items()}
     assert rows["cot_4o"]["id"] != rows["cot_mini"]["id"]
-    assert all(rows[n]["episodes"] == "1" for n in MODELS)
+    assert all(rows[n]["episodes"] == "2" for n in MODELS)  # one on each side
 
 
 def test_the_report_has_a_row_per_entrant_and_an_old_copy_reports_the_same(league, tmp_path):
@@ -68,8 +70,9 @@ def test_the_report_has_a_row_per_entrant_and_an_old_copy_reports_the_same(leagu
     build_report([round_dir], tmp_path / "report", with_replays=False)
     per_team = list(csv.DictReader((tmp_path / "report" / "per_team.csv").open()))
     assert sorted(r["team"] for r in per_team) == ["cot@gpt-4o", "cot@gpt-4o-mini"]
-    (summary,) = csv.DictReader((tmp_path / "report" / "summary.csv").open())  # the red entrant's row
-    assert summary["red"] in ("cot@gpt-4o", "cot@gpt-4o-mini") and int(summary["llm_calls"]) >= 1  # its calls
+    summary = list(csv.DictReader((tmp_path / "report" / "summary.csv").open()))  # a row per red entrant
+    assert sorted(r["red"] for r in summary) == ["cot@gpt-4o", "cot@gpt-4o-mini"]
+    assert all(int(r["llm_calls"]) >= 1 for r in summary)  # its own calls
 
     old = shutil.copytree(round_dir, tmp_path / "old")
     for path in old.glob("series/*/episodes.jsonl"):  # records from before entrants

@@ -24,7 +24,7 @@ from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.run import scenario_from_config
-from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series, progress, retries_of
+from pillagerbench.rundir import RunDir, SeriesSpec, plain_series, progress
 from pillagerbench.teams.entrant import labels_of
 
 

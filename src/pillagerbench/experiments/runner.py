@@ -33,7 +33,6 @@ from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
 from pillagerbench.rundir import (
-    RETRIES,
     ExperimentFile,
     Manifest,
     RunDir,

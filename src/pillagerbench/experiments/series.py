@@ -25,7 +25,6 @@ from pillagerbench.rundir import (
     episodes_to_play,
     has_team_state,
     progress,
-    retries_of,
     team_state_path,
     write_series,
 )
