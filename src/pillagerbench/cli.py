@@ -22,6 +22,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "a league: add entrants, play scheduled matches, write the leaderboard",
     ),
     "replay": ("pillagerbench.replay.page:main", "write an episode's replay page (replay.html) from its recording"),
+    "compare": (
+        "pillagerbench.experiments.compare:main",
+        "is entrant A better than B? paired play and a sequential test that stops when the answer is clear",
+    ),
     "layout": ("pillagerbench.layout_show:main", "show a layout's map (a page), or write the layout as JSON"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": (

@@ -87,6 +87,20 @@ HELP: dict[str, CommandHelp] = {
             "pillagerbench llm-ping llm=openai_compatible llm.base_url=http://127.0.0.1:8080/v1 llm.model=local",
         ),
     ),
+    "compare": CommandHelp(
+        usage=(
+            "pillagerbench compare A B [opponent=O] [cap=PAIRS] [sprt.p0=P sprt.p1=P sprt.alpha=A sprt.beta=B] [key=value ...]",
+            "pillagerbench compare resume=RUN_DIR",
+        ),
+        keys=GAME,
+        groups=("scenario", "llm"),
+        choices=("scenarios", "teams", "llm"),
+        doc=True,
+        examples=(
+            "pillagerbench compare passive balanced opponent=do_nothing",
+            "pillagerbench compare cot tacticrafter llm=openai llm.model=gpt-4o sprt.p1=0.7",
+        ),
+    ),
     "teams": CommandHelp(
         usage=("pillagerbench teams",),
         doc=True,

@@ -1,0 +1,235 @@
+"""`pillagerbench compare A B [opponent=O] [cap=PAIRS] [sprt.KEY=VALUE ...] [key=value ...]`: is entrant A
+better than entrant B? Paired play and a sequential test that stops as soon as the answer is clear.
+
+    pillagerbench compare passive balanced opponent=do_nothing       # each against do_nothing
+    pillagerbench compare cot tacticrafter llm=openai llm.model=gpt-4o  # head to head
+    pillagerbench compare resume=RUN_DIR                              # after a kill: on from where it was
+
+A and B are team names (any registered team; the other keys, e.g. `scenario=`, `episode_length=`,
+`llm=`, apply to both). Pairs of episodes on the same seeds (so the same layouts with `split=dev` or
+the paper's): with an opponent, a pair is A against it and B against it on the same side, the next pair
+on the other side; A scores 1 when its points beat B's (0.5 level, 0 behind). Head to head, a pair is A
+red against B and B red against A; A scores its mean result (1 won, 0.5 drew, 0 lost). After each pair
+the sequential test (stats/sprt.py; `sprt.p0` 0.5, `sprt.p1` 0.65, `sprt.alpha` 0.05, `sprt.beta` 0.05)
+shows its log-likelihood ratio against its bounds; it ends with one line: A better, not better, or
+undecided at the cap (`cap` pairs; default: as many as a fixed-size test of the same error rates needs),
+with the episodes and dollars spent. The run directory is an experiment's (`report` reads it) with
+`compare.json` beside it; a spoiled episode (our fault) is played again, as in any series.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from pillagerbench.config import ConfigError, load_config
+from pillagerbench.config_schema import RunConfig
+from pillagerbench.experiments.runner import write_experiment
+from pillagerbench.experiments.series import run_series
+from pillagerbench.llm.ledger import read_ledger
+from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, spoiled
+from pillagerbench.stats.sample_size import fixed_test
+from pillagerbench.stats.sprt import BETTER, NOT_BETTER, UNDECIDED, Bounds, llr, verdict
+
+FILE = "compare.json"
+OWN_KEYS = ("opponent", "cap", "resume", "run_dir", *(f"sprt.{k}" for k in ("p0", "p1", "alpha", "beta")))
+
+
+@dataclass
+class Comparison:
+    """What a compare plays and how it decides (compare.json)."""
+
+    a: str
+    b: str
+    opponent: str | None = None
+    bounds: Bounds = field(default_factory=Bounds)
+    cap: int = 0  # pairs at most
+    game: list[str] = field(default_factory=list)  # the overrides both entrants play under
+
+    def series(self) -> dict[str, tuple[str, str]]:
+        """Series id -> (red, blue): each entrant on each side against the opponent, or each other."""
+        if self.opponent is None:
+            return {"a_red": (self.a, self.b), "b_red": (self.b, self.a)}
+        o = self.opponent
+        return {"a_red": (self.a, o), "b_red": (self.b, o), "a_blue": (o, self.a), "b_blue": (o, self.b)}
+
+    def pair(self, k: int) -> tuple[str, str, int]:
+        """The series holding A's and B's episode of pair k, and its place among their used episodes."""
+        if self.opponent is None:
+            return "a_red", "b_red", k
+        side = "red" if k % 2 == 0 else "blue"
+        return f"a_{side}", f"b_{side}", k // 2
+
+
+def parse(argv: list[str]) -> tuple[Comparison | None, Path | None]:
+    """The comparison a command line asks for (None with resume=: it is read from the run directory)."""
+    names = [a for a in argv if "=" not in a]
+    own = {k: v for k, _, v in (a.partition("=") for a in argv if "=" in a) if k in OWN_KEYS}
+    game = [a for a in argv if "=" in a and a.partition("=")[0] not in OWN_KEYS]
+    if own.get("resume"):
+        if names or game or set(own) - {"resume"}:
+            raise ConfigError("compare resume=RUN_DIR plays on as it was started: give nothing else")
+        return None, Path(own["resume"])
+    if len(names) != 2:
+        raise ConfigError(f"two entrants to compare, A and B (team names), got {len(names)}: {' '.join(names)}")
+    a, b = names
+    if a == b:
+        raise ConfigError(f"A and B are the same entrant ({a}); compare two different ones")
+    try:
+        bounds = Bounds(**{k.removeprefix("sprt."): float(v) for k, v in own.items() if k.startswith("sprt.")})
+    except ValueError:
+        raise ConfigError("sprt.p0, sprt.p1, sprt.alpha and sprt.beta are numbers") from None
+    if bad := bounds.problems():
+        raise ConfigError("; ".join(bad))
+    cap = int(own.get("cap") or fixed_test(0.5, bounds.p1 - bounds.p0, bounds.alpha, bounds.beta))
+    if cap < 1:
+        raise ConfigError(f"cap={cap}: at least one pair")
+    run_dir = Path(own["run_dir"]) if own.get("run_dir") else None
+    return Comparison(a, b, own.get("opponent"), bounds, cap, game), run_dir
+
+
+def configs(c: Comparison) -> dict[str, RunConfig]:
+    """Each series' whole configuration, checked (one ConfigError line per problem, nothing played)."""
+    from pillagerbench.validate import check_run_config
+
+    return {
+        sid: check_run_config(load_config([*c.game, f"red={red}", f"blue={blue}"]))
+        for sid, (red, blue) in c.series().items()
+    }
+
+
+def specs(c: Comparison, cfgs: dict[str, RunConfig]) -> list[SeriesSpec]:
+    """The series, every one on the same seed (its episodes on the same layouts as the others')."""
+    return [
+        SeriesSpec(
+            id=sid,
+            index=i,
+            design="compare",
+            scenario=cfg.scenario.name,
+            red=red,
+            blue=blue,
+            red_team=red,
+            blue_team=blue,
+            episodes=c.cap,
+            seed=cfg.seed,
+            config=cfg.stored(),
+        )
+        for i, ((sid, (red, blue)), cfg) in enumerate(zip(c.series().items(), cfgs.values(), strict=True))
+    ]
+
+
+def used(series_dir: Path) -> list[EpisodeRecord]:
+    """A series' results so far: its finished episodes that are not spoiled, in order."""
+    finished = RunDir(series_dir).finished()
+    return [finished[i] for i in sorted(finished) if not spoiled(finished[i])]
+
+
+def _points(rec: EpisodeRecord, entrant_side: str) -> float:
+    return float((rec.red_score if entrant_side == "red" else rec.blue_score) or 0.0)
+
+
+def _result(rec: EpisodeRecord, side: str) -> float:
+    own, other = _points(rec, side), _points(rec, "blue" if side == "red" else "red")
+    return 1.0 if own > other else 0.5 if own == other else 0.0
+
+
+def pair_scores(c: Comparison, run_dir: Path) -> list[float]:
+    """A's score in each complete pair so far, in order."""
+    rundir, eps = RunDir(run_dir), {}
+    for sid in c.series():
+        eps[sid] = used(rundir.series_dir(sid))
+    out = []
+    for k in range(c.cap):
+        sa, sb, i = c.pair(k)
+        if i >= len(eps[sa]) or i >= len(eps[sb]):
+            break
+        if c.opponent is None:  # A red in a_red, A blue in b_red
+            out.append((_result(eps[sa][i], "red") + _result(eps[sb][i], "blue")) / 2)
+        else:
+            side = sa.removeprefix("a_")
+            a, b = _points(eps[sa][i], side), _points(eps[sb][i], side)
+            out.append(1.0 if a > b else 0.5 if a == b else 0.0)
+    return out
+
+
+def dollars(run_dir: Path, c: Comparison) -> str:
+    """What the LLM calls of every series cost ("$0.0000"; "unknown" when a call had no price)."""
+    ledgers = [RunDir(RunDir(run_dir).series_dir(sid)).ledger_path for sid in c.series()]
+    calls = [r for path in ledgers if path.exists() for r in read_ledger(path)]
+    if any(r.get("cost_usd") is None for r in calls if "cost_usd" in r):
+        return "unknown (a call had no price)"
+    return f"${sum(float(r.get('cost_usd') or 0.0) for r in calls):.4f}"
+
+
+def line(k: int, score: float, value: float, b: Bounds) -> str:
+    return f"pair {k + 1}: A scores {score:g}; LLR {value:+.2f} in [{b.lower:+.2f}, {b.upper:+.2f}]"
+
+
+def verdict_line(c: Comparison, found: str, pairs: int, run_dir: Path) -> str:
+    said = {BETTER: "is better than", NOT_BETTER: "is not better than", UNDECIDED: "undecided against"}[found]
+    cap = f" at the cap ({c.cap} pairs)" if found == UNDECIDED else ""
+    rates = f"α={c.bounds.alpha:g}, β={c.bounds.beta:g}, p0={c.bounds.p0:g}, p1={c.bounds.p1:g}"
+    episodes = sum(len(RunDir(RunDir(run_dir).series_dir(s)).finished()) for s in c.series())
+    return f"compare: {c.a} {said} {c.b}{cap} (SPRT {rates}; {pairs} pairs, {episodes} episodes, {dollars(run_dir, c)})"
+
+
+def play(c: Comparison, run_dir: Path, series: dict[str, SeriesSpec]) -> str:
+    """Pairs until the test decides or the cap; prints a line per pair; returns the verdict."""
+    shown = 0
+    while True:
+        scores = pair_scores(c, run_dir)
+        for k in range(shown, len(scores)):
+            print(line(k, scores[k], llr(scores[: k + 1], c.bounds), c.bounds), flush=True)
+        shown = len(scores)
+        found = verdict(scores, c.bounds)
+        if found != UNDECIDED or len(scores) >= c.cap:
+            return found
+        sa, sb, i = c.pair(len(scores))
+        for sid in (sa, sb):
+            spec = series[sid]
+            spec.episodes = i + 1  # this series' results up to this pair
+            asyncio.run(run_series(spec, RunDir(run_dir).series_dir(sid), run_dir, say=print))
+
+
+def start(c: Comparison, run_dir: Path | None) -> tuple[Path, dict[str, SeriesSpec]]:
+    """A new compare's run directory (compare.json, experiment.json); refused where one exists."""
+    from pillagerbench import preflight
+
+    cfgs = configs(c)
+    for cfg in cfgs.values():
+        preflight.check(preflight.sides_of(cfg))
+    stamp = time.strftime("%Y-%m-%d_%H-%M-%S")
+    run_dir = run_dir or Path("runs") / f"{stamp}_compare_{c.a}_vs_{c.b}"
+    if (run_dir / FILE).exists():
+        raise ConfigError(f"{run_dir} holds a compare already: play on with compare resume={run_dir}")
+    all_specs = specs(c, cfgs)
+    top = {"experiment": {"name": f"compare {c.a} vs {c.b}", "design": "compare"}}
+    write_experiment(run_dir, top, [c.a, c.b, *c.game], all_specs)
+    (run_dir / FILE).write_text(json.dumps({**asdict(c), "bounds": asdict(c.bounds)}, indent=1))
+    return run_dir, {s.id: s for s in all_specs}
+
+
+def resume(run_dir: Path) -> tuple[Comparison, dict[str, SeriesSpec]]:
+    if not (run_dir / FILE).exists():
+        raise ConfigError(f"resume={run_dir}: not a compare's run directory (no {FILE})")
+    data = json.loads((run_dir / FILE).read_text())
+    c = Comparison(**{**data, "bounds": Bounds(**data["bounds"])})
+    return c, {s.id: s for s in specs(c, configs(c))}
+
+
+def main(argv: list[str]) -> int:
+    c, run_dir = parse(argv)
+    if c is None:
+        assert run_dir is not None
+        c, series = resume(run_dir)
+    else:
+        run_dir, series = start(c, run_dir)
+    print(f"run directory: {run_dir}", flush=True)
+    against = f"each against {c.opponent}" if c.opponent else "head to head"
+    print(f"compare {c.a} (A) with {c.b} (B), {against}: up to {c.cap} pairs", flush=True)
+    found = play(c, run_dir, series)
+    print(verdict_line(c, found, len(pair_scores(c, run_dir)), run_dir))
+    return 0
