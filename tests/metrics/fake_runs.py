@@ -26,6 +26,7 @@ def write_run(
     problems: dict[int, dict[str, list[str]]] | None = None,
     layouts: list[str | int] | None = None,
     protocol: str | None = None,
+    seeds: list[int] | None = None,
 ) -> Path:
     """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
     it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream);
@@ -33,7 +34,8 @@ def write_run(
     record names (none: a record from before suite versions); `failed[i]`: episode i failed with that
     error; `problems[i]`: episode i's problems by side; `layouts[i]`: episode i's layout ("paper", a seed
     or a file; its split follows from it), else none recorded (a record from before layouts); `protocol`:
-    the step protocol every record names (none: a record from before protocols)."""
+    the step protocol every record names (none: a record from before protocols); `seeds[i]`: episode i's
+    seed (none: 0, as a record from before seeds were recorded)."""
     run.mkdir(parents=True)
     config = {
         "scenario": {"name": scenario},
@@ -71,6 +73,8 @@ def write_run(
                 rec["suite"] = suite
             if protocol:
                 rec["protocol"] = protocol
+            if seeds:
+                rec["seed"] = seeds[i]
             if layouts:
                 rec.update(layout=layouts[i], split=split_of(layouts[i]))
             if failed and i in failed:

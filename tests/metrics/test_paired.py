@@ -60,3 +60,26 @@ def test_a_world_played_twice_by_one_entrant_does_not_pair():
     view = by_entrant(doubled)
     a, b = (view[(view["side"] == "red") & (view["entrant"] == e)] for e in ("A", "B"))
     assert difference(a, b, "points").design == "unpaired"  # one world left once each: fewer than 2 pairs
+
+
+def test_the_report_has_the_differences_paired_where_the_runs_share_their_worlds(tmp_path):
+    import csv
+
+    from pillagerbench.report.build import build_report
+    from tests.metrics.fake_runs import write_run
+
+    data = episodes(WORLDS)
+    runs = []
+    for entrant in ("A", "B"):
+        mine = data[data["red"] == entrant]
+        scores = [(float(s), 0.0) for s in mine["red_score"]]
+        layouts = [int(x) for x in mine["layout"]]
+        runs.append(
+            write_run(
+                tmp_path / entrant, "mushroom_war", entrant, "O", scores, layouts=layouts, seeds=list(mine["seed"])
+            )
+        )
+    build_report(runs, tmp_path / "report", with_replays=False)
+    (row,) = [r for r in csv.DictReader((tmp_path / "report" / "differences.csv").open()) if r["side"] == "red"]
+    assert (row["a"], row["b"], row["design"]) == ("A", "B", "paired (12 pairs)")
+    assert float(row["a_minus_b_ci"]) < float(row["unpaired_ci"]) / 3

@@ -48,6 +48,7 @@ class Col:
     RULES: Final = "rules"
     CONDITIONS: Final = "conditions"
     LAYOUT: Final = "layout"
+    SEED: Final = "seed"  # the episode's seed: with its layout, the world it was played in (metrics/paired.py)
     SPLIT: Final = "split"
     TEAM_PROTOCOL: Final = "team_protocol"
     ITERATIONS: Final = "iterations"  # mean code iterations of the red team
@@ -108,7 +109,7 @@ EPISODE_COLUMNS: Final = (
     *ENTRANT_COLUMNS,
     *(Col.RED_TEAM, Col.BLUE_TEAM, Col.DESIGN, Col.VARIANT, Col.REPETITION, Col.GROUP, Col.GROUP_X),
     *(Col.EPISODE, Col.INDEX, Col.RED_RAW, Col.BLUE_RAW, Col.SCALE, Col.RED_SCORE, Col.BLUE_SCORE),
-    *(Col.SCORING, Col.SUITE, Col.STAMP, Col.RULES, Col.CONDITIONS, Col.LAYOUT, Col.SPLIT),
+    *(Col.SCORING, Col.SUITE, Col.STAMP, Col.RULES, Col.CONDITIONS, Col.LAYOUT, Col.SEED, Col.SPLIT),
     *(Col.by_scoring(side, mode) for mode in SCORINGS for side in SIDES),
     *(Col.TEAM_PROTOCOL, Col.ITERATIONS, Col.PROBLEMS, Col.SERVER_TPS, Col.LAGGED, Col.LAG_REASON),
     *(Col.T, Col.RED_T, Col.BLUE_T),

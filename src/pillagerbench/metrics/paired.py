@@ -15,9 +15,10 @@ from dataclasses import dataclass
 
 import pandas as pd
 
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import Estimate, mean_ci, welch_half_width
 
-KEY = ("layout", "seed")  # what makes two episodes the same world
+KEY = (Col.LAYOUT, Col.SEED)  # what makes two episodes the same world
 
 
 @dataclass(frozen=True)
@@ -51,7 +52,7 @@ def differences(df: pd.DataFrame) -> pd.DataFrame:
     """Per scenario, opponent and side: every two entrants that played that opponent there, their
     points' difference (a − b), paired where the episodes pair up, the unpaired interval beside."""
     rows = []
-    for (scenario, side), d in df.groupby(["scenario", "side"], sort=False):
+    for (scenario, side), d in df.groupby([Col.SCENARIO, "side"], sort=False):
         for opponent, vs in d.groupby("opponent", sort=False):
             entrants = list(dict.fromkeys(vs["entrant"]))
             for x, y in itertools.combinations(entrants, 2):
@@ -82,11 +83,11 @@ def by_entrant(episodes: pd.DataFrame) -> pd.DataFrame:
     for side, other in (("red", "blue"), ("blue", "red")):
         view = pd.DataFrame(
             {
-                "scenario": episodes["scenario"],
+                Col.SCENARIO: episodes[Col.SCENARIO],
                 "side": side,
-                "entrant": episodes[side],
-                "opponent": episodes[other],
-                "points": episodes[f"{side}_score"],
+                "entrant": episodes[Col.name(side)],
+                "opponent": episodes[Col.name(other)],
+                "points": episodes[Col.score(side)],
             }
         )
         for k in KEY:

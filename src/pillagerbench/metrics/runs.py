@@ -276,7 +276,8 @@ def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, sc
         Col.STAMP: rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
         Col.RULES: describe(rec.conditions),
         Col.CONDITIONS: dict(rec.conditions),
-        Col.LAYOUT: rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
+        Col.LAYOUT: rec.layout,
+        Col.SEED: rec.seed,  # "paper", a seed or a layout file; split: paper | dev | test | custom
         Col.SPLIT: rec.split,
         **alternatives,
         Col.TEAM_PROTOCOL: rec.protocol,

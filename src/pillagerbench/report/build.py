@@ -26,6 +26,7 @@ from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.faults import fault_note, faults_table
+from pillagerbench.metrics.paired import by_entrant, differences
 from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, mixed_title, reader_switches
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.metrics.verified import load_runs
@@ -50,6 +51,13 @@ class Section:
         if self.kind == "table":
             return tables.write(self.content, out, str(self.name), self.title)
         return [self.content[0]] if self.kind == "image" else []
+
+
+DIFFERENCES = (
+    "differences",
+    "Differences between entrants against the same opponent (a − b in points: paired where they met the same "
+    "layouts and seeds, else two means; the unpaired interval beside)",
+)
 
 
 def table(name: str, title: str, frame: pd.DataFrame) -> Section:
@@ -79,6 +87,7 @@ def build_report(
     pairs, per_team = tables.pairings(main, sigma), tables.per_team(main, sigma)
     grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(runs.spoiled)
     plan = tables.planned(runs.series, runs.episodes, runs.spoiled)
+    diffs = differences(by_entrant(main))
     arenas = unseen.unseen_arenas(main, sigma)
     sections = [  # the report's one list of sections: its files, its contents and its page
         table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
@@ -95,6 +104,7 @@ def build_report(
         table("per_team", "Per entrant, whichever side it played (own points vs the opponent's)", per_team),
         table("pairings", "Per pairing (heatmap values)", pairs),
         table("groups", "Groups (adaptation: same/different opponent; self-play: after k episodes)", grouped),
+        table(*DIFFERENCES, diffs),  # two entrants against one opponent (paired where the worlds match)
         table(
             "side_symmetry",
             "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)",
