@@ -48,11 +48,11 @@ def one_line_refusal(tmp_path, *args, lines=1):
         (["blue=passive", "blue.llm.model=x"], "pillagerbench run: blue.llm.model: team passive uses no LLM"),
         (
             ["red=nonexistent"],
-            "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; valid teams: aggressive",
+            "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; known: aggressive",
         ),
-        (["scenario=foo"], "pillagerbench run: unknown scenario 'foo'; valid: dash_and_dine, mushroom_war"),
-        (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; valid: ablation_models"),
-        (["llm=nope"], "pillagerbench run: unknown llm preset 'nope'; valid: fake"),
+        (["scenario=foo"], "pillagerbench run: unknown scenario 'foo'; known: dash_and_dine, mushroom_war"),
+        (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; known: ablation_models"),
+        (["llm=nope"], "pillagerbench run: unknown llm preset 'nope'; known: fake"),
         (["epsiodes=3"], "pillagerbench run: epsiodes: no such key"),
     ],
 )
@@ -251,7 +251,7 @@ def test_report_with_a_missing_calibration_file_names_it_and_reference(capsys, t
 def test_an_unknown_experiment_team_is_named_as_the_user_typed_it(capsys, monkeypatch, tmp_path):
     monkeypatch.chdir(tmp_path)
     line = refused(capsys, "run", "experiment=main_benchmark", "experiment.team=cott")
-    assert line.startswith("pillagerbench run: experiment.team=cott: unknown team 'cott'; valid teams: aggressive")
+    assert line.startswith("pillagerbench run: experiment.team=cott: unknown team 'cott'; known: aggressive")
     assert "red=" not in line and "cot," in line
     assert not (tmp_path / "runs").exists()
 

@@ -85,7 +85,10 @@ def moved_mushroom(data):
 
 
 BAD = {
-    "unknown scenario": (lambda p: ["minecraft", "42"], "unknown scenario 'minecraft'; valid scenarios: mushroom_war"),
+    "unknown scenario": (
+        lambda p: ["minecraft", "42"],
+        "unknown scenario 'minecraft'; known: dash_and_dine, mushroom_war",
+    ),
     "a word": (lambda p: ["mushroom_war", "abc"], "layout='abc': valid: paper, a seed"),
     "a negative seed": (lambda p: ["mushroom_war", "-3"], "layout=-3: a seed is an integer from 0 to"),
     "a seed too large": (lambda p: ["dash_and_dine", str(2**53)], "a seed is an integer from 0 to"),

@@ -86,3 +86,19 @@ def test_docs_suite_versions_has_a_section_per_version_and_the_shipped_reference
                 f"{by[s]['mean']:.2f} ± {by[s]['ci']:.2f}" for s in ("clean", "upstream")
             )
             assert row + " |" in section, row
+
+
+def test_re_recording_the_same_version_keeps_its_earlier_hash_as_the_same_version(copy):
+    root, versions = copy
+    before = suite.suite_hash(root)
+    (root / "match" / "scoring.py").write_text((root / "match" / "scoring.py").read_text() + "\n# restructured\n")
+    after = suite.suite_hash(root)
+    assert after != before and suite.check(root, versions) is not None
+    assert suite.record(None, versions, root) == f"recorded {suite.label('suite 1.0', after)} in {versions.name}"
+    assert suite.check(root, versions) is None and list(suite.recorded(versions)) == ["suite 1.0"]
+    assert suite.same_version(versions) == {before: after, after: after}
+    assert suite.name_of(before, suite.recorded(versions), suite.same_version(versions)) == "suite 1.0"
+    assert suite.one_version(before[:16], versions) == suite.one_version(after[:16], versions) == after[:16]
+    assert suite.one_version("c" * 16, versions) == "c" * 16  # not a recorded hash: as given
+    suite.record("suite 1.1", versions, root)  # a new version starts without earlier hashes
+    assert json.loads(versions.read_text())["versions"][-1] == {"name": "suite 1.1", "sha256": after}

@@ -7,6 +7,7 @@ We use Hydra's compose API so every sub-command takes the same override syntax.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from typing import Any
 
 from hydra import compose, initialize_config_module
@@ -17,6 +18,12 @@ from omegaconf import DictConfig, OmegaConf
 
 class ConfigError(ValueError):
     """Bad configuration or override; the message names the problem and the valid choices."""
+
+
+def unknown(kind: str, name: object, known: Iterable[str], hint: str = "") -> ConfigError:
+    """The one form of every unknown-name error, whatever the kind (a team, a scenario, a scoring, a
+    design, an llm preset, a split ...): `unknown team 'cott'; known: aggressive, balanced, ...`."""
+    return ConfigError(f"unknown {kind} {name!r}; known: {', '.join(known)}{f' {hint}' if hint else ''}")
 
 
 # `red=cot` chooses an option of the `team` group for the red side (Hydra spells it `team@red=cot`);
@@ -194,7 +201,7 @@ def one_line(message: str, overrides: list[str] | None = None) -> str:
         group, name = missing.groups()
         options = re.findall(r"^\t(\S+)$", message, flags=re.M)
         options = [o for o in options if o != "base"] if group == "llm" else options
-        return f"unknown {GROUP_WORDS.get(group, group)} {name!r}; valid: {', '.join(options)}"
+        return str(unknown(GROUP_WORDS.get(group, group), name, options))
     override = re.search(r"Could not override '([^']+)'", message)
     if override:
         key = override.group(1)

@@ -72,21 +72,42 @@ def recorded(path: Path = VERSIONS) -> dict[str, str]:
     return {v["name"]: v["sha256"] for v in json.loads(path.read_text())["versions"]}
 
 
+def same_version(path: Path = VERSIONS) -> dict[str, str]:
+    """Every recorded hash -> the hash its version is recorded under now: a version re-recorded for a
+    change that moved no score (a restructure) keeps its earlier hashes (`earlier`), so that its runs
+    before and after are one version."""
+    out: dict[str, str] = {}
+    for v in json.loads(path.read_text())["versions"]:
+        out |= dict.fromkeys([*v.get("earlier", []), v["sha256"]], v["sha256"])
+    return out
+
+
 def label(name: str, digest: str) -> str:
     """How a suite is written in records and tables: `suite 1.0@<first 16 hex>`."""
     return f"{name}@{digest[:16]}"
 
 
-def name_of(digest: str, versions: dict[str, str]) -> str:
+def name_of(digest: str, versions: dict[str, str], earlier: dict[str, str] | None = None) -> str:
+    """The version a hash is (its recorded name, also under an earlier hash of that version), else the
+    newest name + "+dev"."""
     by_hash = {h: n for n, h in versions.items()}
-    return by_hash.get(digest) or f"{list(versions)[-1]}+dev"
+    return by_hash.get((earlier or {}).get(digest, digest)) or f"{list(versions)[-1]}+dev"
+
+
+def one_version(label_hash: str, path: Path = VERSIONS) -> str:
+    """A label's hash (16 hex or more) as the hash its version is recorded under now (16 hex); other
+    hashes as given. Runs whose hashes give the same answer played the same suite."""
+    for digest, now in same_version(path).items():
+        if label_hash and digest.startswith(label_hash):
+            return now[: len(label_hash)]
+    return label_hash
 
 
 @lru_cache(maxsize=1)
 def current() -> dict[str, str]:
     """This installation's suite: {"name", "sha256", "label"} (computed once per process)."""
     digest = suite_hash()
-    name = name_of(digest, recorded())
+    name = name_of(digest, recorded(), same_version())
     return {"name": name, "sha256": digest, "label": label(name, digest)}
 
 
@@ -111,8 +132,11 @@ def record(name: str | None, path: Path = VERSIONS, root: Path = PACKAGE) -> str
     data = json.loads(path.read_text())
     digest = suite_hash(root)
     if name is None or name == data["versions"][-1]["name"]:
-        data["versions"][-1]["sha256"] = digest
-        name = data["versions"][-1]["name"]
+        newest = data["versions"][-1]
+        if newest["sha256"] != digest:  # the same version: its earlier hash stays one of it
+            newest["earlier"] = [*newest.get("earlier", []), newest["sha256"]]
+        newest["sha256"] = digest
+        name = newest["name"]
     elif name in recorded(path):
         raise ValueError(f"{name!r} is an earlier version; name a new one or leave the name out")
     else:

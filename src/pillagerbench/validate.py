@@ -68,7 +68,7 @@ def team_problems(cfg: Any) -> list[str]:
     found = []
     scenario = str(cfg.scenario.name)
     if scenario not in SCENARIOS:
-        found.append(f"scenario={scenario}: unknown scenario; valid: {', '.join(SCENARIOS)}")
+        found.append(f"scenario={scenario}: {SCENARIOS.unknown(scenario)}")
     for side in SIDES:
         for p in _team_problems(cfg, side, scenario):
             if p not in found:  # the shared llm settings are reported once

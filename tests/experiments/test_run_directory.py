@@ -98,4 +98,4 @@ def test_the_design_of_an_experiment_written_when_it_was_called_protocol_reads_b
 
 
 def test_the_scorings_are_named_once():
-    assert get_args(RunConfig.model_fields["scoring"].annotation) == SCORINGS
+    assert get_args(RunConfig.model_fields["scoring"].annotation) == tuple(SCORINGS)

@@ -20,14 +20,14 @@ from pillagerbench.rundir import EPISODES, LEDGER
 @pytest.mark.parametrize(
     "args, expected",
     [
-        (["x", "team=nonexistent"], "entrant 'x': unknown team 'nonexistent'; valid teams: "),
+        (["x", "team=nonexistent"], "entrant 'x': unknown team 'nonexistent'; known: "),
         (
             ["x", "team=berries"],
             "entrant 'x': team berries plays none of the league's scenarios (mushroom_war); it plays dash_and_dine",
         ),
         (["x", "team=balanced", "aggression=9"], "entrant 'x': team.aggression: unknown key (options of balanced"),
         (["x", "team=random", "pause_every=often"], "entrant 'x': team.pause_every='often': input should be"),
-        (["x", "team=cot", "llm=nope"], "entrant 'x': unknown llm preset 'nope'; valid: "),
+        (["x", "team=cot", "llm=nope"], "entrant 'x': unknown llm preset 'nope'; known: "),
         (["x", "team=cot", "llm.budget.max_bananas=1"], "entrant 'x': team.llm.budget.max_bananas: unknown key"),
         (["x", "llm=fake"], "add x: team=TEAM is required"),
         (["balanced", "team=passive"], "an entrant named 'balanced' exists already"),

@@ -116,3 +116,16 @@ def test_the_same_files_named_before_and_after_their_hash_was_recorded_are_one_v
     write_run(tmp_path / "a", "mushroom_war", "do_nothing", "passive", [(0, 20)], suite=dev)
     write_run(tmp_path / "b", "mushroom_war", "do_nothing", "passive", [(0, 22)], suite=released)
     assert load_runs([tmp_path / "a", tmp_path / "b"]).suites == [f"{dev} = {released}"]
+
+
+def test_a_version_re_recorded_for_a_change_that_moved_no_score_is_still_one_version(tmp_path):
+    from pillagerbench.suite import label, same_version
+
+    earlier = next(h for h, now in same_version().items() if h != now)  # suite 1.1 before issue 40's registry
+    old, new = label("suite 1.1", earlier), current()["label"]
+    a = write_run(tmp_path / "a", "mushroom_war", "do_nothing", "passive", [(0, 20)], length=5, suite=old)
+    b = write_run(tmp_path / "b", "mushroom_war", "do_nothing", "passive", [(0, 22)], length=5, suite=new)
+    assert load_runs([a, b]).suites == [f"{old} = {new}"]
+    c = write_run(tmp_path / "c", "mushroom_war", "do_nothing", "passive", [(0, 21)], length=5, suite=B)
+    with pytest.raises(ReportError, match="refusing to mix suite versions"):
+        load_runs([a, c])

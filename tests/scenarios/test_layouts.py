@@ -228,7 +228,7 @@ def test_bad_layouts_at_the_command_line_are_one_line_and_leave_no_run_directory
     cases = [
         (["layout=abc"], "layout='abc': valid: paper, a seed (an integer 0..2**53-1), or a layout file (.json)"),
         (["layout=-4"], "layout=-4: a seed is an integer from 0 to 9007199254740991"),
-        (["split=holdout"], "split='holdout': unknown split; valid: paper, dev, test (or null: the layout= value)"),
+        (["split=holdout"], "unknown split 'holdout'; known: dev, paper, test (or null: the layout= value)"),
         (
             ["layout=5", "split=test"],
             "split=test plays each episode on a layout of its own; drop layout=5 or split=test",

@@ -97,7 +97,7 @@ def test_an_import_path_and_an_entry_point_reach_the_same_class(outside, monkeyp
 
     importlib.invalidate_caches()
     assert find_team("my_teams:Idle") is find_team("idle_ep")
-    with pytest.raises(ConfigError, match="valid teams: .*remote.*or an import path"):
+    with pytest.raises(ConfigError, match="known: .*remote.*or an import path"):
         find_team("nobody")
 
 

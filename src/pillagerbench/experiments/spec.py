@@ -23,16 +23,17 @@ Designs (conf/experiment/*.yaml, key `design`):
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from omegaconf import DictConfig, OmegaConf
 
 from pillagerbench.config import ConfigError, load_config, to_dict
+from pillagerbench.registry import Registry
 from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
-DESIGNS = ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity", "generalization")
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
@@ -379,6 +380,16 @@ class _Builder:
                             )
 
 
+# the designs `experiment.design` chooses from (conf/experiment/*.yaml), each a way of building the series
+DESIGNS: Registry[Callable[[_Builder], None]] = Registry(
+    "design",
+    {
+        name: getattr(_Builder, name)
+        for name in ("round_robin", "benchmark", "self_play", "adaptation", "symmetry", "fidelity", "generalization")
+    },
+)
+
+
 def read_series_index(run_dir: Path) -> list[SeriesSpec]:
     """The series of an experiment's run directory, from its experiment.json."""
     return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir)["series"]]
@@ -409,10 +420,12 @@ def build_series(cfg: DictConfig, argv: list[str] | None = None) -> list[SeriesS
     if not exp:
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
     design = exp.get("design")
-    if design not in DESIGNS:
-        raise ConfigError(f"experiment {exp.get('name')!r}: unknown design {design!r}; valid: {', '.join(DESIGNS)}")
+    try:
+        play = DESIGNS.find(design)
+    except ConfigError as exc:
+        raise ConfigError(f"experiment {exp.get('name')!r}: {exc}") from None
     builder = _Builder(cfg, list(argv or []))
-    getattr(builder, design)()
+    play(builder)
     if not builder.series:
         raise ConfigError(f"experiment {exp.get('name')!r} has no series (check scenarios/opponents)")
     return builder.series

@@ -3,11 +3,13 @@ rebuilt only from the rounds' episodes.jsonl (and their ledgers), so the same fi
 
 The main table (also the CSV): rank by overall rating (equal ratings share a rank: 1, 1, 3),
 entrant (its name in league.yaml), team, the entrant's label and id as its episodes recorded them
-(team, model per role and play options: teams/entrant.py), rating ± interval (at the league's confidence), conservative rating (mu − 3σ),
+(team, model per role and play options: teams/entrant.py), the Bradley–Terry rating with its bootstrap interval and the
+pool's maximal lottery (arena_view.py), rating ± interval (at the league's confidence), conservative rating (mu − 3σ),
 episodes; per scenario its rating and the entrant's P, S, W over all its episodes on either side
 (S against each opponent with that opponent's mean score against do_nothing in the league as σ,
 where it has played do_nothing);
-LLM tokens and cost per episode when the ledgers have any. Then a head-to-head matrix per scenario.
+LLM tokens, cost per episode and per win when the ledgers have any. Then a head-to-head matrix per scenario,
+and rating against dollars (leaderboard_cost.png) when a cost is known.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.league import results, splits
+from pillagerbench.league.arena_view import BOOTSTRAP_ROUNDS, COLUMNS, arena_columns, cost_plot
 from pillagerbench.league.ratings import ANCHOR, Rating, ranked, ranks
 from pillagerbench.league.spec import League
 from pillagerbench.league.standings import boards, overall
@@ -28,6 +31,7 @@ from pillagerbench.report.html import page
 from pillagerbench.report.tables import to_markdown
 
 FILES = ("leaderboard.md", "leaderboard.csv", "leaderboard.html")
+COST_PLOT = "leaderboard_cost.png"  # written when an entrant's LLM cost is known
 
 
 def _episodes(runs: results.Runs) -> pd.DataFrame:
@@ -82,6 +86,8 @@ def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
     df, spend = _episodes(runs), results.ledger(runs)
     z_conf = league.confidence
     rows, place = [], ranks(total)
+    chosen = set(league.scenarios)
+    arena = arena_columns([o for o in outs if o.scenario in chosen], [e.name for e in league.entrants], spend)
     for name in ranked(total):
         entrant = league.entrant(name)
         r: Rating = total[name]
@@ -90,6 +96,7 @@ def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
             "entrant": name,
             "team": entrant.team if entrant else "",
             **_recorded(df, name),
+            **{k: arena[name][k] for k in COLUMNS[:5]},  # Bradley-Terry and the pool's view (arena_view.py)
             "rating": r.mu,
             "rating_ci": r.interval(z_conf),
             "conservative": r.conservative,
@@ -113,6 +120,7 @@ def leaderboard(league: League, runs: results.Runs) -> pd.DataFrame:
         row["LLM tokens/episode"] = calls["tokens"].sum() / r.episodes if known else math.nan
         priced = known and not calls["cost"].isna().any()  # a call without a price: the cost is unknown, not 0
         row["LLM cost/episode"] = calls["cost"].astype(float).sum() / r.episodes if priced else math.nan
+        row["LLM cost/win"] = arena[name]["LLM cost/win"]
         rows.append(row)
     return pd.DataFrame(rows)
 
@@ -138,8 +146,11 @@ def write_board(league_dir: Path, league: League) -> list[Path]:
     main = leaderboard(league, runs).assign(split=league.split)  # the layouts its ratings are from
     h2h = {sc: head_to_head(league, runs, sc) for sc in league.scenarios}
     notes = [
-        f"{len(runs.episodes)} episodes in {len(runs.runs)} rounds; rating ± its {league.confidence:.0%} interval "
-        f"(openskill Plackett–Luce, do_nothing = 0); conservative = mu − 3σ",
+        f"{len(runs.episodes)} episodes in {len(runs.runs)} rounds; BT rating: Bradley–Terry on the Elo scale with its "
+        f"bootstrap 95 % interval ({BOOTSTRAP_ROUNDS} resamples of the episodes); lottery share and Nash margin: the "
+        "pool's maximal lottery and each entrant's expected margin against it (0 for those it holds); rating ± its "
+        f"{league.confidence:.0%} interval (openskill Plackett–Luce, the order and the scheduler's), both with "
+        "do_nothing = 0; conservative = mu − 3σ",
         f"{len(runs.skipped)} items skipped (unfinished or failed episodes)",
         *on,
         *mixed_notes(runs),
@@ -154,9 +165,14 @@ def write_board(league_dir: Path, league: League) -> list[Path]:
     md = [f"# League {out.name}", "", *(f"- {n}" for n in notes), "", f"## Leaderboard{mixed}", "", to_markdown(main)]
     for sc, t in h2h.items():
         md += ["", f"## Head to head, {sc} (row's win rate against column, episodes){mixed}", "", to_markdown(t)]
+    plot = cost_plot(main, out / COST_PLOT)
+    if plot is not None:
+        md += ["", f"## Rating against dollars{mixed}", "", f"![BT rating against LLM cost per episode]({COST_PLOT})"]
     (out / "leaderboard.md").write_text("\n".join(md) + "\n")
     sections = [(f"Leaderboard{mixed}", "table", main)] + [
         (f"Head to head, {sc} (row's win rate against column, episodes){mixed}", "table", t) for sc, t in h2h.items()
     ]
+    if plot is not None:
+        sections.append((f"Rating against dollars{mixed}", "image", plot))
     (out / "leaderboard.html").write_text(page(f"League {out.name}", runs.runs, notes, sections, runs_label="Rounds"))
     return [out / f for f in FILES]

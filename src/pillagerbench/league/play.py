@@ -73,8 +73,8 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) 
         episodes = league.episodes_per_match
         if league.budget.get("episodes") is not None:
             left = int(league.budget["episodes"] or 0) - spent.episodes
-            pairings = pairings[: max(1, left // episodes)]
-            episodes = min(episodes, left)
+            pairings = pairings[: max(1, left // (2 * episodes))]  # a match is played with its side-swapped twin
+            episodes = min(episodes, max(1, left // 2))
         run_dir, _ = write_round(league_dir, league, pairings, episodes, game, runner)
         if not _play_round(run_dir, runner):
             print(f"a series of {run_dir.name} failed; see its series_error.txt, then play again to finish it")

@@ -67,27 +67,28 @@ def write_round(
     index = len(round_dirs(league_dir))
     run_dir = Path(league_dir) / MATCHES / f"round_{index:03d}"
     specs = []
-    for i, p in enumerate(pairings):
-        red, blue = league.entrant(p.red), league.entrant(p.blue)
-        assert red is not None and blue is not None
-        cfg = match_config(p.scenario, red, blue, game)
-        cfg.split = match_split(league.split)  # test: every episode on a fresh test layout
-        cfg.episodes, cfg.seed = episodes, index * 1000 + i
-        specs.append(
-            SeriesSpec(
-                id=f"{i:03d}_{p.scenario}_{slug(p.red)}_vs_{slug(p.blue)}",
-                index=i,
-                design="league",
-                scenario=p.scenario,
-                red=p.red,
-                blue=p.blue,
-                red_team=red.team,
-                blue_team=blue.team,
-                episodes=episodes,
-                seed=int(cfg.seed),
-                config=to_dict(cfg),
+    for i, p in enumerate(pairings):  # each match with its side-swapped twin, on the same seed (and layouts)
+        for k, (red_name, blue_name) in enumerate(((p.red, p.blue), (p.blue, p.red))):
+            red, blue = league.entrant(red_name), league.entrant(blue_name)
+            assert red is not None and blue is not None
+            cfg = match_config(p.scenario, red, blue, game)
+            cfg.split = match_split(league.split)  # test: every episode on a fresh test layout
+            cfg.episodes, cfg.seed = episodes, index * 1000 + i
+            specs.append(
+                SeriesSpec(
+                    id=f"{2 * i + k:03d}_{p.scenario}_{slug(red_name)}_vs_{slug(blue_name)}",
+                    index=2 * i + k,
+                    design="league",
+                    scenario=p.scenario,
+                    red=red_name,
+                    blue=blue_name,
+                    red_team=red.team,
+                    blue_team=blue.team,
+                    episodes=episodes,
+                    seed=int(cfg.seed),
+                    config=to_dict(cfg),
+                )
             )
-        )
     involved = {n for p in pairings for n in (p.red, p.blue)}
     stamp = {"game": list(game), "entrants": {n: e.fingerprint() for n in sorted(involved) if (e := league.entrant(n))}}
     run_dir.mkdir(parents=True, exist_ok=True)

@@ -24,9 +24,7 @@ def check_split(value: Any, where: str) -> str:
     if value is None:
         return PAPER
     if value not in SPLITS:
-        raise ConfigError(
-            f"{where}: split={value!r} is not a split; valid: {', '.join(SPLITS)} (the layouts a league rates on)"
-        )
+        raise ConfigError(f"{where}: {SPLITS.unknown(value)} (the layouts a league rates on)")
     return str(value)
 
 

@@ -13,14 +13,16 @@ from typing import Any, Protocol
 
 from omegaconf import OmegaConf
 
+from pillagerbench.registry import Registry
+
 from .client import LLMClient
 
 PRESET_DIR = Path(__file__).resolve().parent.parent / "conf" / "llm"
 
 
-def preset_names() -> list[str]:
-    """The names `llm=NAME` accepts (`base` holds the shared defaults and is not one)."""
-    return sorted(p.stem for p in PRESET_DIR.glob("*.yaml") if p.stem != "base")
+def presets() -> Registry[Path]:
+    """The presets `llm=NAME` accepts, each with its file (`base` holds the shared defaults and is not one)."""
+    return Registry("llm preset", {p.stem: p for p in sorted(PRESET_DIR.glob("*.yaml")) if p.stem != "base"})
 
 
 def side_llm_config(cfg: Any, side: str) -> Any:

@@ -21,7 +21,7 @@ from typing import Any
 from pillagerbench import upstream
 from pillagerbench.control import Server
 from pillagerbench.match.game import play_game
-from pillagerbench.match.parts import Game, LagMeter, LiveView, Part, Progress, Replay, WorldLog
+from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay
 from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.players import Player
@@ -51,8 +51,7 @@ class Match:
         conditions: dict[str, Any] | None = None,
         entrants: dict[str, dict] | None = None,
     ):
-        if scoring not in SCORINGS:
-            raise ValueError(f"scoring={scoring!r}: valid: {', '.join(SCORINGS)}")
+        SCORINGS.find(scoring)
         self.scoring, self.protocol = scoring, protocol
         # seconds of waiting before and after every run (None: upstream's with protocol=upstream, else 0)
         self.step_wait_s = upstream.step_wait_s(protocol) if step_wait_s is None else step_wait_s
@@ -114,11 +113,10 @@ class Match:
 
     def _parts(self) -> tuple[Replay, list[Part]]:
         """The parts that follow a game, in the order their hooks run."""
-        replay = Replay()
-        parts: list[Part] = [WorldLog(), LagMeter(), replay, LiveView()]
+        parts: list[Part] = [cls() for cls in PARTS.values()]
         if self.on_tick is not None:
             parts.append(Progress(self.on_tick))
-        return replay, parts
+        return next(p for p in parts if isinstance(p, Replay)), parts
 
     async def play_episode(self, episode: int) -> EpisodeRecord:
         seed = self.seed * 1000 + episode

@@ -17,6 +17,7 @@ from typing import Any
 from pillagerbench.control import Server
 from pillagerbench.machine import lag_verdict
 from pillagerbench.players import Player
+from pillagerbench.registry import Registry
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.rundir import EpisodeRecord
 from pillagerbench.scenarios import Scenario
@@ -214,3 +215,10 @@ class Progress(Part):
 
     async def whistle(self, game: Game, final: dict[str, float]) -> None:
         self.on_tick({"episode": game.rec.episode, "t": game.length, "length": game.length, **final})
+
+
+# the parts that follow every game, in the order their hooks run (a game shown on a terminal adds
+# Progress after them: it needs the display's callback)
+PARTS: Registry[type[Part]] = Registry(
+    "match part", {"world_log": WorldLog, "lag_meter": LagMeter, "replay": Replay, "live_view": LiveView}
+)

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.registry import Registry
 from pillagerbench.upstream import UPSTREAM_WAIT_S
 
 
@@ -63,4 +64,7 @@ class UpstreamScoring:
         (out / self.file).write_text(json.dumps(self.timeline))
 
 
-SCORINGS = ("clean", "upstream")  # config `scoring`; every episode records the clean score as well
+# config `scoring`: every episode records the clean score as well
+SCORINGS: Registry[type[CleanScoring] | type[UpstreamScoring]] = Registry(
+    "scoring", {s.name: s for s in (CleanScoring, UpstreamScoring)}
+)

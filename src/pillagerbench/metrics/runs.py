@@ -47,6 +47,7 @@ from pillagerbench.rundir import (
     spoiled,
 )
 from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
+from pillagerbench.suite import one_version
 
 # the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
 # and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
@@ -307,11 +308,13 @@ def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
     """The stamps of the episodes (suite version and the rules differing from its defaults,
     conditions.py), in order; more than one is refused unless `mix_suites`. A version is its hash: the
     same files named before and after their hash was recorded (`suite 1.0+dev@H`, `suite 1.0@H`) are
-    one version, written with both names."""
+    one version, written with both names; so are a version's earlier hashes (re-recorded after a change
+    that moved no score: suite.same_version)."""
     names: dict[str, list[str]] = {}
     where: dict[str, list[str]] = {}
     for r in rows:
-        key = r["stamp"].rpartition("@")[2]  # the hash and the conditions
+        digest, _, conditions = r["stamp"].rpartition("@")[2].partition(" ")
+        key = f"{one_version(digest)} {conditions}"  # the version (its hash, earlier ones too) and the conditions
         for seen, item in ((names, r["stamp"]), (where, r["run"])):
             if item not in seen.setdefault(key, []):
                 seen[key].append(item)

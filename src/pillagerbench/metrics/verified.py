@@ -21,7 +21,7 @@ from pillagerbench.metrics.faults import tally
 from pillagerbench.metrics.runs import ReportError, Runs, read_runs
 from pillagerbench.rundir import RunDir, winner_of
 from pillagerbench.rundir.bundle import checksum_problems, is_bundle, unpack
-from pillagerbench.suite import UNVERSIONED, current, label, recorded
+from pillagerbench.suite import UNVERSIONED, current, label, recorded, same_version
 
 SIDES = ("red", "blue")
 
@@ -131,7 +131,8 @@ def _few(items: list[str]) -> str:
 
 def suite_lines(suites: list[str]) -> list[str]:
     """One line per suite version of the episodes: released or not, this installation's or not."""
-    released = {label(n, h): n for n, h in recorded().items()}
+    names = {h: n for n, h in recorded().items()}
+    released = {label(names[now], h): names[now] for h, now in same_version().items()}  # earlier hashes too
     mine = current()["label"]
     what = {UNVERSIONED: "played before suite versions"} | dict.fromkeys(released, "a released version")
     return [

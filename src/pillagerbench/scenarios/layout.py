@@ -22,11 +22,19 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from pillagerbench.config import ConfigError
+from pillagerbench.registry import Registry
 
 PAPER = "paper"
 DEV_SEEDS = range(1_000_000)  # for tuning, reporting and debugging: documented, public
 TEST_SEEDS = range(1_000_000, 2**53)  # drawn fresh per episode; 2**53: exact in JSON and JavaScript
-SPLITS = ("paper", "dev", "test")
+SPLITS: Registry[str] = Registry(  # the splits a run or league draws its layouts from, and what each is
+    "split",
+    {
+        "paper": "the paper's map",
+        "dev": "a dev seed drawn from the episode's seed (the same every time)",
+        "test": "a fresh seed from the operating system",
+    },
+)
 
 LayoutKey = str | int  # "paper", a seed, or a layout file's path
 
@@ -69,7 +77,7 @@ def split_of(key: LayoutKey) -> str:
 def parse_split(value: Any) -> str | None:
     if value is None or value in SPLITS:
         return value
-    raise LayoutError(f"split={value!r}: unknown split; valid: {', '.join(SPLITS)} (or null: the layout= value)")
+    raise LayoutError(f"{SPLITS.unknown(value)} (or null: the layout= value)")
 
 
 def episode_layout(layout: LayoutKey, split: str | None, seed: int) -> LayoutKey:

@@ -16,17 +16,17 @@ from typing import Any
 from omegaconf import OmegaConf
 
 from pillagerbench.config import ConfigError
+from pillagerbench.registry import Registry
 from pillagerbench.teams.base import Team
 from pillagerbench.teams.options import defaults, options_model
 
 ENTRY_POINT_GROUP = "pillagerbench.teams"
-TEAMS: dict[str, type[Team]] = {}
+TEAMS: Registry[type[Team]] = Registry("team", hint="(or an import path package.module:Class)")
 
 
 def register(cls: type[Team]) -> type[Team]:
     """Add a team class under its `name` (a decorator)."""
-    TEAMS[cls.name] = cls
-    return cls
+    return TEAMS.register(cls.name, cls)
 
 
 @dataclass
@@ -99,14 +99,9 @@ def find_team(name: str) -> type[Team]:
     eps = _entry_points()
     if name in eps:
         return _from_entry_point(name, eps[name])
-    if name in TEAMS:
-        return TEAMS[name]
-    if ":" in name:
+    if ":" in name and name not in TEAMS:
         return _from_import_path(name)
-    raise ConfigError(
-        f"unknown team {name!r}; valid teams: {', '.join(sorted({*TEAMS, *eps}))}, or an import "
-        "path package.module:Class"
-    )
+    return TEAMS.find(name, also=sorted(eps))
 
 
 def available() -> list[TeamEntry]:
