@@ -6,7 +6,7 @@
     result.value      # what `parse` returned, or None
     result.record     # every attempt (answer or error, latency, tokens, problem) for the artefacts
 
-`RoleLLM` wraps one team's LLMClient. A role's overrides (`model`, `temperature`, `max_tokens`)
+`Chat` is what `ask` calls: an LLMClient, or a `RoleLLM`, which wraps one team's LLMClient. A role's overrides (`model`, `temperature`, `max_tokens`)
 replace the team's `llm` settings for that role only; anything not overridden is the team's.
 A role with its own model gets a client that shares the team's connection, ledger, cache and
 budget (so budgets and the ledger stay per team), with the model swapped in.
@@ -26,35 +26,50 @@ import dataclasses
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Generic, Protocol, TypeVar
 
-from pillagerbench.llm import BudgetExceeded, LLMClient, LLMError
+from pillagerbench.llm import BudgetExceeded, LLMClient, LLMError, LLMResponse
+from pillagerbench.llm.client import Messages
 
 ROLE_KEYS = ("model", "temperature", "max_tokens")
+
+T = TypeVar("T")
+
+
+class Chat(Protocol):
+    """What `ask` calls for an answer: an LLMClient, or a RoleLLM (per-role settings over one)."""
+
+    async def complete(self, messages: Messages, *, role: str) -> LLMResponse: ...
+
+
+def role_settings(roles: Mapping[str, Mapping[str, Any] | None] | None) -> dict[str, dict[str, Any]]:
+    """Each role's overrides without the unset ones; ValueError for a setting not in ROLE_KEYS."""
+    out: dict[str, dict[str, Any]] = {}
+    for role, over in (roles or {}).items():
+        over = dict(over or {})
+        unknown = sorted(set(over) - set(ROLE_KEYS))
+        if unknown:
+            raise ValueError(f"role {role!r}: unknown setting(s) {unknown}; valid: {list(ROLE_KEYS)}")
+        out[role] = {k: v for k, v in over.items() if v is not None}
+    return out
 
 
 class RoleLLM:
     """One team's LLM client with per-role overrides of model, temperature and max_tokens."""
 
-    def __init__(self, client: Any, roles: Mapping[str, Mapping[str, Any]] | None = None):
+    def __init__(self, client: LLMClient, roles: Mapping[str, Mapping[str, Any] | None] | None = None):
         self.client = client
-        self.roles: dict[str, dict[str, Any]] = {}
-        for role, over in (roles or {}).items():
-            over = dict(over or {})
-            unknown = sorted(set(over) - set(ROLE_KEYS))
-            if unknown:
-                raise ValueError(f"role {role!r}: unknown setting(s) {unknown}; valid: {list(ROLE_KEYS)}")
-            self.roles[role] = {k: v for k, v in over.items() if v is not None}
-        self._clients: dict[str, Any] = {}
+        self.roles = role_settings(roles)
+        self._clients: dict[str, LLMClient] = {}
 
-    def client_for(self, role: str) -> Any:
+    def client_for(self, role: str) -> LLMClient:
         model = self.roles.get(role, {}).get("model")
-        if model is None or not isinstance(self.client, LLMClient) or model == self.client.settings.model:
+        if model is None or model == self.client.settings.model:
             return self.client
         if model not in self._clients:
             base = self.client
             self._clients[model] = LLMClient(
-                dataclasses.replace(base.settings, model=model),
+                dataclasses.replace(base.settings, model=str(model)),
                 team=base.team,
                 ledger=base.ledger,
                 cache=base.cache,
@@ -65,16 +80,12 @@ class RoleLLM:
 
     def settings_for(self, role: str) -> dict[str, Any]:
         """The effective model/temperature/max_tokens of a role (for the record)."""
-        s = getattr(self.client, "settings", None)
-        out = {
-            "model": getattr(s, "model", None),
-            "temperature": getattr(s, "temperature", None),
-            "max_tokens": getattr(s, "max_tokens", None),
-        }
+        s = self.client.settings
+        out: dict[str, Any] = {"model": s.model, "temperature": s.temperature, "max_tokens": s.max_tokens}
         out.update(self.roles.get(role, {}))
         return out
 
-    async def complete(self, messages: Any, *, role: str, **kw: Any) -> Any:
+    async def complete(self, messages: Messages, *, role: str, **kw: float | int | str | None) -> LLMResponse:
         over = self.roles.get(role, {})
         for key in ("temperature", "max_tokens"):
             if key in over and key not in kw:
@@ -83,10 +94,10 @@ class RoleLLM:
 
 
 @dataclass
-class Asked:
+class Asked(Generic[T]):
     """The outcome of `ask`: the parsed value (or None) and what happened on the way."""
 
-    value: Any = None
+    value: T | None = None
     attempts: list[dict] = field(default_factory=list)
     messages: list[dict] = field(default_factory=list)
     error: str | None = None  # why there is no value (last problem or the LLM error)
@@ -104,17 +115,17 @@ class Asked:
 
 
 async def ask(
-    llm: Any,
+    llm: Chat | None,
     messages: list[dict],
     *,
     role: str,
-    parse: Callable[[Any], Any],
+    parse: Callable[[LLMResponse], T],
     attempts: int = 3,
     retry: Callable[[str], str] | None = None,
     deadline: float | None = None,
-) -> Asked:
+) -> Asked[T]:
     """Call until `parse(answer)` returns a value (it raises ValueError with the problem otherwise)."""
-    out = Asked(messages=list(messages))
+    out: Asked[T] = Asked(messages=list(messages))
     if llm is None:
         out.error, out.llm_failed = "no LLM client", True
         return out

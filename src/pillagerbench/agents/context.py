@@ -20,6 +20,7 @@ from typing import Any
 
 from pillagerbench.players import events as ev
 from pillagerbench.players.events import last_observation as last_observation  # re-exported for agents
+from pillagerbench.players.observation import Observation
 
 NONE = "none"
 
@@ -28,7 +29,7 @@ def _fmt(v: float) -> str:
     return f"{v:.1f}".rstrip("0").rstrip(".") if isinstance(v, float) else str(v)
 
 
-def nearby_blocks(obs: Mapping[str, Any], *, records: bool = False) -> str:
+def nearby_blocks(obs: Observation, *, records: bool = False) -> str:
     """Block names around the player (voxels; with `records`, also every block seen this run)."""
     names = set(obs.get("voxels") or [])
     if records:
@@ -36,7 +37,7 @@ def nearby_blocks(obs: Mapping[str, Any], *, records: bool = False) -> str:
     return ", ".join(sorted(names)) or NONE
 
 
-def nearby_entities(obs: Mapping[str, Any]) -> str:
+def nearby_entities(obs: Observation) -> str:
     """Mobs within 32 blocks, nearest first: "cow (3.2 blocks away), chicken (5 blocks away)"."""
     ents = (obs.get("status") or {}).get("entities") or {}
     return (
@@ -45,17 +46,17 @@ def nearby_entities(obs: Mapping[str, Any]) -> str:
     )
 
 
-def inventory_text(obs: Mapping[str, Any]) -> str:
+def inventory_text(obs: Observation) -> str:
     inv = obs.get("inventory") or {}
     return ", ".join(f"{name}: {count}" for name, count in sorted(inv.items())) or "empty"
 
 
-def position_text(obs: Mapping[str, Any]) -> str:
+def position_text(obs: Observation) -> str:
     p = (obs.get("status") or {}).get("position")
     return f"x={_fmt(float(p['x']))}, y={_fmt(float(p['y']))}, z={_fmt(float(p['z']))}" if p else "unknown"
 
 
-def status_text(obs: Mapping[str, Any]) -> str:
+def status_text(obs: Observation) -> str:
     """Position, health, hunger, equipment and time of day, one per line."""
     s = obs.get("status") or {}
     lines = [f"Position: {position_text(obs)}"]
@@ -73,7 +74,7 @@ def status_text(obs: Mapping[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def chests_text(obs: Mapping[str, Any]) -> str:
+def chests_text(obs: Observation) -> str:
     """Chests seen nearby and what is known of their contents."""
     chests = obs.get("nearbyChests") or {}
     out = []
@@ -86,7 +87,7 @@ def chests_text(obs: Mapping[str, Any]) -> str:
     return "\n".join(out) or NONE
 
 
-def observation_text(obs: Mapping[str, Any]) -> str:
+def observation_text(obs: Observation) -> str:
     """Everything above in one block (for a prompt about a single player)."""
     return "\n".join(
         [

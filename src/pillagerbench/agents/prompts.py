@@ -13,9 +13,9 @@ Values are inserted as they are (a value containing `$` is not expanded again).
 from __future__ import annotations
 
 import string
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 
 class PromptError(ValueError):
@@ -46,8 +46,8 @@ class PromptTemplate:
                 names.add(name)
         return frozenset(names)
 
-    def render(self, values: dict[str, Any] | None = None, /, **kw: Any) -> str:
-        values = {**(values or {}), **kw}
+    def render(self, given: Mapping[str, object] | None = None, /, **kw: object) -> str:
+        values = {**(given or {}), **kw}
         needed = self.placeholders
         missing = sorted(needed - values.keys())
         extra = sorted(values.keys() - needed)
@@ -61,7 +61,7 @@ class PromptTemplate:
         return string.Template(self.text).substitute({k: _text(v) for k, v in values.items()})
 
 
-def _text(value: Any) -> str:
+def _text(value: object) -> str:
     return value if isinstance(value, str) else str(value)
 
 

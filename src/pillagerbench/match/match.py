@@ -20,6 +20,7 @@ from typing import Any
 
 from pillagerbench import upstream
 from pillagerbench.control import Server
+from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay
 from pillagerbench.match.player import RecordedPlayer
@@ -43,7 +44,7 @@ class Match:
         episode_length: float = 120.0,
         seed: int = 0,
         on_tick: Callable[[dict], None] | None = None,
-        llms: dict[str, Any] | None = None,
+        llms: dict[str, LLMClient] | None = None,
         scoring: str = "clean",
         protocol: str = "pillagerbench",
         step_wait_s: float | None = None,

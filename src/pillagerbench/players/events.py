@@ -9,6 +9,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
+from .observation import Observation, observation
+
 EVENT_TYPES = ("onChat", "onError", "onSave", "observe")
 STATE_KEYS = ("voxels", "status", "inventory", "nearbyChests", "blockRecords")
 _CHAT_LINE = re.compile(r"^<([^>]+)> (.*)$", re.S)
@@ -46,12 +48,12 @@ def saves(events: Iterable[list]) -> list[str]:
     return messages(events, "onSave")
 
 
-def last_observation(events: list) -> dict:
+def last_observation(events: list) -> Observation:
     """The data of the final observe event (or of the last event with state)."""
     for e in reversed(events):
         if e and e[0] == "observe":
-            return e[1]
-    return events[-1][1] if events else {}
+            return observation(e[1])
+    return observation(events[-1][1]) if events else {}
 
 
 def without_state(events: Iterable[list]) -> list[list]:

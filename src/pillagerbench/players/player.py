@@ -8,7 +8,8 @@
         assert events[-1][0] == "observe"
         await player.close()
 
-The bot process speaks JSON lines over stdio (see js/bot/main.js). It writes a heartbeat every
+The bot process speaks JSON lines over stdio (see js/bot/main.js; channel.py holds the process and
+its requests, placement.py sets and restores inventory and position). It writes a heartbeat every
 200 ms; when it stays silent for `watchdog_s` (agent code blocking its event loop), or dies, the
 handle kills its process group, logs in again with the same name, restores inventory and position
 through the control channel (when `server` is given) and ends the pending run with an onError event.
@@ -17,46 +18,21 @@ through the control channel (when `server` is given) and ends the pending run wi
 from __future__ import annotations
 
 import asyncio
-import collections
-import itertools
-import json
-import os
-import signal
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
 
 from pillagerbench.control import Control
-from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
 
-BOT_MAIN = JS_DIR / "bot" / "main.js"
-HEAP_LIMIT_MB = 256
+from . import placement
+from .channel import BotChannel, PlayerError
+from .observation import Observation, observation
+
+__all__ = ["Player", "PlayerError"]
 
 # One login at a time per server (flying-squid handles concurrent logins badly), with a short gap.
 _login_locks: dict[tuple[str, int], asyncio.Lock] = {}
 LOGIN_GAP_S = 0.05
-
-
-class PlayerError(RuntimeError):
-    """The bot process could not start, log in, or answer."""
-
-
-def bot_command(settings: dict[str, Any]) -> list[str]:
-    """The node command line of a bot process, under Node's permission model."""
-    modules = ensure_node_modules(quiet=True)
-    profile = profile_args()  # Node writes no profile under its permission model: measuring only
-    permission = [] if profile else ["--permission", f"--allow-fs-read={modules}", f"--allow-fs-read={JS_DIR / 'bot'}"]
-    return [
-        str(node_binary()),
-        *permission,
-        f"--max-old-space-size={HEAP_LIMIT_MB}",
-        "--stack-size=2000",
-        "--max-semi-space-size=4",  # a small young generation: ~25 MB less RSS per bot
-        *profile,
-        str(BOT_MAIN),
-        json.dumps(settings),
-    ]
 
 
 class _RunState:
@@ -97,25 +73,25 @@ class Player:
         self.watchdog_s = watchdog_s
         self.login_timeout = login_timeout
         self.restarts = 0
-        self.proc: asyncio.subprocess.Process | None = None
-        self._ids = itertools.count(1)
-        self._pending: dict[int, asyncio.Future] = {}
+        self.channel = BotChannel(name, self.log_dir)
         self._run: _RunState | None = None
         self._run_lock = asyncio.Lock()
         self._recover_lock = asyncio.Lock()
-        self._last_line = 0.0
         self._spawned: asyncio.Future | None = None
         self._tasks: list[asyncio.Task] = []
         self._recoveries: set[asyncio.Task] = set()  # held so a running recovery is not garbage-collected
-        self._stderr_tail: collections.deque[str] = collections.deque(maxlen=40)
         self._fatal: str | None = None
-        self._expect_exit = False
         self._closed = False
         self._generation = 0
         self.position: list[float | None] | None = None
-        self._last_obs: dict = {}
+        self._last_obs: Observation = {}  # the last seen: a restart restores from it when the server cannot say
 
     # ---- process ----------------------------------------------------------------------------
+    @property
+    def proc(self) -> asyncio.subprocess.Process | None:
+        """The bot process (the current one: a restart starts a new one)."""
+        return self.channel.proc
+
     @property
     def alive(self) -> bool:
         return (
@@ -146,77 +122,33 @@ class Player:
         self._generation += 1
         self._spawned = loop.create_future()
         self._fatal = None
-        self._expect_exit = False
-        self.proc = await asyncio.create_subprocess_exec(
-            *bot_command(settings),
-            stdin=asyncio.subprocess.PIPE,
-            stdout=asyncio.subprocess.PIPE,
-            stderr=asyncio.subprocess.PIPE,
-            env=node_env(),
-            start_new_session=True,
-            limit=2**26,
-        )
-        self._last_line = time.monotonic()
+        proc = await self.channel.spawn(settings)
         gen = self._generation
         self._tasks = [t for t in self._tasks if not t.done()]
-        self._tasks.append(asyncio.create_task(self._read_stdout(self.proc, gen)))
-        self._tasks.append(asyncio.create_task(self._read_stderr(self.proc)))
+        self._tasks.append(asyncio.create_task(self._read_stdout(proc, gen)))
+        self._tasks.append(asyncio.create_task(self.channel.read_stderr(proc)))
         if not any(t.get_name() == f"watchdog-{self.name}" and not t.done() for t in self._tasks):
             self._tasks.append(asyncio.create_task(self._watchdog(), name=f"watchdog-{self.name}"))
         try:
             await asyncio.wait_for(asyncio.shield(self._spawned), self.login_timeout)
         except asyncio.TimeoutError:
-            await self._kill()
+            await self.channel.kill()
             raise PlayerError(
                 f"{self.name}: bot did not spawn within {self.login_timeout} s\n{self.stderr_tail()}"
             ) from None
         except PlayerError:
-            await self._kill()
+            await self.channel.kill()
             raise
 
     def stderr_tail(self) -> str:
-        return "\n".join(self._stderr_tail)
-
-    def _log_file(self):
-        if not self.log_dir:
-            return None
-        self.log_dir.mkdir(parents=True, exist_ok=True)
-        return open(self.log_dir / f"{self.name}.log", "a", encoding="utf-8")
-
-    async def _read_stderr(self, proc: asyncio.subprocess.Process) -> None:
-        log = self._log_file()
-        assert proc.stderr is not None  # started with stderr=PIPE
-        try:
-            while line := await proc.stderr.readline():
-                text = line.decode(errors="replace").rstrip()
-                self._stderr_tail.append(text)
-                if log:
-                    log.write(text + "\n")
-                    log.flush()
-        finally:
-            if log:
-                log.close()
+        return self.channel.stderr_tail()
 
     async def _read_stdout(self, proc: asyncio.subprocess.Process, gen: int) -> None:
-        assert proc.stdout is not None  # started with stdout=PIPE
         try:
-            while True:
-                try:
-                    line = await proc.stdout.readline()
-                except ValueError:  # a line over the limit: skip it
-                    continue
-                if not line:
-                    break
-                self._last_line = time.monotonic()
-                try:
-                    msg = json.loads(line)
-                except json.JSONDecodeError:
-                    continue
-                self._dispatch(msg)
+            await self.channel.read_stdout(proc, self._dispatch)
         finally:
-            await proc.wait()
-            if gen == self._generation and not self._expect_exit and not self._closed:
-                reason = self._fatal or self._exit_reason(proc.returncode)
+            if gen == self._generation and not self.channel.expect_exit and not self._closed:
+                reason = self._fatal or self.channel.exit_reason(proc.returncode)
                 if self._spawned and not self._spawned.done():
                     self._spawned.set_exception(
                         PlayerError(f"{self.name}: bot process ended before spawning: {reason}")
@@ -226,21 +158,13 @@ class Player:
                     self._recoveries.add(task)
                     task.add_done_callback(self._recoveries.discard)
 
-    def _exit_reason(self, code: int | None) -> str:
-        tail = self.stderr_tail()
-        if "heap out of memory" in tail or "Reached heap limit" in tail:
-            return f"Error: the bot process ran out of memory (heap limit {HEAP_LIMIT_MB} MB) and was restarted"
-        if "ERR_ACCESS_DENIED" in tail:
-            return "Error: the bot process was denied a resource by the permission model and ended; it was restarted"
-        return f"Error: the bot process ended (exit code {code}) and was restarted"
-
     def _dispatch(self, msg: dict) -> None:
         if "hb" in msg:
             return
         if "ev" in msg:
             run = self._run
             if isinstance(msg["ev"], list) and len(msg["ev"]) == 2 and isinstance(msg["ev"][1], dict):
-                self._last_obs = msg["ev"][1]
+                self._last_obs = observation(msg["ev"][1])  # an event's data is an observation and its own key
             if run is not None and msg.get("run") == run.rid:
                 run.add(msg["ev"])
             return
@@ -253,55 +177,21 @@ class Player:
         if "fatal" in msg:
             self._fatal = f"Error: the bot lost its connection ({msg['fatal']}) and was restarted"
             return
-        rid: Any = msg.get("id")
         run = self._run
-        if run is not None and rid == run.rid:
+        if run is not None and msg.get("id") == run.rid:
             if not run.done.done():
                 run.done.set_result(msg)
             return
-        fut = self._pending.pop(rid, None)
-        result = msg.get("result")
-        if isinstance(result, dict) and "status" in result and "inventory" in result:
-            self._last_obs = result
-        if fut is not None and not fut.done():
-            if msg.get("ok"):
-                fut.set_result(msg.get("result"))
-            else:
-                fut.set_exception(PlayerError(f"{self.name}: {msg.get('error')}"))
+        self.channel.answer(msg)
 
-    async def _send(self, msg: dict) -> None:
-        if not self.proc or self.proc.returncode is not None or not self.proc.stdin:
-            raise PlayerError(f"{self.name}: bot process is not running")
-        self.proc.stdin.write((json.dumps(msg) + "\n").encode())
-        try:
-            await self.proc.stdin.drain()
-        except (ConnectionResetError, BrokenPipeError) as exc:
-            raise PlayerError(f"{self.name}: bot process is not running ({exc})") from None
+    async def _request(self, op: str, wait: float = 10.0, **args: object) -> object:
+        """Send request `op` with `args` to the bot; wait up to `wait` seconds for the answer."""
+        return await self.channel.request(op, wait, **args)
 
-    async def _request(self, op: str, wait: float = 10.0, **args: Any) -> Any:
-        """Send request `op` with `args`; wait up to `wait` seconds for the answer."""
-        timeout = wait
-        rid = next(self._ids)
-        fut = asyncio.get_running_loop().create_future()
-        self._pending[rid] = fut
-        try:
-            await self._send({"id": rid, "op": op, **args})
-            return await asyncio.wait_for(fut, timeout)
-        except asyncio.TimeoutError:
-            raise PlayerError(f"{self.name}: no answer to {op!r} within {timeout} s") from None
-        finally:
-            self._pending.pop(rid, None)
-
-    async def _kill(self) -> None:
-        proc = self.proc
-        if proc is None or proc.returncode is not None:
-            return
-        self._expect_exit = True
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        await proc.wait()
+    async def _observe(self) -> Observation:
+        """The bot's observation now (the `observe` request), kept as the last one seen."""
+        self._last_obs = observation(await self._request("observe"))
+        return self._last_obs
 
     # ---- watchdog and recovery -------------------------------------------------------------
     async def _watchdog(self) -> None:
@@ -309,9 +199,9 @@ class Player:
             await asyncio.sleep(0.1)
             if not self.alive or self._recover_lock.locked():
                 continue
-            if time.monotonic() - self._last_line > self.watchdog_s:
+            if time.monotonic() - self.channel.last_line > self.watchdog_s:
                 await asyncio.sleep(0.1)  # if our own loop was late, let pending reads land first
-                if time.monotonic() - self._last_line > self.watchdog_s and self.alive:
+                if time.monotonic() - self.channel.last_line > self.watchdog_s and self.alive:
                     await self._recover(
                         f"Error: the code blocked the bot for more than {self.watchdog_s:g} s "
                         "(an endless loop?); the bot was restarted",
@@ -323,18 +213,15 @@ class Player:
         async with self._recover_lock:
             if gen != self._generation or self._closed:
                 return
-            snapshot = await self._snapshot()
-            await self._kill()
-            for fut in self._pending.values():
-                if not fut.done():
-                    fut.set_exception(PlayerError(f"{self.name}: {reason}"))
-            self._pending.clear()
+            saved = await placement.snapshot(self.server, self.name, self._last_obs)
+            await self.channel.kill()
+            self.channel.fail_pending(reason)
             self.restarts += 1
-            obs: dict = {}
+            obs: Observation = {}
             try:
                 await self._relogin()
-                await self._restore(snapshot)
-                obs = await self._request("observe")
+                await placement.restore(self.server, self.channel, self.name, saved)
+                obs = await self._observe()
             except Exception as exc:  # noqa: BLE001 - report it in the run's events
                 reason = f"{reason}; restarting failed: {exc}"
             run = self._run
@@ -342,28 +229,6 @@ class Player:
                 run.add(["onError", {**obs, "onError": reason}])
                 run.add(["observe", obs])
                 run.done.set_result({"id": run.rid, "ok": True, "recovered": True})
-
-    async def _snapshot(self) -> dict | None:
-        """Inventory and position to restore: from the server while the player is still connected,
-        else from the last observation seen."""
-        if self.server is None:
-            return None
-        try:
-            players = await asyncio.wait_for(self.server.players(), 2)
-            pos = next((p["pos"] for p in players if p["name"] == self.name), None)
-            if pos is not None:
-                inv = await asyncio.wait_for(self.server.inventory(self.name), 2)
-                items: dict[str, int] = {}
-                for slot in inv:
-                    items[slot["name"]] = items.get(slot["name"], 0) + slot["count"]
-                return {"items": items, "pos": pos}
-        except Exception:  # noqa: BLE001 - fall back to the last observation
-            pass
-        obs = self._last_obs
-        if not obs:
-            return None
-        p = (obs.get("status") or {}).get("position")
-        return {"items": dict(obs.get("inventory") or {}), "pos": [p["x"], p["y"], p["z"]] if p else None}
 
     async def _relogin(self) -> None:
         last: Exception | None = None
@@ -378,25 +243,10 @@ class Player:
                 await asyncio.sleep(0.3 * (attempt + 1))
         raise PlayerError(f"{self.name}: could not log in again: {last}")
 
-    async def _restore(self, snapshot: dict | None) -> None:
-        if not snapshot or self.server is None:
-            return
-        await self.server.set_inventory(self.name, snapshot["items"])
-        if snapshot["pos"]:
-            await self._teleport(snapshot["pos"])
-
     def _control(self) -> Control:
         if self.server is None:
             raise PlayerError(f"{self.name}: this needs `server=` (the arena's control channel)")
         return self.server
-
-    async def _teleport(self, pos: list[float]) -> None:
-        for _attempt in range(3):
-            await self._control().teleport(self.name, pos)
-            settled = await self._request("settle", pos=pos, timeout=3, wait=6)
-            if settled is True:
-                return
-        raise PlayerError(f"{self.name}: teleport to {pos} did not arrive (bot at {settled})")
 
     # ---- the API ------------------------------------------------------------------------------
     async def run(
@@ -410,7 +260,7 @@ class Player:
                     pass
             if not self.alive:
                 raise PlayerError(f"{self.name}: the bot is not running (call start())")
-            rid = next(self._ids)
+            rid = self.channel.next_id()
             state = _RunState(rid, on_event)
             self._run = state
             try:
@@ -418,7 +268,7 @@ class Player:
                 if timeout:
                     msg["timeout"] = timeout
                 try:
-                    await self._send(msg)
+                    await self.channel.send(msg)
                 except PlayerError as exc:
                     state.add(["onError", {"onError": str(exc)}])
                     return state.events
@@ -436,7 +286,7 @@ class Player:
         if run is None or run.done.done():
             return
         try:
-            await self._send({"id": next(self._ids), "op": "stop"})
+            await self.channel.send({"id": self.channel.next_id(), "op": "stop"})
         except PlayerError:
             return
         try:
@@ -445,19 +295,20 @@ class Player:
             await self._recover("Error: the bot did not stop within 2 s and was restarted", self._generation)
 
     async def observe(self) -> list:
-        return [["observe", await self._request("observe")]]
+        return [["observe", await self._observe()]]
 
     async def lag(self, *, reset: bool = False) -> dict:
         """How late this bot's 50 ms physics ticks were since the last `lag(reset=True)`, measured in
         the bot process (js/bot/lag.js): ticks, wall_s, tick_rate, late_mean_ms, late_max_ms, late_pct."""
-        return await self._request("lag", reset=reset)
+        found = await self._request("lag", reset=reset)
+        return found if isinstance(found, dict) else {}
 
     async def reset(
         self,
         *,
         position: Sequence[float] | None = None,
         inventory: dict[str, int] | None = None,
-        equipment: Sequence[str | None] | dict | None = None,
+        equipment: placement.Equipment = None,
     ) -> list:
         """Stop code, then set inventory/equipment/position (through the control channel) and return
         [["observe", {...}]]. Events from before the reset are dropped."""
@@ -471,42 +322,21 @@ class Player:
                     f"{self.name}: reset with inventory/position/equipment needs `server=` (the arena's control channel)"
                 )
             if inventory is not None or equipment is not None:
-                items = dict(inventory or {})
-                for name in _equipment_names(equipment):
-                    if name not in (inventory or {}):  # equipment not listed in the inventory is extra
-                        items[name] = items.get(name, 0) + 1
+                items = placement.reset_items(inventory, equipment)
                 await self._control().set_inventory(self.name, items)
             if position is not None:
-                await self._teleport(_centred(position))
+                await placement.teleport(self._control(), self.channel, self.name, placement.centred(position))
             if equipment is not None:
-                await self._wait_inventory(inventory or {}, equipment)
+                await placement.wait_inventory(self._observe, inventory or {}, equipment)
                 await self._request("equip", equipment=equipment, wait=15)
             await self._request("clear")
             return await self.observe()
-
-    async def _wait_inventory(self, inventory: dict[str, int], equipment) -> None:
-        want = dict(inventory)
-        for name in _equipment_names(equipment):
-            want.setdefault(name, 1)
-        for _ in range(100):
-            inv = (await self._request("observe"))["inventory"]
-            if all(inv.get(k, 0) >= v for k, v in want.items()):
-                return
-            await asyncio.sleep(0.02)
 
     async def close(self) -> None:
         self._closed = True
         if self._run is not None:
             await self.stop()
-        proc = self.proc
-        if proc is not None and proc.returncode is None:
-            self._expect_exit = True
-            try:
-                if proc.stdin is not None:
-                    proc.stdin.close()
-                await asyncio.wait_for(proc.wait(), 2)
-            except (asyncio.TimeoutError, BrokenPipeError, ConnectionResetError):
-                await self._kill()
+        await self.channel.close()
         for t in self._tasks:
             if not t.done():
                 t.cancel()
@@ -518,17 +348,3 @@ class Player:
 
     async def __aexit__(self, *exc) -> None:
         await self.close()
-
-
-def _centred(position: Sequence[float]) -> list[float]:
-    """Whole-number x/z mean the middle of that block (as Minecraft's /tp does)."""
-    x, y, z = (float(v) for v in position)
-    return [x + 0.5 if x.is_integer() else x, y, z + 0.5 if z.is_integer() else z]
-
-
-def _equipment_names(equipment) -> list[str]:
-    if equipment is None:
-        return []
-    if isinstance(equipment, dict):
-        return [v for v in equipment.values() if v]
-    return [v for v in equipment if v]

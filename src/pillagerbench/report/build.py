@@ -117,21 +117,7 @@ def build_report(
     ]
     for s in sections:  # mixed suite versions, a bundle not verified: every table says so (its .md file too)
         s.title += mixed_title(runs)
-    notes = [
-        *mixed_notes(runs),
-        f"{len(df)} episode(s) used (a team row's `episodes`, beside its `planned`), {len(runs.spoiled)} spoiled "
-        f"on our side and in no score (the Failures table lists them), {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
-        "± is the 95 % confidence interval",
-        *notes,
-        *more_notes(runs, sigma, pairs, fidelity_notes),
-        *fault_note(runs.faults),
-        *[
-            f"read from the results bundle {b}{'' if b in runs.unverified else ', its checks passed'}"
-            for b in runs.bundles
-        ],
-        *lag_notes(lag, one_order),
-        *unseen.unseen_notes(main),
-    ]
+    notes = report_notes(runs, main, notes, sigma, pairs, fidelity_notes, lag, one_order)
     files: list[Path] = []
     if with_replays:
         replay_rows, files = replays.write_all(runs.series, out)
@@ -148,6 +134,34 @@ def build_report(
     files.append(page)
     lagged = [(str(r["series"]), int(r["episode"]), str(r["lag_reason"])) for _, r in lag.iterrows()]
     return {"files": files, "notes": notes, "skipped": runs.skipped, "lagged": lagged, "episodes": len(df), "out": out}
+
+
+def report_notes(
+    runs: Runs,
+    main: pd.DataFrame,
+    calibration_notes: list[str],
+    sigma: dict,
+    pairs: pd.DataFrame,
+    fidelity_notes: list[str],
+    lag: pd.DataFrame,
+    one_order: list[str],
+) -> list[str]:
+    """The notes above the report's tables, in their order."""
+    return [
+        *mixed_notes(runs),
+        f"{len(runs.episodes)} episode(s) used (a team row's `episodes`, beside its `planned`), {len(runs.spoiled)} spoiled "
+        f"on our side and in no score (the Failures table lists them), {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
+        "± is the 95 % confidence interval",
+        *calibration_notes,
+        *more_notes(runs, sigma, pairs, fidelity_notes),
+        *fault_note(runs.faults),
+        *[
+            f"read from the results bundle {b}{'' if b in runs.unverified else ', its checks passed'}"
+            for b in runs.bundles
+        ],
+        *lag_notes(lag, one_order),
+        *unseen.unseen_notes(main),
+    ]
 
 
 def scenario_figures(

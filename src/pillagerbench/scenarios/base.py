@@ -6,11 +6,11 @@ from __future__ import annotations
 import random
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field, replace
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Generic
 
 from pillagerbench.control import Control
 from pillagerbench.scenarios.arena import Arena
-from pillagerbench.scenarios.layout import LayoutKey, LayoutRules, split_of
+from pillagerbench.scenarios.layout import LayoutKey, LayoutRules, LayoutT, split_of
 
 
 @dataclass(frozen=True)
@@ -65,7 +65,7 @@ class GameMaster(ABC):
 
 
 @dataclass
-class Scenario(ABC):
+class Scenario(ABC, Generic[LayoutT]):
     """A scenario instance. Subclasses set the class attributes and implement the methods."""
 
     key: ClassVar[str]
@@ -77,13 +77,14 @@ class Scenario(ABC):
     random_tick_speed: ClassVar[int] = 0  # vanilla's gamerule randomTickSpeed in the reference's world
     layouts: ClassVar[LayoutRules]  # the scenario's layouts (docs/layouts.md)
     options: dict[str, Any] = field(default_factory=dict)
-    layout: Any = None  # where everything is (the scenario's layout model); None: the paper's
+    # where everything is (the scenario's layout model); None (the constructor's default): the paper's
+    layout: LayoutT = None  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
         if self.layout is None:
             self.layout = self.layouts.paper
 
-    def with_layout(self, key: LayoutKey) -> Scenario:
+    def with_layout(self, key: LayoutKey) -> Scenario[LayoutT]:
         """The same scenario on another layout ("paper", a seed, or a layout file)."""
         return replace(self, layout=self.layouts.make(key))
 

@@ -107,7 +107,7 @@ def build_arena(layout: L.DashAndDineLayout) -> Arena:
 
 
 @dataclass
-class DashAndDine(Scenario):
+class DashAndDine(Scenario[L.DashAndDineLayout]):
     key = "dash_and_dine"
     title = "Dash and Dine"
     primitives = (
@@ -122,7 +122,7 @@ class DashAndDine(Scenario):
         "useChest",
     )
     random_tick_speed: ClassVar[int] = 200
-    layouts: ClassVar[LayoutRules] = LAYOUTS
+    layouts: ClassVar[LayoutRules[L.DashAndDineLayout]] = LAYOUTS
 
     @property
     def servers(self) -> dict[str, PlayerSpec]:

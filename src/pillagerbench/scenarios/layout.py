@@ -17,9 +17,9 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from random import Random
-from typing import Any
+from typing import Any, Generic, Protocol, Self, TypeVar
 
-from pydantic import BaseModel, ValidationError
+from pydantic import ValidationError
 
 from pillagerbench.config import ConfigError
 from pillagerbench.registry import Registry
@@ -39,11 +39,27 @@ SPLITS: Registry[str] = Registry(  # the splits a run or league draws its layout
 LayoutKey = str | int  # "paper", a seed, or a layout file's path
 
 
+class Layout(Protocol):
+    """What every scenario's layout model (a frozen pydantic model) is, seen from outside its scenario:
+    its `layout=` key, built from a layout file's data, and its data as a layout file holds it."""
+
+    @property
+    def key(self) -> LayoutKey: ...
+
+    @classmethod
+    def model_validate(cls, obj: object) -> Self: ...
+
+    def model_dump(self, *, mode: str = ...) -> dict[str, Any]: ...
+
+
+LayoutT = TypeVar("LayoutT", bound=Layout)
+
+
 class LayoutError(ConfigError):
     """A layout value, a layout file or a generated layout that is not valid; one line."""
 
 
-def parse_layout(value: Any) -> LayoutKey:
+def parse_layout(value: object) -> LayoutKey:
     """`layout=` as given: "paper", a seed (a non-negative integer below 2**53) or an existing .json file."""
     if isinstance(value, bool) or value is None:
         raise LayoutError(f"layout={value!r}: {ACCEPTED}")
@@ -74,8 +90,8 @@ def split_of(key: LayoutKey) -> str:
     return "custom"
 
 
-def parse_split(value: Any) -> str | None:
-    if value is None or value in SPLITS:
+def parse_split(value: object) -> str | None:
+    if value is None or (isinstance(value, str) and value in SPLITS):
         return value
     raise LayoutError(f"{SPLITS.unknown(value)} (or null: the layout= value)")
 
@@ -101,16 +117,16 @@ def read_layout_file(path: str) -> dict[str, Any]:
 
 
 @dataclass(frozen=True)
-class LayoutRules:
+class LayoutRules(Generic[LayoutT]):
     """A scenario's layouts: their model, the paper's, the generator and the validation."""
 
     scenario: str
-    model: type[BaseModel]
-    paper: Any
-    generate: Callable[[int], Any]
-    problems: Callable[[Any], list[str]]
+    model: type[LayoutT]
+    paper: LayoutT
+    generate: Callable[[int], LayoutT]
+    problems: Callable[[LayoutT], list[str]]
 
-    def make(self, key: LayoutKey) -> Any:
+    def make(self, key: LayoutKey) -> LayoutT:
         """The layout of a `layout=` value (parse_layout's): the paper's, a seed's, or a file's (validated)."""
         if key == PAPER:
             return self.paper
@@ -135,7 +151,9 @@ class LayoutRules:
         return layout
 
 
-def search(seed: int, attempt: Callable[[Draw, int], Any], problems: Callable[[Any], list[str]], what: str) -> Any:
+def search(
+    seed: int, attempt: Callable[[Draw, int], LayoutT | None], problems: Callable[[LayoutT], list[str]], what: str
+) -> LayoutT:
     """The first of a seed's attempts that keeps every rule (`attempt` gives None when it gets stuck)."""
     draw = Draw(seed)
     for _ in range(1000):

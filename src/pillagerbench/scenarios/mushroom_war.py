@@ -31,12 +31,12 @@ caps, slime, stems = L.caps, L.slime, L.stems
 
 
 @dataclass
-class MushroomWar(Scenario):
+class MushroomWar(Scenario[L.MushroomWarLayout]):
     key = "mushroom_war"
     title = "Mushroom War"
     primitives = ("mineBlock", "placeItem", "multiAgent", "killMob", "giveToPlayer")
     random_tick_speed: ClassVar[int] = 3
-    layouts: ClassVar[LayoutRules] = LAYOUTS
+    layouts: ClassVar[LayoutRules[L.MushroomWarLayout]] = LAYOUTS
 
     @property
     def sides(self) -> tuple[Side, ...]:

@@ -75,7 +75,7 @@ class Team:
     # or, shorter, for a team of your own: the options with their defaults (their types are the defaults')
     options_declared: ClassVar[dict[str, Any]] = {}
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         self.options = options
         self.iterations: list[int] = []  # code iterations per player per episode (the paper's I)
         self.problems: list[str] = []  # what went wrong this episode (the match records it)

@@ -35,7 +35,7 @@ def _option_type(default: Any) -> Any:
     return type(default)
 
 
-def options_model(cls: Any) -> type[TeamOptions]:
+def options_model(cls: type) -> type[TeamOptions]:
     """The options model of a team class: its `Options`, or one built from `options_declared`."""
     declared = getattr(cls, "options_declared", None) or {}
     model: type[TeamOptions] = getattr(cls, "Options", TeamOptions)

@@ -19,13 +19,14 @@ import random
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import ClassVar
 
 from pydantic import Field
 
 from pillagerbench.node import JS_DIR
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
+from pillagerbench.players.observation import Observation
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
@@ -74,12 +75,12 @@ FUEL = "coal"
 SMELTABLE = frozenset(json.loads((JS_DIR / "server" / "smelting.json").read_text(encoding="utf-8")))
 
 
-def js(value: Any) -> str:
+def js(value: object) -> str:
     """A Python value as a JavaScript literal."""
     return json.dumps(value)
 
 
-def compact(obs: dict) -> dict:
+def compact(obs: Observation) -> dict:
     """The parts of an observation the random choices read (stored with each action in random.json)."""
     status = obs.get("status") or {}
     return {
@@ -110,7 +111,7 @@ class Seen:
     pos: tuple[int, int, int]
 
     @classmethod
-    def of(cls, obs: dict) -> Seen:
+    def of(cls, obs: Observation) -> Seen:
         status = obs.get("status") or {}
         p = status.get("position") or {"x": 0, "y": 4, "z": 0}
         chests = []
@@ -149,7 +150,7 @@ def _code(code: str) -> Builder:
 class RandomActions:
     """Seeded random actions for one player. `next(obs)` -> Action."""
 
-    def __init__(self, seed: Any, primitives: Sequence[str], players: Sequence[str] = ()):
+    def __init__(self, seed: object, primitives: Sequence[str], players: Sequence[str] = ()):
         self.rng = random.Random(f"random-team/{seed}")
         self.available = set(prim.functions(list(primitives)))
         self.players = tuple(players)  # who the player can give to: teammates and its team's server
@@ -186,7 +187,7 @@ class RandomActions:
             if ok(self, s) and (kind in self.available or kind.startswith("bot."))
         ]
 
-    def next(self, obs: dict) -> Action:
+    def next(self, obs: Observation) -> Action:
         seen = Seen.of(obs)
         kind, build = self.rng.choice(self.candidates(seen))
         return Action(kind, build(self, seen))
@@ -352,7 +353,7 @@ class RandomTeam(Team):
     max_actions: ClassVar[int] = 100_000
     Options = RandomOptions
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         super().__init__(**options)
         o = RandomOptions.model_validate(options)
         self.pause_every, self.pause_s, self.action_timeout_s = o.pause_every, o.pause_s, o.action_timeout_s

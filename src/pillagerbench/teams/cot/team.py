@@ -68,7 +68,7 @@ class ChainOfThought(Team):
     uses_llm = True
     Options = CoTOptions
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         super().__init__(**options)
         o = CoTOptions.model_validate(options)
         self.attempts = o.attempts

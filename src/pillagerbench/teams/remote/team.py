@@ -107,7 +107,7 @@ class RemoteTeam(Team):
     name = "remote"
     Options = RemoteOptions
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         super().__init__(**options)
         o = RemoteOptions.model_validate(options)
         self.url = o.url or ""

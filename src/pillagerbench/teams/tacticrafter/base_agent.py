@@ -32,6 +32,7 @@ from pillagerbench.agents.code import CodeError, Program, check_program, extract
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
+from pillagerbench.players.observation import Observation
 from pillagerbench.teams.base import TeamContext
 from pillagerbench.upstream import UPSTREAM_ATTEMPTS
 
@@ -111,7 +112,7 @@ class BaseAgent:
         self.critique: str | None = None
         self.success: bool | None = None
         self.events: list[list] = []  # the last run's events, deduplicated
-        self.observation: dict = {}
+        self.observation: Observation = {}
         self.chat_before: str = C.NONE  # chat shown before the first run (last episode's)
         self.stats = DedupStats()
         self.reruns = 0

@@ -23,9 +23,11 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from pillagerbench.agents.asking import Asked, ask
+from pillagerbench.agents.asking import Asked, Chat, ask
+from pillagerbench.llm import LLMResponse
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import primitives as prim
+from pillagerbench.scenarios import Scenario
 
 from .templates import PROMPTS
 
@@ -55,7 +57,7 @@ def _names(value: Any, what: str, action: str) -> tuple[str, ...]:
     return tuple(str(v).strip() for v in value if str(v).strip())
 
 
-def parse_relations(value: Any) -> list[Relation]:
+def parse_relations(value: object) -> list[Relation]:
     """Relations from a JSON value (see the module docstring for the shapes)."""
     if isinstance(value, dict) and "relations" in value:
         value = value["relations"]
@@ -125,7 +127,7 @@ class CausalGraph:
         return [r.to_list() for r in self.relations]
 
     @classmethod
-    def from_json(cls, value: Any) -> CausalGraph:
+    def from_json(cls, value: object) -> CausalGraph:
         return cls(parse_relations(value or []))
 
     @classmethod
@@ -184,15 +186,15 @@ def _retry(problem: str) -> str:
 
 
 async def initial(
-    llm: Any, scenario: Any, *, attempts: int = 3, deadline: float | None = None
-) -> tuple[CausalGraph | None, Asked]:
+    llm: Chat | None, scenario: Scenario, *, attempts: int = 3, deadline: float | None = None
+) -> tuple[CausalGraph | None, Asked[CausalGraph]]:
     """The first graph, from the primitives' documentation and the scenario (one-shot)."""
     modules = list(scenario.primitives)
     prompt = PROMPTS["causal_initial"].render(
         primitives=prim.docs(modules), scenario=scenario.description(), modules=", ".join(modules)
     )
 
-    def parse(answer: Any) -> CausalGraph:
+    def parse(answer: LLMResponse) -> CausalGraph:
         graph = CausalGraph(_parse_answer(answer))
         missing = graph.missing_modules(modules)
         if missing:
@@ -224,8 +226,14 @@ async def initial(
 
 
 async def update(
-    llm: Any, scenario: Any, graph: CausalGraph, evidence: str, *, attempts: int = 3, deadline: float | None = None
-) -> tuple[list[Relation] | None, Asked]:
+    llm: Chat | None,
+    scenario: Scenario,
+    graph: CausalGraph,
+    evidence: str,
+    *,
+    attempts: int = 3,
+    deadline: float | None = None,
+) -> tuple[list[Relation] | None, Asked[list[Relation]]]:
     """New relations from last episode's evidence (few-shot); the caller merges them."""
     modules = list(scenario.primitives)
     prompt = PROMPTS["causal_update"].render(

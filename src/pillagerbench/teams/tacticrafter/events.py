@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from pillagerbench.agents import context as C
+from pillagerbench.players.observation import Observation, is_whole, observation
 from pillagerbench.scenarios import Scenario, Side
 
 
@@ -84,10 +85,29 @@ def digest(events: Sequence[list], *, keep_observe: int = 3, max_events: int = 6
     return out
 
 
-def last_observation(events: Sequence[list]) -> dict:
+def digest_episode(
+    events: Mapping[str, Sequence[list]], players: Sequence[str], agents: Iterable[str]
+) -> tuple[dict[str, list[list]], dict[str, Any]]:
+    """Each player's events deduplicated and digested for memory, and the deduplication counts
+    (per player and `total`) for the record."""
+    agents = list(agents)
+    total = DedupStats()
+    digests: dict[str, list[list]] = {}
+    counts: dict[str, Any] = {}
+    for name in players:
+        deduped, stats = dedupe(events.get(name, []), agents)
+        total = total.add(stats)
+        counts[name] = stats.to_dict()
+        digests[name] = digest(deduped)
+    counts["total"] = total.to_dict()
+    return digests, counts
+
+
+def last_observation(events: Sequence[list]) -> Observation:
+    """The last whole observation (a digest keeps only the last few whole)."""
     for e in reversed(events):
-        if e and e[0] == "observe" and isinstance(e[1], Mapping) and ("status" in e[1] or "voxels" in e[1]):
-            return dict(e[1])
+        if e and e[0] == "observe" and isinstance(e[1], Mapping) and is_whole(obs := observation(dict(e[1]))):
+            return obs
     return C.last_observation(list(events)) if events else {}
 
 

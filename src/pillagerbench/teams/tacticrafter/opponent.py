@@ -5,9 +5,7 @@ uses the same `[tactics]` tags as the tactics module (at most `max_items` items)
 
 from __future__ import annotations
 
-from typing import Any
-
-from pillagerbench.agents.asking import Asked, ask
+from pillagerbench.agents.asking import Asked, Chat, ask
 
 from .tactics import extract_tactics
 from .templates import PROMPTS
@@ -17,7 +15,7 @@ UNKNOWN = "unknown"
 
 
 async def update(
-    llm: Any,
+    llm: Chat | None,
     *,
     opponent_team: str,
     opponent_players: list[str],
@@ -29,7 +27,7 @@ async def update(
     attempts: int = 3,
     max_items: int = 3,
     deadline: float | None = None,
-) -> Asked:
+) -> Asked[str]:
     messages = [
         {
             "role": "system",

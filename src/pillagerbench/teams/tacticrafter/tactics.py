@@ -16,9 +16,8 @@ caller keeps what it had.
 from __future__ import annotations
 
 import re
-from typing import Any
 
-from pillagerbench.agents.asking import Asked, ask
+from pillagerbench.agents.asking import Asked, Chat, ask
 
 from .templates import PROMPTS
 
@@ -67,7 +66,7 @@ def system_prompt(team_name: str, objective: str, scenario: str, graph: str, *, 
 
 
 async def initial(
-    llm: Any,
+    llm: Chat | None,
     *,
     team_name: str,
     players: list[str],
@@ -77,7 +76,7 @@ async def initial(
     attempts: int = 3,
     max_items: int = 6,
     deadline: float | None = None,
-) -> Asked:
+) -> Asked[str]:
     messages = [
         {"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=False)},
         {"role": "user", "content": PROMPTS["tactics_initial"].render(players=", ".join(players))},
@@ -94,7 +93,7 @@ async def initial(
 
 
 async def update(
-    llm: Any,
+    llm: Chat | None,
     *,
     team_name: str,
     players: list[str],
@@ -109,7 +108,7 @@ async def update(
     attempts: int = 3,
     max_items: int = 6,
     deadline: float | None = None,
-) -> Asked:
+) -> Asked[str]:
     messages = [
         {"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=True)},
         {

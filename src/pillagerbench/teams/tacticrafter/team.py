@@ -26,17 +26,17 @@ from typing import Any
 from pydantic import Field, field_validator
 
 from pillagerbench.agents import context as C
-from pillagerbench.agents.asking import Asked, RoleLLM
+from pillagerbench.agents.asking import Asked, RoleLLM, role_settings
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
 from . import causal, opponent, tactics
 from .base_agent import BaseAgent
+from .calls import CallStats
 from .events import (
-    DedupStats,
     agent_names,
-    dedupe,
-    digest,
+    chat_lines,
+    digest_episode,
     inventories_text,
     longest_chat,
     nearby_blocks_text,
@@ -100,7 +100,7 @@ class TactiCrafterOptions(TeamOptions):
         unknown = sorted(set(roles) - set(ROLES))
         if unknown:
             raise ValueError(f"tacticrafter: unknown role(s) {unknown}; valid: {list(ROLES)}")
-        RoleLLM(None, {k: v or {} for k, v in roles.items()})  # validates the keys of each role
+        role_settings(roles)  # validates the keys of each role
         return roles
 
 
@@ -109,7 +109,7 @@ class TactiCrafter(Team):
     uses_llm = True
     Options = TactiCrafterOptions
 
-    def __init__(self, **options: Any):
+    def __init__(self, **options: object):
         super().__init__(**options)
         o = TactiCrafterOptions.model_validate(options)
         self.max_iterations = o.iterations
@@ -128,7 +128,7 @@ class TactiCrafter(Team):
         self.agent_names: list[str] = []
         self.llm: RoleLLM | None = None
         self.llm_off: str | None = None  # why LLM calls stopped for this episode
-        self.latency: dict[str, list[float]] = {}
+        self.calls = CallStats()
         self.record: dict[str, Any] = {}
         if o.checkpoint:
             self.load_checkpoint(Path(o.checkpoint))
@@ -145,26 +145,10 @@ class TactiCrafter(Team):
         return self.memory.tactics or "No team tactics: play the scenario as well as you can."
 
     def expected_latency(self, role: str) -> float:
-        seen = self.latency.get(role) or []
-        return sum(seen[-5:]) / len(seen[-5:]) if seen else 0.0
+        return self.calls.expected_latency(role)
 
     def note_call(self, role: str, asked: Asked) -> None:
-        for a in asked.attempts:
-            if "answer" in a and a.get("latency_s") is not None:
-                self.latency.setdefault(role, []).append(float(a["latency_s"]))
-        stats = self.record.setdefault("llm", {}).setdefault(
-            role,
-            {"calls": 0, "failed_calls": 0, "unusable": 0, "input_tokens": 0, "output_tokens": 0, "latency_s": 0.0},
-        )
-        for a in asked.attempts:
-            stats["calls"] += 1
-            if "error" in a:
-                stats["failed_calls"] += 1
-            if "problem" in a:
-                stats["unusable"] += 1
-            stats["input_tokens"] += a.get("input_tokens") or 0
-            stats["output_tokens"] += a.get("output_tokens") or 0
-            stats["latency_s"] = round(stats["latency_s"] + (a.get("latency_s") or 0.0), 3)
+        self.calls.add(self.record.setdefault("llm", {}), role, asked)
         if asked.budget_exceeded and not self.llm_off:
             self.llm_off = f"budget: {asked.error}"
             self.record["llm_off"] = self.llm_off
@@ -241,8 +225,8 @@ class TactiCrafter(Team):
         elif has_events:
             if self._llm_ok():
                 evidence = own_chat_with_inventory(digests, max_lines=self.max_chat_lines)
-                new, asked = await causal.update(self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts)
-                rec = self._module_record("causal", asked, step="update")
+                new, added = await causal.update(self.llm, ctx.scenario, mem.graph, evidence, attempts=self.attempts)
+                rec = self._module_record("causal", added, step="update")
                 if new is not None:
                     rec["merge"] = mem.graph.merge(new)
             else:
@@ -279,7 +263,7 @@ class TactiCrafter(Team):
             max_items=3,
         )
         self._module_record("opponent", asked, step="update")
-        if asked.ok:
+        if asked.value is not None:
             mem.opponent_tactics, mem.opponent_source = asked.value, "inferred"
         else:
             mem.opponent_source = "kept"
@@ -354,14 +338,8 @@ class TactiCrafter(Team):
         """4. One base agent per player, each given its last code and chat; their first code in parallel."""
         self.agents = [BaseAgent(self, name, k) for k, name in enumerate(ctx.side.player_names)]
         for agent in self.agents:
-            chat = (
-                tail(
-                    [str(e[1].get("onChat")) for e in digests.get(agent.name, []) if e and e[0] == "onChat"],
-                    self.max_chat_lines,
-                )
-                if digests.get(agent.name)
-                else "No chat yet: the game has not started."
-            )
+            heard = digests.get(agent.name)
+            chat = tail(chat_lines(heard), self.max_chat_lines) if heard else "No chat yet: the game has not started."
             agent.start_episode(ctx, self.memory.code.get(agent.name, {}), chat)
         await asyncio.gather(*(a.pre_game(ctx) for a in self.agents))
 
@@ -383,15 +361,8 @@ class TactiCrafter(Team):
     async def post_game(self, ctx: TeamContext) -> None:
         players = ctx.side.player_names
         events = C.episode_events(ctx.last_episode, players)
-        total = DedupStats()
-        dedup: dict[str, Any] = {}
-        for name in players:
-            deduped, stats = dedupe(events.get(name, []), self.agent_names or agent_names(ctx.scenario))
-            total = total.add(stats)
-            dedup[name] = stats.to_dict()
-            self.memory.events[name] = digest(deduped)
-        dedup["total"] = total.to_dict()
-        self.record["dedup"] = dedup
+        digests, self.record["dedup"] = digest_episode(events, players, self.agent_names or agent_names(ctx.scenario))
+        self.memory.events.update(digests)
         self.record["iterations"] = {
             a.name: self.iterations[a.k] if a.k < len(self.iterations) else 0 for a in self.agents
         }

@@ -1,0 +1,194 @@
+"""The channel to one bot process (js/bot/main.js): JSON lines over stdio.
+
+`BotChannel` starts the process under Node's permission model (`bot_command`), reads its stdout
+(each message to the player's handler) and stderr (its tail kept, the whole written to the player's
+log), sends requests and matches their answers by id, and kills the process group. What a message
+means, and when to restart, is the player's (player.py).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import collections
+import itertools
+import json
+import os
+import signal
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import IO, Any
+
+from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
+
+BOT_MAIN = JS_DIR / "bot" / "main.js"
+HEAP_LIMIT_MB = 256
+
+
+class PlayerError(RuntimeError):
+    """The bot process could not start, log in, or answer."""
+
+
+def bot_command(settings: dict[str, Any]) -> list[str]:
+    """The node command line of a bot process, under Node's permission model."""
+    modules = ensure_node_modules(quiet=True)
+    profile = profile_args()  # Node writes no profile under its permission model: measuring only
+    permission = [] if profile else ["--permission", f"--allow-fs-read={modules}", f"--allow-fs-read={JS_DIR / 'bot'}"]
+    return [
+        str(node_binary()),
+        *permission,
+        f"--max-old-space-size={HEAP_LIMIT_MB}",
+        "--stack-size=2000",
+        "--max-semi-space-size=4",  # a small young generation: ~25 MB less RSS per bot
+        *profile,
+        str(BOT_MAIN),
+        json.dumps(settings),
+    ]
+
+
+class BotChannel:
+    """The process of one player's bot and the requests waiting for its answers."""
+
+    def __init__(self, name: str, log_dir: Path | None):
+        self.name = name
+        self.log_dir = log_dir
+        self.proc: asyncio.subprocess.Process | None = None
+        self.last_line = 0.0  # monotonic time of the last line on stdout (a heartbeat at least)
+        self.expect_exit = False  # the process is ending because we asked it to
+        self._ids = itertools.count(1)
+        self._pending: dict[int, asyncio.Future] = {}
+        self._stderr_tail: collections.deque[str] = collections.deque(maxlen=40)
+
+    def next_id(self) -> int:
+        """A request id not used before (runs and requests share them)."""
+        return next(self._ids)
+
+    async def spawn(self, settings: dict[str, Any]) -> asyncio.subprocess.Process:
+        self.expect_exit = False
+        self.proc = await asyncio.create_subprocess_exec(
+            *bot_command(settings),
+            stdin=asyncio.subprocess.PIPE,
+            stdout=asyncio.subprocess.PIPE,
+            stderr=asyncio.subprocess.PIPE,
+            env=node_env(),
+            start_new_session=True,
+            limit=2**26,
+        )
+        self.last_line = time.monotonic()
+        return self.proc
+
+    def stderr_tail(self) -> str:
+        return "\n".join(self._stderr_tail)
+
+    def _log_file(self) -> IO[str] | None:
+        if not self.log_dir:
+            return None
+        self.log_dir.mkdir(parents=True, exist_ok=True)
+        return open(self.log_dir / f"{self.name}.log", "a", encoding="utf-8")
+
+    async def read_stderr(self, proc: asyncio.subprocess.Process) -> None:
+        log = self._log_file()
+        assert proc.stderr is not None  # started with stderr=PIPE
+        try:
+            while line := await proc.stderr.readline():
+                text = line.decode(errors="replace").rstrip()
+                self._stderr_tail.append(text)
+                if log:
+                    log.write(text + "\n")
+                    log.flush()
+        finally:
+            if log:
+                log.close()
+
+    async def read_stdout(self, proc: asyncio.subprocess.Process, on_message: Callable[[dict], None]) -> None:
+        """Every JSON line to on_message until stdout ends; returns when the process has exited."""
+        assert proc.stdout is not None  # started with stdout=PIPE
+        try:
+            while True:
+                try:
+                    line = await proc.stdout.readline()
+                except ValueError:  # a line over the limit: skip it
+                    continue
+                if not line:
+                    break
+                self.last_line = time.monotonic()
+                try:
+                    msg = json.loads(line)
+                except json.JSONDecodeError:
+                    continue
+                on_message(msg)
+        finally:
+            await proc.wait()
+
+    def exit_reason(self, code: int | None) -> str:
+        tail = self.stderr_tail()
+        if "heap out of memory" in tail or "Reached heap limit" in tail:
+            return f"Error: the bot process ran out of memory (heap limit {HEAP_LIMIT_MB} MB) and was restarted"
+        if "ERR_ACCESS_DENIED" in tail:
+            return "Error: the bot process was denied a resource by the permission model and ended; it was restarted"
+        return f"Error: the bot process ended (exit code {code}) and was restarted"
+
+    def answer(self, msg: dict) -> None:
+        """An answer to a request: its waiting caller gets the result or a PlayerError."""
+        rid: Any = msg.get("id")
+        fut = self._pending.pop(rid, None)
+        if fut is not None and not fut.done():
+            if msg.get("ok"):
+                fut.set_result(msg.get("result"))
+            else:
+                fut.set_exception(PlayerError(f"{self.name}: {msg.get('error')}"))
+
+    def fail_pending(self, reason: str) -> None:
+        """Every request still waiting ends with a PlayerError saying `reason`."""
+        for fut in self._pending.values():
+            if not fut.done():
+                fut.set_exception(PlayerError(f"{self.name}: {reason}"))
+        self._pending.clear()
+
+    async def send(self, msg: dict) -> None:
+        if not self.proc or self.proc.returncode is not None or not self.proc.stdin:
+            raise PlayerError(f"{self.name}: bot process is not running")
+        self.proc.stdin.write((json.dumps(msg) + "\n").encode())
+        try:
+            await self.proc.stdin.drain()
+        except (ConnectionResetError, BrokenPipeError) as exc:
+            raise PlayerError(f"{self.name}: bot process is not running ({exc})") from None
+
+    async def request(self, op: str, wait: float = 10.0, **args: object) -> object:
+        """Send request `op` with `args` (JSON values); wait up to `wait` seconds for the answer (the
+        JSON value js/bot/main.js's op returns)."""
+        timeout = wait
+        rid = self.next_id()
+        fut = asyncio.get_running_loop().create_future()
+        self._pending[rid] = fut
+        try:
+            await self.send({"id": rid, "op": op, **args})
+            return await asyncio.wait_for(fut, timeout)
+        except asyncio.TimeoutError:
+            raise PlayerError(f"{self.name}: no answer to {op!r} within {timeout} s") from None
+        finally:
+            self._pending.pop(rid, None)
+
+    async def kill(self) -> None:
+        proc = self.proc
+        if proc is None or proc.returncode is not None:
+            return
+        self.expect_exit = True
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        await proc.wait()
+
+    async def close(self) -> None:
+        """Close stdin and give the process 2 s to end; kill it if it does not."""
+        proc = self.proc
+        if proc is None or proc.returncode is not None:
+            return
+        self.expect_exit = True
+        try:
+            if proc.stdin is not None:
+                proc.stdin.close()
+            await asyncio.wait_for(proc.wait(), 2)
+        except (asyncio.TimeoutError, BrokenPipeError, ConnectionResetError):
+            await self.kill()
