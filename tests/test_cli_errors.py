@@ -99,10 +99,11 @@ def test_an_unknown_model_is_named_by_the_preflight(tmp_path):
 def test_a_reachable_provider_passes_the_preflight_with_one_request(tmp_path):
     from pillagerbench import preflight
     from pillagerbench.config import load_config
+    from pillagerbench.config_schema import RunConfig
 
     with FakeLLMServer() as fake:
         cfg = load_config(["red=cot", "blue=cot", "llm=fake", f"llm.base_url={fake.url}"])
-        preflight.check(preflight.sides_of(cfg))  # both sides share provider, model and URL: one request
+        preflight.check(preflight.sides_of(RunConfig.of(cfg)))  # both sides share provider, model and URL: one request
         assert fake.count == 1 and fake.requests[0].role == "preflight"
 
 

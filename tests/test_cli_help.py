@@ -76,6 +76,20 @@ def test_help_lists_every_key_of_the_config_with_its_default_and_comment(capsys)
     assert "choices: max_tokens, max_completion_tokens" in out  # the schema's (config_schema.LLMConfig)
 
 
+def test_run_help_shows_the_crop_growth_each_scenario_plays(capsys):
+    """A match plays its scenario's scenario.crop_growth_chance, not server.crop_growth_chance
+    (pillagerbench server's): the help gives each scenario's value and says so."""
+    import yaml  # type: ignore[import-untyped]
+
+    out = helped(capsys, "run", "--help")
+    [line] = [x for x in out.splitlines() if x.lstrip().startswith("scenario.crop_growth_chance")]
+    for name in config_options("scenario"):
+        value = yaml.safe_load((CONF / "scenario" / f"{name}.yaml").read_text())["crop_growth_chance"]
+        assert f"{name} {value}" in line
+    [server] = [x for x in out.splitlines() if x.lstrip().startswith("server.crop_growth_chance=")]
+    assert "a match plays its scenario's (scenario.crop_growth_chance)" in server
+
+
 def test_the_choices_come_from_the_registries_and_config_folders(capsys, monkeypatch):
     from pillagerbench.scenarios import SCENARIOS
     from pillagerbench.teams import TEAMS, Team

@@ -15,6 +15,7 @@ import pytest
 
 from pillagerbench import conditions, suite
 from pillagerbench.config import load_config
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.metrics.runs import ReportError
 from pillagerbench.metrics.verified import load_runs
 from tests.metrics.fake_runs import write_run
@@ -62,10 +63,8 @@ def test_every_declared_rule_is_a_key_of_the_configuration_and_has_a_reason():
 
 
 def conditions_for(overrides: list[str]) -> dict:
-    from omegaconf import OmegaConf
-
-    cfg = load_config(overrides)
-    return conditions.conditions_of(lambda key: OmegaConf.select(cfg, key), cfg.scenario.name)
+    cfg = RunConfig.of(load_config(overrides))
+    return conditions.conditions_of(cfg.select, cfg.scenario.name)
 
 
 @pytest.mark.parametrize("key", sorted(OTHER))

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from pillagerbench.config import load_config
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.teams import team_from_config
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -55,6 +56,6 @@ def test_the_faithful_pages_table_is_the_measurement_logs():
 
 
 def test_cots_answer_cap_is_the_one_docs_agents_states():
-    team = team_from_config(load_config(["red=cot"]).red, "mushroom_war")
+    team = team_from_config(RunConfig.of(load_config(["red=cot"])).red, "mushroom_war")
     stated = re.search(r"`max_tokens` \((\d+)", (ROOT / "docs" / "agents.md").read_text(encoding="utf-8"))
     assert stated and team.max_tokens == int(stated.group(1)) == 4096

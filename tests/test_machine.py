@@ -6,9 +6,8 @@ from __future__ import annotations
 
 import json
 
-from omegaconf import OmegaConf
-
 from pillagerbench import machine
+from pillagerbench.config_schema import RunnerConfig
 from pillagerbench.experiments.runner import local_parallel
 from pillagerbench.machine import choose_parallel, lag_verdict
 from tests.support.cli import run_cli
@@ -53,12 +52,10 @@ def test_default_parallel_comes_from_headroom_not_the_cpu_count():
 
 
 def test_a_given_parallel_wins_and_the_default_is_explained():
-    assert local_parallel(OmegaConf.create({"parallel": 3}), cpus=2, load=0.0) == (3, None)
-    n, why = local_parallel(OmegaConf.create({"parallel": None}), cpus=2, load=1.9)
+    assert local_parallel(RunnerConfig(parallel=3), cpus=2, load=0.0) == (3, None)
+    n, why = local_parallel(RunnerConfig(), cpus=2, load=1.9)
     assert n == 1 and why and "parallel=1" in why
-    n, why = local_parallel(
-        OmegaConf.create({"parallel": None}), cpus=2, load=2 - 2 * machine.MATCH_CORES / machine.HEADROOM
-    )
+    n, why = local_parallel(RunnerConfig(), cpus=2, load=2 - 2 * machine.MATCH_CORES / machine.HEADROOM)
     assert n == 2 and why is None  # the CPU count: nothing surprising to say
 
 

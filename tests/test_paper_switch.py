@@ -9,6 +9,7 @@ from importlib import resources
 import pytest
 
 from pillagerbench.config import PAPER, ConfigError, config_options, load_config
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments.spec import build_series
 
 OURS = {"symmetry", "generalization"}  # experiments of our own, not the paper's
@@ -23,7 +24,7 @@ def test_paper_true_sets_upstreams_scoring_and_protocol_and_the_default_is_ours(
 
 def test_every_series_of_an_experiment_plays_with_the_papers_settings():
     argv = ["experiment=main_benchmark", "experiment.team=passive", "paper=true"]
-    specs = build_series(load_config(argv), argv)
+    specs = build_series(RunConfig.of(load_config(argv)), argv)
     assert len(specs) == 30
     assert {(s.config["scoring"], s.config["protocol"]) for s in specs} == {("upstream", "upstream")}
 

@@ -53,15 +53,16 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 def run_main(argv: list[str]) -> int:
     """`pillagerbench run`: one match (experiments/plain_run.py: a one-series experiment), or many
-    series with experiment= (experiments/); resume= finishes either."""
+    series with experiment= (experiments/); resume= finishes either. The command line and conf/ are
+    composed and checked here, once, into the typed configuration every layer below takes."""
     from pillagerbench import preflight
-    from pillagerbench.config import load_config
+    from pillagerbench.config import load_config, to_dict
     from pillagerbench.validate import check_run_config
 
-    cfg = load_config(argv)
-    experiment = cfg.get("experiment") is not None or bool(cfg.get("resume"))
-    check_run_config(cfg, teams=not experiment)  # the whole config, before anything is created
-    if cfg.get("plan"):  # what the run would play, take and cost; plays nothing (experiments/plan.py)
+    composed = to_dict(load_config(argv))
+    experiment = composed.get("experiment") is not None or bool(composed.get("resume"))
+    cfg = check_run_config(composed, teams=not experiment)  # the whole config, before anything is created
+    if cfg.plan:  # what the run would play, take and cost; plays nothing (experiments/plan.py)
         from pillagerbench.experiments.plan import main_plan
 
         return main_plan(cfg, argv)

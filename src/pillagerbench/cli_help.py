@@ -254,6 +254,23 @@ def _group_defaults() -> dict[str, str]:
     return out
 
 
+def scenario_key_lines() -> list[str]:
+    """The keys of the scenario group (conf/scenario/NAME.yaml but `name`): each with its value in
+    every scenario, since that, not a top-level default, is what a match plays."""
+    from pillagerbench.config import config_options
+
+    found: dict[str, tuple[list[str], str]] = {}
+    for name in config_options("scenario"):
+        for key, value, comment in yaml_keys(_conf("scenario", f"{name}.yaml"), "scenario"):
+            if key != "scenario.name":
+                values, first = found.setdefault(key, ([], comment))
+                values.append(f"{name} {value}")
+    return [
+        _key_line(key, "", f"per scenario: {', '.join(values)}" + (f"; {comment}" if comment else ""), [])
+        for key, (values, comment) in found.items()
+    ]
+
+
 def key_lines(spec: CommandHelp) -> list[str]:
     from pillagerbench.config_schema import LLMConfig, RunConfig
 
@@ -262,6 +279,8 @@ def key_lines(spec: CommandHelp) -> list[str]:
     for group in spec.groups:
         hydra_name, what = GROUPS[group]
         lines.append(_key_line(group, chosen.get(hydra_name, "null"), what, []))
+        if group == "scenario":
+            lines += scenario_key_lines()
     for key, default, comment in yaml_keys(_conf("config.yaml")):
         if ALL in spec.keys or key in spec.keys or key.split(".")[0] in spec.keys:
             lines.append(_key_line(key, default, comment, schema_choices(RunConfig, key.split("."))))

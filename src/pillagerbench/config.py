@@ -236,7 +236,7 @@ PAPER = {"scoring": "upstream", "protocol": "upstream"}
 
 
 def _apply_paper(cfg: DictConfig, overrides: list[str]) -> None:
-    if cfg.get("paper") is not True:
+    if OmegaConf.select(cfg, "paper") is not True:
         return
     for key, value in PAPER.items():
         given = [v for k, sep, v in (o.partition("=") for o in overrides) if sep and k.lstrip("+~") == key]

@@ -1,15 +1,19 @@
-"""The configuration's schema: every top-level key and the `llm` node typed with pydantic (types,
-ranges, choices). `problems(model, data)` gives one line per problem, naming the key, the bad value
-and what is valid. Groups (scenario, teams) are checked against their registries in validate.py.
+"""The configuration's schema, and the configuration typed: `RunConfig` (every top-level key, the
+groups `scenario`, `red`/`blue` and `llm`, each default written once) is what the command's edge
+(cli, validate.check_run_config) makes of the command line and conf/, and what every layer below
+takes, whole or in part (RunnerConfig, TeamConfig, ServerConfig, LLMCacheConfig, LLMLedgerConfig).
+`problems(model, data)` gives one line per problem, naming the key, the bad value and what is valid.
+Groups (scenario, teams) are checked against their registries in validate.py.
 """
 
 from __future__ import annotations
 
+import copy
 import socket
 from typing import Any, Literal
 
 from omegaconf import OmegaConf
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator
 from pydantic_core import PydanticCustomError
 
 from pillagerbench.config import ENV_NAME, ConfigError, looks_like_key, to_dict
@@ -32,12 +36,12 @@ class ServerConfig(_Strict):
 
 
 class LLMCacheConfig(_Strict):
-    mode: Literal["off", "read", "write", "readwrite", "replay"]
-    dir: str | None
+    mode: Literal["off", "read", "write", "readwrite", "replay"] = "off"
+    dir: str | None = None
 
 
 class LLMLedgerConfig(_Strict):
-    content: Literal["full", "hash"]
+    content: Literal["full", "hash"] = "hash"
 
 
 class LLMConfig(_Strict):
@@ -77,32 +81,177 @@ class LLMConfig(_Strict):
         )
 
 
-class RunConfig(BaseModel):
-    """The top-level keys of conf/config.yaml (groups are checked on their own)."""
+RETRIES = 2  # replays of a spoiled episode (rundir/schedule.py)
+
+
+class ScenarioConfig(BaseModel):
+    """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry in validate.py."""
+
+    model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # scenario=5: unknown scenario, once
+
+    name: str
+    crop_growth_chance: float = Field(ge=0, le=1)  # what a match plays (server.crop_growth_chance is the start value)
+
+
+class TeamConfig(BaseModel):
+    """A side's node (`red`, `blue`): the team's name, its own `llm` keys, and its options (every other
+    key, checked against the team's options model in validate.py)."""
+
+    model_config = ConfigDict(extra="allow", coerce_numbers_to_str=True)  # red=7: unknown team '7', once
+
+    name: str
+    llm: dict[str, Any] = {}  # keys of the run's `llm` this side plays with otherwise (red.llm.model=...)
+
+    @property
+    def options(self) -> dict[str, Any]:
+        """The team's constructor options: the node without `name` and `llm`."""
+        return dict(self.model_extra or {})
+
+
+class ExperimentConfig(BaseModel):
+    """The `experiment` node (conf/experiment/NAME.yaml), each default written once. What a design
+    checks with a message of its own (its design, variants, pairings, sides, arenas) is read as given
+    and checked in experiments/spec.py."""
+
+    model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # a team named 7: unknown team '7'
+
+    name: str
+    design: str
+    scenarios: list[str] = []
+    episodes: int | None = Field(None, ge=0)  # per series (adaptation: train_episodes, generalization: arenas)
+    repetitions: int | None = 1  # null or 0: once
+    team: str | None = None
+    team_options: dict[str, Any] | None = None
+    llm: str | None = None  # an LLM preset for the experiment's team; null = the run's llm=...
+    llm_options: dict[str, Any] | None = None
+    variants: dict[str, Any] | None = None
+    opponents: list[str] | None = None  # null = the scenario's built-in opponents
+    red_teams: list[str] | None = None
+    blue_teams: list[str] | None = None
+    pairings: list[Any] | None = None
+    sides: list[Any] | None = None
+    arenas: dict[str, Any] | None = None
+    checkpoint_every: int | None = None
+    evaluate: bool = False
+    train_episodes: int = 5
+    from_run: str | None = None
+
+    @classmethod
+    def of(cls, data: Any) -> ExperimentConfig:
+        """The typed experiment node of `data`, or one ConfigError line per problem."""
+        check(problems(cls, data, "experiment"))
+        return cls.model_validate(plain(data))
+
+
+class RunnerConfig(BaseModel):
+    """How an experiment's series are played (not what): the part of the configuration its runner reads."""
 
     model_config = ConfigDict(extra="ignore")
+
+    parallel: int | None = Field(None, ge=1)
+    launcher: Literal["local", "ray"] = "local"
+    ray_address: str | None = None
+    display: Literal["auto", "live", "plain"] = "auto"
+
+
+class RunConfig(RunnerConfig):
+    """The whole configuration, typed: the command line and conf/*.yaml composed (config.load_config),
+    or a run's stored config (a manifest's, a series'). Every default is written here once; a stored
+    config from before a key reads with it (and conf/config.yaml's value of every key equals it:
+    tests/test_config_schema.py). `RunConfig.of(data)` builds it and keeps `data` as given
+    (`stored()`): the records write that, numbers as they were composed."""
 
     server: ServerConfig
     llm_cache: LLMCacheConfig
     llm_ledger: LLMLedgerConfig
-    episodes: int = Field(ge=1)
-    episode_length: float = Field(gt=0)
-    seed: int
-    run_dir: str | None
-    display: Literal["auto", "live", "plain"]
-    scoring: Literal["clean", "upstream"] = "clean"  # runs from before these keys: the defaults
+    episodes: int = Field(1, ge=1)
+    episode_length: float = Field(120.0, gt=0)  # seconds of game per episode
+    seed: int = 0
+    run_dir: str | None = None
+    scoring: Literal["clean", "upstream"] = "clean"
     protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
     paper: bool = False  # sets scoring and protocol to upstream's (config.PAPER)
     watch: int | None = Field(None, ge=0, le=65535)
-    retries: int = Field(2, ge=0)  # replays of a spoiled episode (rundir/schedule.py); older runs: the default
+    retries: int = Field(RETRIES, ge=0)
     layout: int | str = "paper"  # checked in full by validate.layout_problems
     split: str | None = None
-    parallel: int | None = Field(ge=1)
-    launcher: Literal["local", "ray"]
-    ray_address: str | None
-    resume: str | None
-    calibration: str | None
-    plan: bool = False  # runs from before this key: the default
+    resume: str | None = None
+    calibration: str | None = None
+    plan: bool = False
+    scenario: ScenarioConfig
+    red: TeamConfig
+    blue: TeamConfig
+    llm: dict[str, Any]  # the preset; checked per side that uses an LLM (validate.py, LLMConfig)
+    experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
+
+    _stored: dict[str, Any] = PrivateAttr(default_factory=dict)
+
+    @classmethod
+    def of(cls, data: Any) -> RunConfig:
+        """The typed configuration of `data` (a composed DictConfig, or a stored dict)."""
+        stored = plain(data)
+        try:
+            model = cls.model_validate(_normalised(stored))
+        except ValidationError:  # a stored config that no longer reads: one line per problem
+            check(problems(cls, _normalised(stored)))
+            raise
+        model._stored = stored
+        return model
+
+    def updated(self, changes: dict[str, Any]) -> RunConfig:
+        """This configuration with `changes` merged in key by key (a series' seed, a variant's team
+        options `{"red": {...}}` ...), typed again."""
+        return RunConfig.of(merged(self._stored, changes))
+
+    def stored(self) -> dict[str, Any]:
+        """The configuration as composed or stored (what records write: manifest.json, experiment.json)."""
+        return copy.deepcopy(self._stored)
+
+    def select(self, key: str) -> Any:
+        """A dotted key's value as stored (None if absent): conditions.conditions_of reads rules so."""
+        node: Any = self._stored
+        for part in key.split("."):
+            if not isinstance(node, dict) or part not in node:
+                return None
+            node = node[part]
+        return node
+
+    def side(self, side: str) -> TeamConfig:
+        """The team node of `red` or `blue`."""
+        return {"red": self.red, "blue": self.blue}[side]
+
+    def llm_of(self, side: str) -> dict[str, Any]:
+        """The `llm` settings `side` plays with: the run's, with the side's own keys merged in."""
+        return merged(self.llm, self.side(side).llm)
+
+
+def default(key: str) -> Any:
+    """The schema's default of a top-level key (`scoring`: "clean"): the one place it is written."""
+    return RunConfig.model_fields[key].get_default(call_default_factory=True)
+
+
+def plain(data: Any) -> dict[str, Any]:
+    """`data` (a config node or a mapping) as a plain dict of its own (interpolations resolved)."""
+    return to_dict(data) if OmegaConf.is_config(data) else copy.deepcopy(dict(data))
+
+
+def _normalised(data: dict[str, Any]) -> dict[str, Any]:
+    """YAML 1.1 reads a bare `off` as false: `llm_cache.mode=off` means "off"."""
+    cache = data.get("llm_cache")
+    if isinstance(cache, dict) and cache.get("mode") in (None, False):
+        data = {**data, "llm_cache": {**cache, "mode": "off"}}
+    return data
+
+
+def merged(base: dict[str, Any], own: dict[str, Any]) -> dict[str, Any]:
+    """`base` with `own` merged in, key by key down the nested mappings (as OmegaConf.merge)."""
+    out = copy.deepcopy(base)
+    for key, value in own.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = merged(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
 
 
 def _where(prefix: str, loc: tuple) -> str:
@@ -133,15 +282,12 @@ def problems(model: type[BaseModel], data: Any, prefix: str = "") -> list[str]:
 
 def top_level_problems(cfg: Any) -> list[str]:
     """Problems of the top-level keys of a composed config (conf/config.yaml)."""
-    data = to_dict(cfg)
-    if data.get("llm_cache", {}).get("mode") in (None, False):  # YAML 1.1 reads a bare `off` as false
-        data["llm_cache"]["mode"] = "off"
-    return problems(RunConfig, data)
+    return problems(RunConfig, _normalised(plain(cfg)))
 
 
 def watch_problems(cfg: Any) -> list[str]:
     """`watch=PORT`: a port number, free on the server's host (0 = any free port)."""
-    data = to_dict(cfg)
+    data = plain(cfg)
     watch = data.get("watch")
     if watch is None:
         return []

@@ -9,9 +9,11 @@ from rich.console import Console
 from rich.live import Live
 from rich.table import Table
 
+from pillagerbench.config_schema import default
+
 
 class MatchDisplay:
-    def __init__(self, title: str, mode: str = "auto"):
+    def __init__(self, title: str, mode: str = default("display")):
         self.title = title
         self.console = Console(stderr=False)
         self.live_mode = mode == "live" or (mode == "auto" and sys.stdout.isatty())

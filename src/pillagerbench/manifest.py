@@ -11,13 +11,12 @@ import platform
 import subprocess
 import time
 from pathlib import Path
-from typing import Any
-
-from omegaconf import OmegaConf
+from typing import Any, cast
 
 from pillagerbench import __version__
 from pillagerbench.conditions import conditions_of
-from pillagerbench.rundir import RunDir
+from pillagerbench.config_schema import RunConfig
+from pillagerbench.rundir import Manifest, RunDir, ScenarioStamp
 from pillagerbench.suite import current
 
 
@@ -33,24 +32,24 @@ def git_revision() -> str | None:
         return None
 
 
-def write_manifest(run_dir: Path, cfg: Any, scenario: Any) -> None:
+def write_manifest(run_dir: Path, cfg: RunConfig, scenario: Any) -> None:
     """`run_dir/manifest.json` for one match; `scenario` is the Scenario played (key, title, version)."""
     from pillagerbench.node import node_binary
 
     node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
-    manifest = {
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "config": OmegaConf.to_container(cfg, resolve=True),
-        "scenario": {"key": scenario.key, "title": scenario.title, "version": scenario.version},
-        "versions": {
+    manifest = Manifest(
+        created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        config=cfg.stored(),
+        scenario=ScenarioStamp(key=scenario.key, title=scenario.title, version=scenario.version),
+        versions={
             "pillagerbench": __version__,
             "python": platform.python_version(),
             "node": node,
             "minecraft": "1.16.5",
         },
-        "seed": cfg.seed,
-        "git_revision": git_revision(),
-        "suite": current(),
-        "conditions": conditions_of(lambda key: OmegaConf.select(cfg, key), scenario.key),
-    }
+        seed=cfg.seed,
+        git_revision=git_revision(),
+        suite=current(),
+        conditions=conditions_of(cfg.select, scenario.key),
+    )
     RunDir(run_dir).write_manifest(manifest)

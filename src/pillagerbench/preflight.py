@@ -8,24 +8,21 @@ import asyncio
 from collections.abc import Iterable
 from typing import Any
 
-from omegaconf import OmegaConf
-
 from pillagerbench.config import ConfigError
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.llm.preflight import preflight as llm_preflight
-from pillagerbench.llm.presets import side_llm_config
-from pillagerbench.teams import find_team, team_options
+from pillagerbench.teams import find_team
 
 SIDES = ("red", "blue")
 
 
-def sides_of(cfg) -> list[tuple[str, dict, Any]]:
+def sides_of(cfg: RunConfig) -> list[tuple[str, dict, Any]]:
     """(team name, options, llm config or None) for both sides of a match config."""
-    cfg = cfg if OmegaConf.is_config(cfg) else OmegaConf.create(cfg)
     out = []
     for side in SIDES:
-        name = str(cfg[side].name)
-        uses_llm = getattr(find_team(name), "uses_llm", False)
-        out.append((name, team_options(cfg[side]), side_llm_config(cfg, side).llm if uses_llm else None))
+        team = cfg.side(side)
+        uses_llm = getattr(find_team(team.name), "uses_llm", False)
+        out.append((team.name, team.options, cfg.llm_of(side) if uses_llm else None))
     return out
 
 

@@ -1,5 +1,6 @@
 """Play a match from a config: `play_match`, the one way, for every series (an experiment's, and the
 one series of a plain `pillagerbench run`: experiments/plain_run.py), and the scenario a config plays.
+Both take the typed configuration (config_schema.RunConfig).
 """
 
 from __future__ import annotations
@@ -7,21 +8,19 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-from omegaconf import OmegaConf
-
 from pillagerbench.arena import ArenaServer
 from pillagerbench.conditions import conditions_of
-from pillagerbench.config import to_dict
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.match import Match
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
-from pillagerbench.scenarios.layout import PAPER, parse_layout
+from pillagerbench.scenarios.layout import parse_layout
 from pillagerbench.teams import Team
 from pillagerbench.teams.entrant import entrant_of
 
 
 async def play_match(
-    cfg,
+    cfg: RunConfig,
     rundir: RunDir,
     scenario: Scenario,
     teams: dict[str, Team],
@@ -43,7 +42,7 @@ async def play_match(
     if server.watch_url:
         print(f"live view: {server.watch_url}", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
-    config = to_dict(cfg)
+    config = cfg.stored()
     match = Match(
         server,
         scenario,
@@ -51,10 +50,10 @@ async def play_match(
         rundir.path,
         episode_length=cfg.episode_length,
         seed=cfg.seed,
-        scoring=cfg.get("scoring", "clean"),  # runs from before these keys: the defaults
-        protocol=cfg.get("protocol", "pillagerbench"),
-        split=cfg.get("split"),
-        conditions=conditions_of(lambda key: OmegaConf.select(cfg, key), scenario.key),
+        scoring=cfg.scoring,
+        protocol=cfg.protocol,
+        split=cfg.split,
+        conditions=conditions_of(cfg.select, scenario.key),
         on_tick=on_tick,
         llms=llms,
         entrants={side: entrant_of(config, side) for side in teams},
@@ -70,10 +69,10 @@ async def play_match(
             await llm.aclose()
 
 
-def scenario_from_config(cfg) -> Scenario:
+def scenario_from_config(cfg: RunConfig) -> Scenario:
     """The scenario a config plays, on its `layout=` (`split=` chooses each episode's in the match)."""
     return make_scenario(
         cfg.scenario.name,
-        layout=parse_layout(cfg.get("layout", PAPER)),
-        crop_growth_chance=float(cfg.scenario.crop_growth_chance),
+        layout=parse_layout(cfg.layout),
+        crop_growth_chance=cfg.scenario.crop_growth_chance,
     )

@@ -3,17 +3,26 @@
 The top-level keys are typed (config_schema.py); a team's options are checked against its options
 model (`Team.Options`: keys, types, ranges; teams/options.py); `red.llm.*` / `blue.llm.*` only for
 teams that use an LLM; the LLM settings of every side that uses one. Every problem is one line naming the key, the bad value and what is
-valid; `check_run_config` raises one `ConfigError` holding all of them.
+valid; `check_run_config` raises one `ConfigError` holding all of them, or returns the typed
+configuration (config_schema.RunConfig) every layer below takes. Each check reads the configuration
+as plain data (a composed DictConfig or a stored dict), since it may be any value the user wrote.
 """
 
 from __future__ import annotations
 
-from typing import Any, cast
+from typing import Any
 
-from omegaconf import OmegaConf
-
-from pillagerbench.config import ConfigError, to_dict
-from pillagerbench.config_schema import LLMConfig, check, problems, top_level_problems, watch_problems
+from pillagerbench.config import ConfigError
+from pillagerbench.config_schema import (
+    LLMConfig,
+    RunConfig,
+    check,
+    plain,
+    problems,
+    top_level_problems,
+    watch_problems,
+)
+from pillagerbench.config_schema import merged as merged_llm
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
 from pillagerbench.scenarios import SCENARIOS
@@ -24,8 +33,8 @@ from pillagerbench.teams.options import defaults, options_model
 SIDES = ("red", "blue")
 
 
-def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
-    node = cfg.get(side)
+def _team_problems(data: dict[str, Any], side: str, scenario: str) -> list[str]:
+    node = data[side]
     name = str(node.get("name"))
     try:
         cls = find_team(name)
@@ -40,7 +49,7 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
         )
     model = options_model(cls)
     declared = defaults(model)
-    given = {k: v for k, v in to_dict(node).items() if k not in ("name", "llm")}
+    given = {k: v for k, v in node.items() if k not in ("name", "llm")}
     found = problems(model, given, side)
     out += [
         p + (f" (options of {name}: {', '.join(declared) or 'none'})" if p.endswith("unknown key") else "")
@@ -54,23 +63,24 @@ def _team_problems(cfg: Any, side: str, scenario: str) -> list[str]:
         for key in own_llm:
             out.append(f"{side}.llm.{key}: team {name} uses no LLM (teams that do: {', '.join(llm_teams)})")
     elif cls.uses_llm:
-        merged = OmegaConf.to_container(OmegaConf.merge(cfg.llm, own_llm), resolve=True)
+        merged = merged_llm(data["llm"], own_llm)
         where = f"{side}.llm" if own_llm else "llm"
         found_llm = problems(LLMConfig, merged, where)
         out += found_llm
         if not found_llm:  # a dollar budget needs a known price (llm/prices.py)
-            out += [p for p in [price_problem(LLMSettings.from_config(cast(dict, merged)), where)] if p]
+            out += [p for p in [price_problem(LLMSettings.from_config(merged), where)] if p]
     return out
 
 
 def team_problems(cfg: Any) -> list[str]:
     """Problems of a match config's scenario and both sides (teams, options, LLM settings)."""
-    found = []
-    scenario = str(cfg.scenario.name)
+    found: list[str] = []
+    data = plain(cfg)
+    scenario = str(data["scenario"]["name"])
     if scenario not in SCENARIOS:
         found.append(f"scenario={scenario}: {SCENARIOS.unknown(scenario)}")
     for side in SIDES:
-        for p in _team_problems(cfg, side, scenario):
+        for p in _team_problems(data, side, scenario):
             if p not in found:  # the shared llm settings are reported once
                 found.append(p)
     return found
@@ -78,13 +88,14 @@ def team_problems(cfg: Any) -> list[str]:
 
 def layout_problems(cfg: Any) -> list[str]:
     """`layout=` and `split=`: a known value, one or the other, and a layout of the chosen scenario."""
-    layout, split = cfg.get("layout", PAPER), cfg.get("split")
+    data = plain(cfg)
+    layout, split = data.get("layout", PAPER), data.get("split")
     try:
         parse_split(split)
         key = parse_layout(layout)
         if split is not None and key != PAPER:
             return [f"split={split} plays each episode on a layout of its own; drop layout={layout} or split={split}"]
-        scenario = str(cfg.scenario.name)
+        scenario = str(data["scenario"]["name"])
         if scenario in SCENARIOS and not isinstance(key, int):  # a seed's layout is valid by construction
             SCENARIOS[scenario].layouts.make(key)
     except LayoutError as exc:
@@ -92,12 +103,14 @@ def layout_problems(cfg: Any) -> list[str]:
     return []
 
 
-def check_run_config(cfg: Any, *, teams: bool = True) -> None:
-    """Raise one ConfigError listing every problem of the config (one line each). With
-    teams=False (experiments choose teams themselves, see experiments/runner.check_series) only
-    the top-level keys are checked."""
-    top = top_level_problems(cfg)
-    watch = [] if any(line.startswith("watch=") for line in top) else watch_problems(cfg)
-    if not teams and cfg.get("watch") is not None:  # an experiment: many servers at once
-        watch = [f"watch={cfg.get('watch')}: the live view shows one match; experiments play many series at once"]
-    check(top + watch + layout_problems(cfg) + (team_problems(cfg) if teams else []))
+def check_run_config(cfg: Any, *, teams: bool = True) -> RunConfig:
+    """The typed configuration of `cfg`, or one ConfigError listing every problem of it (one line
+    each). With teams=False (experiments choose teams themselves, see experiments/runner.check_series)
+    only the top-level keys are checked."""
+    data = plain(cfg)
+    top = top_level_problems(data)
+    watch = [] if any(line.startswith("watch=") for line in top) else watch_problems(data)
+    if not teams and data.get("watch") is not None:  # an experiment: many servers at once
+        watch = [f"watch={data['watch']}: the live view shows one match; experiments play many series at once"]
+    check(top + watch + layout_problems(data) + (team_problems(data) if teams else []))
+    return RunConfig.of(data)

@@ -11,6 +11,7 @@ import json
 import time
 from pathlib import Path
 
+from pillagerbench.rundir import last_seen_json
 from pillagerbench.teams.mushroom_war import Passive
 
 
@@ -54,3 +55,19 @@ class HeldPassive(Passive):
             while hold.exists():  # the event loop stands still here, as in a slow disk write
                 time.sleep(0.05)
         return super().save_checkpoint(directory)
+
+
+SEEN = "seen.json"
+
+
+class SeeingPassive(HeldPassive):
+    """HeldPassive that writes what it is given of its last episode, in the form a remote team is sent
+    it (`seen.json` in its side's directory of each episode), before it holds."""
+
+    name = "seeing_passive"
+
+    async def pre_game(self, ctx) -> None:
+        ctx.out_dir.mkdir(parents=True, exist_ok=True)
+        seen = last_seen_json(ctx.last_episode) if ctx.last_episode else None
+        (ctx.out_dir / SEEN).write_text(json.dumps(seen, default=str))
+        await super().pre_game(ctx)

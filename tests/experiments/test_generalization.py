@@ -7,6 +7,7 @@ from __future__ import annotations
 import pytest
 
 from pillagerbench.config import ConfigError, load_config
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments import build_series, builtin_teams
 from pillagerbench.experiments.plan import build_plan
 
@@ -14,7 +15,7 @@ SMALL = ("experiment=generalization", "experiment.team=random", "experiment.aren
 
 
 def build(*argv):
-    return build_series(load_config(list(argv)), list(argv))
+    return build_series(RunConfig.of(load_config(list(argv))), list(argv))
 
 
 def test_every_opponent_both_sides_on_the_papers_and_on_test_layouts():
@@ -80,6 +81,6 @@ def test_dev_layouts_are_asked_for_by_their_key():
 
 def test_plan_prices_the_default_experiment():
     argv = ["experiment=generalization", "experiment.team=do_nothing", "parallel=4"]
-    plan = build_plan(load_config(argv), argv)
+    plan = build_plan(RunConfig.of(load_config(argv)), argv)
     assert (len(plan.series), plan.episodes) == (40, 120)
     assert 60 * 60 < plan.wall_low == plan.wall_high < 70 * 60  # 40 series of 3 × 120 s, 4 at once

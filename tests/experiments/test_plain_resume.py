@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from pillagerbench.metrics.verified import load_runs
-from pillagerbench.rundir import spoiled
+from pillagerbench.rundir import EpisodeRecord, spoiled
 from tests.support.cli import kill_run, run_cli, start_cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -45,11 +45,11 @@ def command(run: Path, hold: Path, at: str) -> list[str]:
     ]
 
 
-def kill_when_held(run: Path, hold: Path, at: str) -> list[dict]:
-    """Start the run, SIGKILL its process group once the team holds (or, at "record", once episode 0
-    is recorded); the records then."""
+def kill_when_held(run: Path, hold: Path, at: str, args: list[str] | None = None) -> list[dict]:
+    """Start the run (`args`: its command, default `command`'s), SIGKILL its process group once the team
+    holds (or, at "record", once episode 0 is recorded); the records then."""
     hold.write_text("")
-    proc = start_cli("run", *command(run, hold, at), cwd=ROOT)
+    proc = start_cli("run", *(args or command(run, hold, at)), cwd=ROOT)
     reached = hold.with_name(hold.name + ".reached")
     deadline = time.monotonic() + 150
     try:
@@ -79,8 +79,8 @@ def test_a_killed_plain_run_resumes_with_nothing_lost_and_nothing_repeated(tmp_p
     after = records(run)
     assert [r["episode"] for r in after] == list(range(len(after)))  # every index once: none lost, none repeated
     # an episode spoiled on our side (lag on a loaded machine) is kept and played again as the next index
-    used = [r["episode"] for r in after if not spoiled(r)]
-    assert len(used) == EPISODES, [(r["episode"], spoiled(r)) for r in after]
+    used = [r["episode"] for r in after if not spoiled(EpisodeRecord.from_dict(r))]
+    assert len(used) == EPISODES, [(r["episode"], spoiled(EpisodeRecord.from_dict(r))) for r in after]
     assert all(r["status"] == "ok" for r in after), [r.get("error") for r in after]
     assert after[: len(before)] == before  # the finished ones untouched
     assert (run / "episode_000" / "timeline.json").read_text() == kept

@@ -5,11 +5,12 @@ from __future__ import annotations
 import pytest
 
 from pillagerbench.config import ConfigError, load_config
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments import build_series, builtin_teams
 
 
 def build(*argv):
-    return build_series(load_config(list(argv)), list(argv))
+    return build_series(RunConfig.of(load_config(list(argv))), list(argv))
 
 
 def test_builtin_teams_in_the_papers_order():

@@ -82,7 +82,7 @@ def test_each_budget_kind_stops_play(tmp_path, capsys, monkeypatch, kind):
     root = tmp_path / "L"
     assert cli_main(["league", str(root), "init", "episodes_per_match=1", "matches_per_round=1"]) == 0
     monkeypatch.setattr(play, "_play_round", play_by_hand)
-    limit = 2 * SPENT_PER_EPISODE[kind]  # two rounds of one episode each
+    limit = 4 * SPENT_PER_EPISODE[kind]  # two rounds of one match and its side-swapped twin, one episode each
     command = ["league", str(root), "play", f"budget.{kind}={limit}", "display=plain"]
     spent = f"({kind} {limit:g}/{limit:g})"
 

@@ -4,7 +4,6 @@ the cost and the cost per win of each red team; an unpriced model says so instea
 
 from __future__ import annotations
 
-import json
 import re
 from pathlib import Path
 
@@ -13,7 +12,7 @@ from pillagerbench.llm.prices import format_cost
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report import tables
-from pillagerbench.rundir import spoiled
+from pillagerbench.rundir import RunDir, spoiled
 from tests.support.cli import run_cli
 
 PRICE = ["llm.price.input_per_1m=1000", "llm.price.output_per_1m=2000"]
@@ -39,8 +38,8 @@ def test_a_run_ends_with_what_each_team_spent_and_the_report_has_cost_per_win(tm
     runs = load_runs([run])
     row = tables.summary(runs.episodes, {}, runs.ledger).iloc[0]
     assert row["cost"] == stats.cost_text()
-    records = [json.loads(line) for line in (run / "episodes.jsonl").read_text().splitlines()]
-    wins = sum(r["red_score"] > r["blue_score"] for r in records if not spoiled(r))  # a lagged one is replayed
+    records = RunDir(run).records()
+    wins = sum(r.red_score > r.blue_score for r in records if not spoiled(r))  # a lagged one is replayed
     assert row["cost_per_win"] == (format_cost(stats.cost_usd / wins, 0) if wins else "– (no win)")
 
 

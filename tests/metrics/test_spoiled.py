@@ -10,7 +10,7 @@ import pytest
 
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
-from pillagerbench.rundir import progress, spoiled
+from pillagerbench.rundir import EpisodeRecord, progress, spoiled
 from tests.metrics.fake_runs import write_run
 
 UNREACHABLE = "llm failed on all 1 call(s); last: LLMConnectionError: connection refused"
@@ -55,7 +55,11 @@ def test_our_faults_are_in_no_score_and_the_teams_own_are(tmp_path):
     assert list(pd.read_csv(tmp_path / "report" / "lagged.csv")["episode"]) == [3]
 
 
-OK, BAD = {"status": "ok"}, {"status": "ok", "lagged": True}
+def record(**data) -> EpisodeRecord:
+    return EpisodeRecord.from_dict({"episode": 0, **data})
+
+
+OK, BAD = record(status="ok"), record(status="ok", lagged=True)
 
 
 @pytest.mark.parametrize(
@@ -76,10 +80,10 @@ def test_the_next_episode_follows_from_the_records_alone(played, planned, retrie
 
 
 def test_a_budget_spent_is_the_teams_and_an_unreachable_provider_ours():
-    assert spoiled({"status": "ok", "problems": {"red": [BUDGET]}}) is None
-    assert spoiled({"status": "ok", "problems": {"red": [UNREACHABLE]}}) == "provider unreachable"
-    assert spoiled({"status": "failed", "error": "PlayerError: bot died"}) == "failed: a bot"
-    assert spoiled({"status": "failed", "error": "BudgetExceeded: spent"}) is None
+    assert spoiled(record(status="ok", problems={"red": [BUDGET]})) is None
+    assert spoiled(record(status="ok", problems={"red": [UNREACHABLE]})) == "provider unreachable"
+    assert spoiled(record(status="failed", error="PlayerError: bot died")) == "failed: a bot"
+    assert spoiled(record(status="failed", error="BudgetExceeded: spent")) is None
 
 
 def test_an_experiment_closes_with_what_our_faults_cost():

@@ -98,17 +98,17 @@ def test_an_old_run_reads_as_unversioned_and_a_new_record_names_this_suite(tmp_p
 def test_every_manifest_names_the_suite(tmp_path):
     from types import SimpleNamespace
 
-    from omegaconf import OmegaConf
-
+    from pillagerbench.config import load_config
+    from pillagerbench.config_schema import RunConfig
     from pillagerbench.experiments.runner import write_experiment
     from pillagerbench.manifest import write_manifest
     from pillagerbench.rundir import RunDir
 
     scenario = SimpleNamespace(key="mushroom_war", title="Mushroom War", version="1")
-    write_manifest(tmp_path / "run", OmegaConf.create({"seed": 0}), scenario)
-    write_experiment(tmp_path / "exp", OmegaConf.create({"experiment": {"name": "x"}}), [], [])
+    write_manifest(tmp_path / "run", RunConfig.of(load_config([])), scenario)
+    write_experiment(tmp_path / "exp", {"experiment": {"name": "x"}}, [], [])
     for run in ("run", "exp"):
-        assert RunDir(tmp_path / run).manifest()["suite"] == current()
+        assert RunDir(tmp_path / run).manifest().suite == current()
 
 
 def test_the_same_files_named_before_and_after_their_hash_was_recorded_are_one_version(tmp_path):

@@ -13,7 +13,7 @@ import asyncio
 
 from pillagerbench.arena.server import MC_VERSION, ArenaServer
 from pillagerbench.config import load_config
-from pillagerbench.config_schema import ServerConfig, check, problems, watch_problems
+from pillagerbench.config_schema import ServerConfig, check, plain, problems, watch_problems
 
 
 async def _serve(server: ArenaServer) -> None:
@@ -35,7 +35,7 @@ async def _serve(server: ArenaServer) -> None:
 def main(argv: list[str]) -> int:
     cfg = load_config(argv)
     check(problems(ServerConfig, cfg.server, "server") + watch_problems(cfg))
-    server = ArenaServer.from_config(cfg.server, watch=cfg.get("watch"))
+    server = ArenaServer.from_config(ServerConfig.model_validate(plain(cfg.server)), watch=cfg.watch)
     try:
         asyncio.run(_serve(server))
     except KeyboardInterrupt:

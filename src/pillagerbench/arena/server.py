@@ -18,11 +18,17 @@ import socket
 import tempfile
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from pillagerbench.arena.control import ControlChannel
 from pillagerbench.control import Control
 from pillagerbench.node import JS_DIR, node_binary, node_env, profile_args
+from pillagerbench.rundir.names import SERVER_LOG
+
+LOG = f"{SERVER_LOG}.log"  # the server's log where no path is given (a run directory keeps its own: RunDir)
+
+if TYPE_CHECKING:
+    from pillagerbench.config_schema import ServerConfig
 
 MAIN_JS = JS_DIR / "server" / "main.js"
 MC_VERSION = "1.16.5"
@@ -36,15 +42,17 @@ class ArenaServerError(RuntimeError):
 
 class ArenaServer(Control):
     @classmethod
-    def from_config(cls, server_cfg, log_path: str | Path | None = None, watch: int | None = None) -> ArenaServer:
-        """Build from the `server` section of the Hydra config (and the top-level `watch` port)."""
-        log_dir = server_cfg.get("log_dir")
+    def from_config(
+        cls, server_cfg: ServerConfig, log_path: str | Path | None = None, watch: int | None = None
+    ) -> ArenaServer:
+        """Build from the `server` section of the configuration (and the top-level `watch` port)."""
+        log_dir = server_cfg.log_dir
         return cls(
             host=server_cfg.host,
-            port=int(server_cfg.port),
-            log_path=log_path or (Path(log_dir) / "server.log" if log_dir else None),
-            view_distance=int(server_cfg.view_distance),
-            crop_growth_chance=float(server_cfg.crop_growth_chance),
+            port=server_cfg.port,
+            log_path=log_path or (Path(log_dir) / LOG if log_dir else None),
+            view_distance=server_cfg.view_distance,
+            crop_growth_chance=server_cfg.crop_growth_chance,
             tps=int(server_cfg.tps),
             operators=list(server_cfg.operators),
             watch=watch,
@@ -64,9 +72,7 @@ class ArenaServer(Control):
         self.host = host
         self.requested_port = port
         self.port: int | None = None
-        self.log_path = (
-            Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / "server.log"
-        )
+        self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / LOG
         self.settings = {
             "host": host,
             "port": port,

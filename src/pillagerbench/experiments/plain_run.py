@@ -18,9 +18,7 @@ import asyncio
 import time
 from pathlib import Path
 
-from omegaconf import OmegaConf
-
-from pillagerbench.config import to_dict
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.display import MatchDisplay
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
@@ -30,21 +28,21 @@ from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series
 from pillagerbench.teams.entrant import labels_of
 
 
-def make_run_dir(cfg) -> Path:
+def make_run_dir(cfg: RunConfig) -> Path:
     if cfg.run_dir:
         return Path(cfg.run_dir)
     stamp = time.strftime("%Y-%m-%d_%H-%M-%S")
     return Path("runs") / f"{stamp}_{cfg.scenario.name}_{cfg.red.name}_vs_{cfg.blue.name}"
 
 
-def run_match(cfg) -> int:
+def run_match(cfg: RunConfig) -> int:
     """A new plain run from the command's config."""
     run_dir = make_run_dir(cfg)
-    config = {k: v for k, v in to_dict(cfg).items() if k not in RUNNER_KEYS}
+    config = {k: v for k, v in cfg.stored().items() if k not in RUNNER_KEYS}
     return play_run(plain_series(config, run_dir.name), run_dir, cfg)
 
 
-def play_run(spec: SeriesSpec, run_dir: Path, cfg) -> int:
+def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
     """Play the unfinished episodes of a plain run (all of a new one) with its display, then its
     summary over every finished episode. `cfg`: the command's (display, watch)."""
     run_dir.mkdir(parents=True, exist_ok=True)
@@ -57,11 +55,11 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg) -> int:
         )
         print(f"run directory: {run_dir}")
         return 130
-    records = [EpisodeRecord.from_dict(r) for r in RunDir(run_dir).finished().values()]
+    records = RunDir(run_dir).records()
     failed = sum(r.status != "ok" for r in records)
     problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")
-    retries = retries_of(OmegaConf.create(spec.config))
+    retries = RunConfig.of(spec.config).retries
     done = progress(RunDir(run_dir).finished(), spec.episodes, retries)
     if done.spoiled:
         print(
@@ -79,11 +77,11 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg) -> int:
     return 1 if (failed and failed == len(records)) or all_without_model else 0
 
 
-async def _play(spec: SeriesSpec, run_dir: Path, cfg) -> None:
-    scenario = scenario_from_config(OmegaConf.create(spec.config))
+async def _play(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> None:
+    scenario = scenario_from_config(RunConfig.of(spec.config))
     title = f"{scenario.title}: red {spec.red} vs blue {spec.blue}"
     with MatchDisplay(title, cfg.display) as display:
-        await run_series(spec, run_dir, on_episode=display.episode_done, on_tick=display.tick, watch=cfg.get("watch"))
+        await run_series(spec, run_dir, on_episode=display.episode_done, on_tick=display.tick, watch=cfg.watch)
 
 
 def summarize_problems(records: list) -> tuple[list[str], bool]:

@@ -30,11 +30,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from omegaconf import OmegaConf
-
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec, build_series
 from pillagerbench.llm.tokens import count_tokens
-from pillagerbench.rundir import retries_of
 from pillagerbench.teams.entrant import entrant_of
 
 # Measured by `python benchmarks/plan_accuracy.py --overheads` (do_nothing vs do_nothing, one series of
@@ -221,18 +219,16 @@ def team_calls(team: str, options: dict, llm: Any, scenario: str, episodes: rang
 
 def _sides(config: dict) -> list[tuple[str, str, dict, Any]]:
     """(side, team, options with defaults, LLMSettings or None) of a series config."""
-    from pillagerbench.llm.presets import side_llm_config
     from pillagerbench.llm.settings import LLMSettings
     from pillagerbench.teams import declared_options, find_team
 
-    cfg = OmegaConf.create(config)
+    cfg = RunConfig.of(config)
     out = []
     for side in ("red", "blue"):
-        name = str(cfg[side].name)
+        name = cfg.side(side).name
         cls = find_team(name)
-        node = dict(config[side])
-        options = {**declared_options(name, cls), **{k: v for k, v in node.items() if k not in ("name", "llm")}}
-        llm = LLMSettings.from_config(side_llm_config(cfg, side).llm) if cls.uses_llm else None
+        options = {**declared_options(name, cls), **cfg.side(side).options}
+        llm = LLMSettings.from_config(cfg.llm_of(side)) if cls.uses_llm else None
         out.append((side, name, options, llm))
     return out
 
@@ -257,48 +253,47 @@ def schedule(specs: list[SeriesSpec], durations: dict[str, float], parallel: int
     return now
 
 
-def _specs(cfg: Any, argv: list[str]) -> tuple[str, list[SeriesSpec], dict[str, int]]:
+def _specs(cfg: RunConfig, argv: list[str]) -> tuple[str, list[SeriesSpec], dict[str, int]]:
     """(title, series, planned episodes already settled per series: used or given up) of what the
     command would run."""
     from pillagerbench.experiments.runner import load_experiment, series_progress
 
-    if cfg.get("resume"):
+    if cfg.resume:
         title, specs, dirs = load_experiment(Path(cfg.resume))
         done = {s.id: series_progress(s, dirs[s.id]) for s in specs}
         return title, specs, {sid: p.used + p.given_up for sid, p in done.items()}
-    if cfg.get("experiment") is not None:
-        return str(cfg.experiment.name), build_series(cfg, argv), {}
-    from pillagerbench.config import to_dict
-
-    red, blue, scenario = str(cfg.red.name), str(cfg.blue.name), str(cfg.scenario.name)
-    spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, int(cfg.episodes), int(cfg.seed), to_dict(cfg))
+    if cfg.experiment is not None:
+        return str(cfg.experiment["name"]), build_series(cfg, argv), {}
+    red, blue, scenario = cfg.red.name, cfg.blue.name, cfg.scenario.name
+    spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, cfg.episodes, cfg.seed, cfg.stored())
     return f"run {scenario}: red {red} vs blue {blue}", [spec], {}
 
 
-def _parallel(cfg: Any, cpus: int | None, load: float | None) -> tuple[int, str | None]:
+def _parallel(cfg: RunConfig, cpus: int | None, load: float | None) -> tuple[int, str | None]:
     """Series at once, as the run would choose (a plain run plays one match)."""
     from pillagerbench.experiments.runner import local_parallel
 
-    if cfg.get("experiment") is None and not cfg.get("resume"):
+    if cfg.experiment is None and not cfg.resume:
         return 1, None
-    if str(cfg.get("launcher") or "local") == "ray":
-        if cfg.get("parallel"):
-            return int(cfg.parallel), None
+    if cfg.launcher == "ray":
+        if cfg.parallel:
+            return cfg.parallel, None
         return 1, "launcher=ray without parallel: planned as 1 at once (give parallel=N)"
     return local_parallel(cfg, cpus=cpus, load=load)
 
 
-def build_plan(cfg: Any, argv: list[str], *, cpus: int | None = None, load: float | None = None) -> Plan:
+def build_plan(cfg: RunConfig, argv: list[str], *, cpus: int | None = None, load: float | None = None) -> Plan:
     from pillagerbench.llm.prices import price_of
 
     title, specs, finished = _specs(cfg, argv)
     parallel, note = _parallel(cfg, cpus, load)
     models: dict[str, ModelCost] = {}
     plans, low, high = [], {}, {}
-    length = float(cfg.get("episode_length") or 120)
+    length = cfg.episode_length
     for s in specs:
         todo = range(finished.get(s.id, 0), s.episodes)
-        upstream = str(s.config.get("protocol", "pillagerbench")) == "upstream"
+        series = RunConfig.of(s.config)
+        upstream = series.protocol == "upstream"
         chain_low = chain_high = 0.0
         teams = {}
         for side, name, options, llm in _sides(s.config):
@@ -313,9 +308,7 @@ def build_plan(cfg: Any, argv: list[str], *, cpus: int | None = None, load: floa
             models.setdefault(label, ModelCost(label, price_of(llm))).calls += calls
             chain_low, chain_high = max(chain_low, calls.chain_low), max(chain_high, calls.chain_high)
         n = len(todo)
-        base = (SERIES_OVERHEAD_S if n else 0.0) + n * (
-            float(s.config.get("episode_length", length)) + EPISODE_OVERHEAD_S
-        )
+        base = (SERIES_OVERHEAD_S if n else 0.0) + n * (series.episode_length + EPISODE_OVERHEAD_S)
         low[s.id], high[s.id] = base + chain_low, base + chain_high
         plans.append(SeriesPlan(s, n, teams, low[s.id], high[s.id]))
     return Plan(
@@ -327,7 +320,7 @@ def build_plan(cfg: Any, argv: list[str], *, cpus: int | None = None, load: floa
         wall_low=RUN_OVERHEAD_S + schedule(specs, low, parallel),
         wall_high=RUN_OVERHEAD_S + schedule(specs, high, parallel),
         models=models,
-        retries=retries_of(cfg),
+        retries=cfg.retries,
     )
 
 
@@ -391,16 +384,16 @@ def lines(plan: Plan) -> list[str]:
     return out
 
 
-def main_plan(cfg: Any, argv: list[str]) -> int:
+def main_plan(cfg: RunConfig, argv: list[str]) -> int:
     """`pillagerbench run ... plan=true`: print the plan, play nothing. An experiment's series are
     checked as a run checks them (teams, options, LLM settings), without the preflight."""
-    if cfg.get("experiment") is not None and not cfg.get("resume"):
+    if cfg.experiment is not None and not cfg.resume:
         from pillagerbench.config_schema import check
         from pillagerbench.validate import team_problems
 
         seen: dict[str, None] = {}
         for s in build_series(cfg, argv):
-            for line in team_problems(OmegaConf.create(s.config)):
+            for line in team_problems(s.config):
                 seen.setdefault(line, None)
         check(list(seen))
     for line in lines(build_plan(cfg, argv)):

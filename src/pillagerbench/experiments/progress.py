@@ -18,7 +18,8 @@ from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from pillagerbench.rundir import RunDir, progress, retries_of, spoiled
+from pillagerbench.config_schema import default
+from pillagerbench.rundir import EpisodeRecord, RunDir, progress, retries_of, spoiled
 
 
 def fmt_duration(seconds: float | None) -> str:
@@ -38,7 +39,7 @@ class ExperimentProgress:
         title: str,
         *,
         parallel: int = 1,
-        mode: str = "auto",
+        mode: str = default("display"),
         episode_length: float = 120.0,
         interval: float = 1.0,
         plain_every: float = 60.0,
@@ -65,7 +66,7 @@ class ExperimentProgress:
     def series_dir(self, spec) -> Path:
         return self.dirs.get(spec.id) or RunDir(self.run_dir).series_dir(spec.id)
 
-    def finished(self, spec) -> dict:
+    def finished(self, spec) -> dict[int, EpisodeRecord]:
         path = RunDir(self.series_dir(spec)).episodes_path
         try:
             st = path.stat()
@@ -86,7 +87,7 @@ class ExperimentProgress:
             fin = self.finished(spec)
             settled = progress(fin, spec.episodes, retries_of(spec.config))  # a spoiled episode is played again
             done += settled.used + settled.given_up
-            failed += sum(r.get("status") != "ok" for r in fin.values())
+            failed += sum(not r.ok for r in fin.values())
             status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else {}
             if status:
                 running.append((spec, status))
@@ -130,8 +131,8 @@ class ExperimentProgress:
             for i in sorted(fin)[seen:]:
                 r = fin[i]
                 print(
-                    f"[{snap['done']}/{snap['total']}] {spec.id} episode {i}: red {spec.red} {r.get('red_score')} - "
-                    f"blue {spec.blue} {r.get('blue_score')} ({r.get('winner') or r.get('status')})"
+                    f"[{snap['done']}/{snap['total']}] {spec.id} episode {i}: red {spec.red} {r.red_score} - "
+                    f"blue {spec.blue} {r.blue_score} ({r.winner or r.status})"
                     + (f"; spoiled on our side ({kind}): in no score" if (kind := spoiled(r)) else ""),
                     file=self.stream,
                     flush=True,

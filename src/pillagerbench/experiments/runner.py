@@ -18,63 +18,78 @@ its team objects and what they learn persist from episode to episode.
 from __future__ import annotations
 
 import asyncio
-import json
 import shutil
 import time
 import traceback
 from collections.abc import Awaitable, Callable
 from pathlib import Path
+from typing import Any
 
-from pillagerbench.config import ConfigError, to_dict
+from pillagerbench.config import ConfigError
+from pillagerbench.config_schema import RunConfig, RunnerConfig, default
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.machine import choose_parallel
-from pillagerbench.rundir import RETRIES, RunDir, progress, read_series, retries_of
+from pillagerbench.rundir import (
+    RETRIES,
+    ExperimentFile,
+    Manifest,
+    RunDir,
+    progress,
+    read_series,
+    retries_of,
+    write_experiment_file,
+)
 from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
 
 
-def local_parallel(cfg, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
+def local_parallel(cfg: RunnerConfig, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
     """Matches at once on this machine: the user's `parallel` if given, else as many as the measured
     headroom allows (pillagerbench/machine.py), with one line saying so when that is not the CPU count."""
-    if cfg.get("parallel"):
-        return int(cfg.get("parallel")), None
+    if cfg.parallel:
+        return cfg.parallel, None
     choice = choose_parallel(cpus, load)
     return choice.parallel, (choice.explain() if choice.parallel != choice.cpus else None)
 
 
-def make_experiment_dir(cfg) -> Path:
-    if cfg.get("run_dir"):
+def make_experiment_dir(cfg: RunConfig) -> Path:
+    if cfg.run_dir:
         return Path(cfg.run_dir)
-    return Path("runs") / f"{time.strftime('%Y-%m-%d_%H-%M-%S')}_{cfg.experiment.name}"
+    return Path("runs") / f"{time.strftime('%Y-%m-%d_%H-%M-%S')}_{experiment_name(cfg)}"
 
 
-def write_experiment(run_dir: Path, cfg, argv: list[str], specs: list[SeriesSpec]) -> None:
+def experiment_name(cfg: RunConfig) -> str:
+    return str((cfg.experiment or {})["name"])
+
+
+def write_experiment(run_dir: Path, top: dict[str, Any], argv: list[str], specs: list[SeriesSpec]) -> None:
+    """experiment.json and manifest.json of a new experiment; `top`: its configuration as stored
+    (RunConfig.stored(), or a league round's runner keys and experiment)."""
     from pillagerbench import __version__
     from pillagerbench.manifest import git_revision
     from pillagerbench.suite import current
 
     run_dir.mkdir(parents=True, exist_ok=True)
-    top = to_dict(cfg)
-    data = {
-        "name": cfg.experiment.name,
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "experiment": top["experiment"],
-        "overrides": list(argv),
-        "series": [s.to_dict() for s in specs],
-    }
-    RunDir(run_dir).experiment_path.write_text(json.dumps(data, indent=1, default=str))
-    manifest = {
-        "created": data["created"],
-        "config": top,
-        "versions": {"pillagerbench": __version__},
-        "git_revision": git_revision(),
-        "suite": current(),
-        "experiment": cfg.experiment.name,
-    }
+    data = ExperimentFile(
+        name=top["experiment"]["name"],
+        created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        experiment=top["experiment"],
+        overrides=list(argv),
+        series=[s.to_dict() for s in specs],
+    )
+    write_experiment_file(run_dir, data)
+    manifest = Manifest(
+        created=data.created,
+        config=top,
+        versions={"pillagerbench": __version__},
+        git_revision=git_revision(),
+        suite=current(),
+        experiment=data.name,
+    )
     RunDir(run_dir).write_manifest(manifest)
 
 
@@ -95,8 +110,8 @@ def series_progress(spec: SeriesSpec, series_dir: Path):
 def _comparable(spec: SeriesSpec) -> dict:
     d = spec.to_dict()
     d["config"] = {k: v for k, v in d["config"].items() if k not in IGNORED_ON_RESUME}
-    for key, default in (("scoring", "clean"), ("protocol", "pillagerbench"), ("retries", RETRIES)):  # older runs
-        d["config"].setdefault(key, default)
+    for key in ("scoring", "protocol", "retries"):  # runs from before these keys: the schema's defaults
+        d["config"].setdefault(key, default(key))
     return d
 
 
@@ -185,8 +200,8 @@ def local_launcher(run_dir: Path):
     return launch
 
 
-async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict[str, Path], cfg) -> dict:
-    launcher = str(cfg.get("launcher") or "local")
+async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict[str, Path], cfg: RunnerConfig) -> dict:
+    launcher = cfg.launcher
     closer = None
     if launcher == "local":
         parallel, why = local_parallel(cfg)
@@ -196,12 +211,12 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
     elif launcher == "ray":
         from pillagerbench.experiments.ray_launcher import RayLauncher
 
-        ray_launcher = RayLauncher(cfg.get("ray_address"))
-        parallel = int(cfg.get("parallel") or ray_launcher.cpus())
+        ray_launcher = RayLauncher(cfg.ray_address)
+        parallel = int(cfg.parallel or ray_launcher.cpus())
         launch, closer = ray_launcher.launch_factory(run_dir), ray_launcher.close
     else:
         raise ConfigError(f"launcher={launcher!r}: valid launchers are local, ray")
-    length = float(specs[0].config.get("episode_length", 120)) if specs else 120.0
+    length = RunConfig.of(specs[0].config).episode_length if specs else float(default("episode_length"))
     print(
         f"{title}: {len(specs)} series, {sum(s.episodes for s in specs)} episodes, {parallel} at once ({launcher})",
         flush=True,
@@ -212,7 +227,7 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
             specs,
             title,
             parallel=parallel,
-            mode=str(cfg.get("display") or "auto"),
+            mode=cfg.display,
             episode_length=length,
             dirs=dirs,
         ):
@@ -225,27 +240,25 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
 def check_series(specs: list[SeriesSpec]) -> None:
     """Before anything starts: each distinct series config checked whole (validate.py: teams, their
     options, LLM settings), then the preflight (preflight.py: every LLM and team server answers)."""
-    from omegaconf import OmegaConf
-
     from pillagerbench import preflight
     from pillagerbench.config_schema import check
     from pillagerbench.validate import team_problems
 
     seen: dict[str, None] = {}
     for s in specs:
-        for line in team_problems(OmegaConf.create(s.config)):
+        for line in team_problems(s.config):
             seen.setdefault(line, None)
     check(list(seen))
-    preflight.check([side for s in specs for side in preflight.sides_of(s.config)])
+    preflight.check([side for s in specs for side in preflight.sides_of(RunConfig.of(s.config))])
 
 
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
     """The episodes played under lag (pillagerbench/machine.py): a count, then up to `show` of them."""
     hit = [
-        (s.id, i, rec.get("lag_reason"))
+        (s.id, i, rec.lag_reason)
         for s in specs
         for i, rec in sorted(RunDir(dirs[s.id]).finished().items())
-        if rec.get("lagged")
+        if rec.lagged
     ]
     if not hit:
         return []
@@ -267,12 +280,12 @@ def spoiled_lines(done: list) -> list[str]:
     return [line]
 
 
-def main_experiment(cfg, argv: list[str]) -> int:
+def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
     """`pillagerbench run experiment=NAME ...` and `pillagerbench run resume=RUN_DIR ...`."""
-    if cfg.get("resume"):
+    if cfg.resume:
         run_dir = Path(cfg.resume)
         title, specs, dirs = load_experiment(run_dir)
-        if cfg.get("experiment") is not None and title != "run":
+        if cfg.experiment is not None and title != "run":
             check_same(specs, build_series(cfg, argv), run_dir)
         check_series(specs)
         print(f"resuming {run_dir}", flush=True)
@@ -286,10 +299,10 @@ def main_experiment(cfg, argv: list[str]) -> int:
         run_dir = make_experiment_dir(cfg)
         if RunDir(run_dir).is_experiment():
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
-        write_experiment(run_dir, cfg, argv, specs)
-        if cfg.get("calibration"):
-            shutil.copyfile(cfg.calibration, run_dir / "calibration.json")
-        title, dirs = str(cfg.experiment.name), {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
+        write_experiment(run_dir, cfg.stored(), argv, specs)
+        if cfg.calibration:
+            shutil.copyfile(cfg.calibration, RunDir(run_dir).calibration_path)
+        title, dirs = experiment_name(cfg), {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
     print(f"run directory: {run_dir}", flush=True)
     try:
         results = asyncio.run(execute(run_dir, title, specs, dirs, cfg))

@@ -12,16 +12,23 @@ per planned episode (rundir/schedule.py), so the series reaches its planned epis
 
 from __future__ import annotations
 
-import json
 import shutil
 from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-from omegaconf import OmegaConf
-
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec
-from pillagerbench.rundir import RunDir, episodes_to_play, progress, retries_of
+from pillagerbench.rundir import (
+    EpisodeRecord,
+    RunDir,
+    episodes_to_play,
+    has_team_state,
+    progress,
+    retries_of,
+    team_state_path,
+    write_series,
+)
 
 
 class ResumeError(RuntimeError):
@@ -54,13 +61,13 @@ async def run_series(
 
     rundir = RunDir(series_dir)
     rundir.path.mkdir(parents=True, exist_ok=True)
-    cfg = OmegaConf.create(spec.config)
+    cfg = RunConfig.of(spec.config)
     if not rundir.series_path.exists() and run_dir is not None and Path(run_dir) != rundir.path:
-        rundir.series_path.write_text(json.dumps({k: v for k, v in spec.to_dict().items() if k != "config"}, indent=1))
+        write_series(rundir, spec)
     finished, discarded = rundir.recover()
     if discarded:
         say(f"[{spec.id}] resume: discarded {', '.join(discarded)}")
-    retries = retries_of(cfg)
+    retries = cfg.retries
     summary = {"id": spec.id, "played": 0}
     if not progress(finished, spec.episodes, retries).complete:
         scenario = scenario_from_config(cfg)
@@ -83,7 +90,7 @@ async def run_series(
     done = progress(finished, spec.episodes, retries)
     summary.update(used=done.used, spoiled=done.spoiled, given_up=done.given_up)
     summary["finished"] = len(finished)
-    summary["failed"] = sum(r.get("status") != "ok" for r in finished.values())
+    summary["failed"] = sum(not r.ok for r in finished.values())
     return summary
 
 
@@ -91,21 +98,21 @@ def _restore(rundir: RunDir, teams: dict, episode: int) -> None:
     """Each team as it was after `episode` (its state saved then); a missing state is refused."""
     last = rundir.state(episode)
     for side, team in teams.items():
-        if not (last / side / "team.json").exists():  # a learning team would start from scratch
+        if not has_team_state(last / side):  # a learning team would start from scratch
             raise ResumeError(
                 f"cannot resume: {side}'s state after episode {episode} is missing "
-                f"({last / side / 'team.json'}); the team would forget what it learned"
+                f"({team_state_path(last / side)}); the team would forget what it learned"
             )
         team.load_checkpoint(last / side)
 
 
 async def _play(
     spec: SeriesSpec,
-    cfg,
+    cfg: RunConfig,
     rundir: RunDir,
     scenario,
     teams: dict,
-    finished: dict[int, dict],
+    finished: dict[int, EpisodeRecord],
     remaining: Iterable[int],
     on_episode: Callable[[Any], None] | None,
     on_tick: Callable[[dict], None] | None,
@@ -113,7 +120,7 @@ async def _play(
 ) -> None:
     from pillagerbench.run import play_match
 
-    ok = [i for i in sorted(finished) if finished[i].get("status") == "ok"]
+    ok = [i for i in sorted(finished) if finished[i].ok]
     # what the teams saw of the last episode before the kill, as an uninterrupted series would
     last = {side: rundir.last_seen(finished[ok[-1]]) for side in teams} if ok else {}
 
@@ -151,8 +158,7 @@ def _commit(spec: SeriesSpec, rundir: RunDir, teams: dict, rec) -> None:
         shutil.rmtree(state)
     for side, team in teams.items():
         team.save_checkpoint(state / side)
-    ledger = rundir.ledger_path
-    (state / "ledger_offset").write_text(str(ledger.stat().st_size if ledger.exists() else 0))
+    rundir.write_ledger_offset(rec.episode)
     if spec.keeps_checkpoint(rec.episode):
         for side in teams:
             target = rundir.checkpoint(rec.episode, side)
@@ -160,6 +166,6 @@ def _commit(spec: SeriesSpec, rundir: RunDir, teams: dict, rec) -> None:
                 shutil.rmtree(target)
             shutil.copytree(state / side, target)
     rundir.append(rec)
-    for i, old in rundir.episode_dirs(rundir.path / "state"):
+    for i, old in rundir.state_dirs():
         if i < rec.episode:
             shutil.rmtree(old, ignore_errors=True)

@@ -27,11 +27,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from omegaconf import DictConfig, OmegaConf
-
 from pillagerbench.config import ConfigError, load_config, to_dict
+from pillagerbench.config_schema import ExperimentConfig, RunConfig
 from pillagerbench.registry import Registry
-from pillagerbench.rundir import RunDir, SeriesSpec, read_experiment
+from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
 # keys of the top-level config that belong to the experiment machinery, not to one series
@@ -77,23 +76,20 @@ def check_overrides(argv: list[str]) -> list[str]:
 
 
 class _Composer:
-    """Composes one series config per (scenario, red, blue, llm preset); cached."""
+    """Composes one series config per (scenario, red, blue, llm preset), typed; cached."""
 
     def __init__(self, overrides: list[str]):
         self.overrides = overrides
-        self.cache: dict[tuple, DictConfig] = {}
+        self.cache: dict[tuple, RunConfig] = {}
 
-    def __call__(self, scenario: str, red: str, blue: str, llm: str | None) -> DictConfig:
+    def __call__(self, scenario: str, red: str, blue: str, llm: str | None) -> RunConfig:
         key = (scenario, red, blue, llm)
         if key not in self.cache:
             own = [o for o in self.overrides if not (llm and override_key(o) == "llm")]
             extra = [f"scenario={scenario}", f"red={red}", f"blue={blue}"] + ([f"llm={llm}"] if llm else [])
-            cfg = load_config(own + extra)
-            OmegaConf.set_struct(cfg, False)
-            for k in RUNNER_KEYS:
-                cfg.pop(k, None)
-            self.cache[key] = cfg
-        return self.cache[key].copy()
+            cfg = to_dict(load_config(own + extra))
+            self.cache[key] = RunConfig.of({k: v for k, v in cfg.items() if k not in RUNNER_KEYS})
+        return self.cache[key]
 
 
 def _known_team(name: Any, key: str) -> str:
@@ -108,17 +104,17 @@ def _known_team(name: Any, key: str) -> str:
     return str(name)
 
 
-def _variants(exp: DictConfig) -> dict[str, dict]:
+def _variants(exp: ExperimentConfig) -> dict[str, dict]:
     base = {
-        "team": exp.get("team"),
-        "team_options": exp.get("team_options") or {},
-        "llm": exp.get("llm"),
-        "llm_options": exp.get("llm_options") or {},
+        "team": exp.team,
+        "team_options": exp.team_options or {},
+        "llm": exp.llm,
+        "llm_options": exp.llm_options or {},
     }
-    raw = exp.get("variants")
+    raw = exp.variants
     if not raw:
         if not base["team"]:
-            raise ConfigError(f"experiment {exp.get('name')!r} needs `team` (experiment.team=NAME)")
+            raise ConfigError(f"experiment {exp.name!r} needs `team` (experiment.team=NAME)")
         return {_known_team(base["team"], "experiment.team"): base}
     out = {}
     for label, v in raw.items():
@@ -126,34 +122,34 @@ def _variants(exp: DictConfig) -> dict[str, dict]:
         merged = dict(base)
         merged.update({k: v[k] for k in ("team", "team_options", "llm", "llm_options") if k in v})
         if not merged["team"]:
-            raise ConfigError(f"variant {label!r} of experiment {exp.get('name')!r} names no team")
+            raise ConfigError(f"variant {label!r} of experiment {exp.name!r} names no team")
         _known_team(merged["team"], f"experiment.variants.{label}.team" if "team" in v else "experiment.team")
         out[str(label)] = merged
     return out
 
 
-def _opponents(exp: DictConfig, key: str, scenario: str) -> list[str]:
-    chosen = exp.get(key)
+def _opponents(chosen: list[str] | None, key: str, scenario: str) -> list[str]:
+    """The teams the experiment's `key` names (each checked), or else the scenario's built-in ones."""
     return [_known_team(t, f"experiment.{key}") for t in chosen] if chosen else builtin_teams(scenario)
 
 
-def _sides(exp: DictConfig, what: str, default: str) -> list[str]:
-    sides = list(exp.get("sides") or [default])
+def _sides(exp: ExperimentConfig, what: str, default: str) -> list[str]:
+    sides = list(exp.sides or [default])
     if any(s not in ("blue", "red") for s in sides):
         raise ConfigError(f"experiment.sides={sides}: each side is blue or red ({what}; e.g. [blue, red])")
     return sides
 
 
-def _arenas(exp: DictConfig, overrides: list[str]) -> dict[str, int]:
+def _arenas(exp: ExperimentConfig, overrides: list[str]) -> dict[str, int]:
     """`arenas`: split -> episodes per opponent and side (paper: the paper's layout; dev, test: each
     episode on a layout of the split). The experiment chooses each series' layout itself."""
     chosen = [o for o in overrides if override_key(o) in ("layout", "split")]
     if chosen:
         raise ConfigError(
-            f"{chosen[0]!r}: experiment {exp.get('name')!r} chooses each series' layout itself; "
+            f"{chosen[0]!r}: experiment {exp.name!r} chooses each series' layout itself; "
             "use experiment.arenas.SPLIT=EPISODES (splits: " + ", ".join(SPLITS) + ")"
         )
-    arenas = dict(exp.get("arenas") or {})
+    arenas = dict(exp.arenas or {})
     bad = [k for k, n in arenas.items() if k not in SPLITS or isinstance(n, bool) or not isinstance(n, int) or n < 0]
     if bad or not any(arenas.values()):
         raise ConfigError(
@@ -164,11 +160,19 @@ def _arenas(exp: DictConfig, overrides: list[str]) -> dict[str, int]:
 
 
 class _Builder:
-    def __init__(self, cfg: DictConfig, argv: list[str]):
-        self.cfg, self.exp = cfg, cfg.experiment
+    def __init__(self, cfg: RunConfig, exp: ExperimentConfig, argv: list[str]):
+        self.exp = exp
+        self.repetitions = range(exp.repetitions or 1)
         self.compose = _Composer(check_overrides(argv))
         self.series: list[SeriesSpec] = []
-        self.seed = int(cfg.seed)
+        self.seed = cfg.seed
+
+    @property
+    def episodes(self) -> int:
+        """The episodes of each series (`experiment.episodes`; designs that play it need it)."""
+        if self.exp.episodes is None:
+            raise ConfigError(f"experiment {self.exp.name!r} needs `episodes` (experiment.episodes=N)")
+        return self.exp.episodes
 
     def add(
         self,
@@ -185,14 +189,13 @@ class _Builder:
         **extra,
     ) -> SeriesSpec:
         own = variant or blue_variant or {}  # the experiment's team: its model is the series' llm
-        cfg = self.compose(scenario, red_team, blue_team, own.get("llm"))
-        for side, v in (("red", variant), ("blue", blue_variant)):
-            if v:
-                cfg[side] = OmegaConf.merge(cfg[side], v.get("team_options") or {})
+        changes: dict[str, Any] = {
+            side: v.get("team_options") or {} for side, v in (("red", variant), ("blue", blue_variant)) if v
+        }
         if own:
-            cfg.llm = OmegaConf.merge(cfg.llm, own.get("llm_options") or {})
+            changes["llm"] = own.get("llm_options") or {}
         if arena:  # every episode on the paper's layout, or each on a fresh one of the split
-            cfg.layout, cfg.split = PAPER, arena
+            changes |= {"layout": PAPER, "split": arena}
         extra["variant"] = extra.pop("variant_label", None)
         index = len(self.series)
         red, blue = red or red_team, blue or blue_team
@@ -200,15 +203,16 @@ class _Builder:
         for tag in (extra.get("group"), arena):
             if tag:
                 parts.append(slug(tag))
-        if int(self.exp.get("repetitions", 1) or 1) > 1:
+        if len(self.repetitions) > 1:
             parts.append(f"r{extra.get('repetition', 0)}")
-        cfg.episodes = int(episodes)
         seed = self.seed * 1000 + index
-        cfg.seed = seed
+        cfg = self.compose(scenario, red_team, blue_team, own.get("llm")).updated(
+            {**changes, "episodes": int(episodes), "seed": seed}
+        )
         spec = SeriesSpec(
             id="_".join(parts),
             index=index,
-            design=str(self.exp.design),
+            design=self.exp.design,
             scenario=scenario,
             red=red,
             blue=blue,
@@ -216,7 +220,7 @@ class _Builder:
             blue_team=blue_team,
             episodes=int(episodes),
             seed=seed,
-            config=to_dict(cfg),
+            config=cfg.stored(),
             **extra,
         )
         self.series.append(spec)
@@ -224,17 +228,17 @@ class _Builder:
 
     # -- designs ---------------------------------------------------------------------------------
     def round_robin(self) -> None:
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for sc in self.exp.scenarios:
-                for red in _opponents(self.exp, "red_teams", sc):
-                    for blue in _opponents(self.exp, "blue_teams", sc):
-                        self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+                for red in _opponents(self.exp.red_teams, "red_teams", sc):
+                    for blue in _opponents(self.exp.blue_teams, "blue_teams", sc):
+                        self.add(sc, red, blue, self.episodes, repetition=rep)
 
     def symmetry(self) -> None:
-        pairings = self.exp.get("pairings") or []
+        pairings = self.exp.pairings or []
         if not pairings:
             raise ConfigError(
-                f"experiment {self.exp.get('name')!r} needs `pairings`: a list of {{scenario: NAME, a: TEAM, b: TEAM}}"
+                f"experiment {self.exp.name!r} needs `pairings`: a list of {{scenario: NAME, a: TEAM, b: TEAM}}"
             )
         for i, p in enumerate(pairings):
             missing = [k for k in ("scenario", "a", "b") if not (p or {}).get(k)]
@@ -243,29 +247,29 @@ class _Builder:
                     f"experiment.pairings[{i}] needs {', '.join(missing)} "
                     f"(a pairing is {{scenario: NAME, a: TEAM, b: TEAM}}), got {p}"
                 )
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for p in pairings:
-                orders = [(p.a, p.b)] if p.a == p.b else [(p.a, p.b), (p.b, p.a)]
+                orders = [(p["a"], p["b"])] if p["a"] == p["b"] else [(p["a"], p["b"]), (p["b"], p["a"])]
                 for red, blue in orders:
-                    self.add(p.scenario, red, blue, self.exp.episodes, repetition=rep)
+                    self.add(p["scenario"], red, blue, self.episodes, repetition=rep)
 
     def fidelity(self) -> None:
         sides = _sides(self.exp, "the opponent's side", "blue")
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for sc in self.exp.scenarios:
-                for team in _opponents(self.exp, "opponents", sc):
+                for team in _opponents(self.exp.opponents, "opponents", sc):
                     if team == "do_nothing":
                         continue
                     for side in sides:
                         red, blue = ("do_nothing", team) if side == "blue" else (team, "do_nothing")
-                        self.add(sc, red, blue, self.exp.episodes, repetition=rep)
+                        self.add(sc, red, blue, self.episodes, repetition=rep)
 
     def generalization(self) -> None:
         arenas, sides = _arenas(self.exp, self.compose.overrides), _sides(self.exp, "the team's side", "red")
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
-                    for opponent in _opponents(self.exp, "opponents", sc):
+                    for opponent in _opponents(self.exp.opponents, "opponents", sc):
                         for side in sides:
                             red, blue = (v["team"], opponent) if side == "red" else (opponent, v["team"])
                             team: dict[str, Any] = (
@@ -277,26 +281,26 @@ class _Builder:
                                 )
 
     def benchmark(self) -> None:
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
-                    for blue in _opponents(self.exp, "opponents", sc):
+                    for blue in _opponents(self.exp.opponents, "opponents", sc):
                         self.add(
                             sc,
                             v["team"],
                             blue,
-                            self.exp.episodes,
+                            self.episodes,
                             red=label,
                             variant=v,
                             variant_label=label,
                             repetition=rep,
-                            checkpoint_every=self.exp.get("checkpoint_every"),
+                            checkpoint_every=self.exp.checkpoint_every,
                         )
 
     def self_play(self) -> None:
-        every = self.exp.get("checkpoint_every")
-        episodes = int(self.exp.episodes)
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        every = self.exp.checkpoint_every
+        episodes = self.episodes
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
                     play = self.add(
@@ -312,13 +316,13 @@ class _Builder:
                         repetition=rep,
                         checkpoint_every=every,
                     )
-                    if not self.exp.get("evaluate"):
+                    if not self.exp.evaluate:
                         continue
                     stages = [0] + (list(range(every, episodes + 1, every)) if every else [episodes])
                     for k in stages:
                         ckpt = {"red": {"series": play.id, "episode": k - 1}} if k else {}
                         play.checkpoint_at = sorted(set(play.checkpoint_at) | ({k - 1} if k else set()))
-                        for blue in _opponents(self.exp, "opponents", sc):
+                        for blue in _opponents(self.exp.opponents, "opponents", sc):
                             self.add(
                                 sc,
                                 v["team"],
@@ -335,12 +339,12 @@ class _Builder:
                             )
 
     def adaptation(self) -> None:
-        train = int(self.exp.get("train_episodes", 5))
-        from_run = self.exp.get("from_run")
-        for rep in range(int(self.exp.get("repetitions", 1) or 1)):
+        train = self.exp.train_episodes
+        from_run = self.exp.from_run
+        for rep in self.repetitions:
             for label, v in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
-                    opponents = _opponents(self.exp, "opponents", sc)
+                    opponents = _opponents(self.exp.opponents, "opponents", sc)
                     for trained_on in opponents:
                         if from_run:
                             ckpt: dict[str, dict[str, Any]] = {
@@ -392,7 +396,7 @@ DESIGNS: Registry[Callable[[_Builder], None]] = Registry(
 
 def read_series_index(run_dir: Path) -> list[SeriesSpec]:
     """The series of an experiment's run directory, from its experiment.json."""
-    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir)["series"]]
+    return [SeriesSpec.from_dict(s) for s in read_experiment(run_dir).series]
 
 
 def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetition: int, episode: int) -> Path:
@@ -405,7 +409,7 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
             repetition,
         ) and spec.group is None:
             path = RunDir(RunDir(run_dir).series_dir(spec.id)).checkpoint(episode, "red")
-            if (path / "team.json").exists():
+            if has_team_state(path):
                 return path.resolve()
             raise ConfigError(
                 f"from_run: series {spec.id} of {run_dir} kept no checkpoint after episode {episode} "
@@ -414,18 +418,17 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
     raise ConfigError(f"from_run: {run_dir} has no series {scenario} {red} vs {blue} (repetition {repetition})")
 
 
-def build_series(cfg: DictConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
+def build_series(cfg: RunConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
     """The series of the experiment selected in cfg.experiment (argv: the user's overrides)."""
-    exp = cfg.get("experiment")
-    if not exp:
+    if not cfg.experiment:
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
-    design = exp.get("design")
+    exp = ExperimentConfig.of(cfg.experiment)
     try:
-        play = DESIGNS.find(design)
+        play = DESIGNS.find(exp.design)
     except ConfigError as exc:
-        raise ConfigError(f"experiment {exp.get('name')!r}: {exc}") from None
-    builder = _Builder(cfg, list(argv or []))
+        raise ConfigError(f"experiment {exp.name!r}: {exc}") from None
+    builder = _Builder(cfg, exp, list(argv or []))
     play(builder)
     if not builder.series:
-        raise ConfigError(f"experiment {exp.get('name')!r} has no series (check scenarios/opponents)")
+        raise ConfigError(f"experiment {exp.name!r} has no series (check scenarios/opponents)")
     return builder.series

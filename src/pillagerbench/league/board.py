@@ -25,6 +25,7 @@ from pillagerbench.league.arena_view import BOOTSTRAP_ROUNDS, COLUMNS, arena_col
 from pillagerbench.league.ratings import ANCHOR, Rating, ranked, ranks
 from pillagerbench.league.spec import League
 from pillagerbench.league.standings import boards, overall
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import Estimate, mean_ci, mean_of_estimates, sabotage, win_rate
 from pillagerbench.metrics.runs import mixed_notes, mixed_title
 from pillagerbench.report.html import page
@@ -58,8 +59,8 @@ def _recorded(df: pd.DataFrame, name: str) -> dict[str, str]:
     """The entrant label and id its episodes recorded (teams/entrant.py), "" before it played."""
     seen: dict[str, str] = {}
     for side in ("red", "blue"):
-        mine = df[df[f"{side}_name"] == name]
-        seen |= dict(zip(mine[f"{side}_entrant_id"], mine[f"{side}_entrant"]))
+        mine = df[df[Col.series_name(side)] == name]
+        seen |= dict(zip(mine[Col.entrant_id(side)], mine[Col.entrant(side)]))
     return {"label": ", ".join(dict.fromkeys(seen.values())), "id": ", ".join(seen)}
 
 

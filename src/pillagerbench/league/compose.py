@@ -8,9 +8,8 @@ from __future__ import annotations
 from functools import cache
 from typing import Any
 
-from omegaconf import DictConfig, OmegaConf
-
 from pillagerbench.config import ConfigError, load_config, to_dict
+from pillagerbench.config_schema import RunConfig, merged
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.league.spec import Entrant
 from pillagerbench.teams import find_team
@@ -22,23 +21,20 @@ def _preset(name: str) -> dict[str, Any]:
     return to_dict(load_config([f"llm={name}"]).llm)
 
 
-def _side(cfg: DictConfig, side: str, entrant: Entrant) -> None:
-    cfg[side] = OmegaConf.merge(cfg[side], entrant.options)
+def _side(cfg: dict[str, Any], side: str, entrant: Entrant) -> None:
+    cfg[side] = merged(cfg[side], entrant.options)
     if entrant.llm or entrant.llm_options:
         own = _preset(entrant.llm) if entrant.llm else {}
-        cfg[side].llm = OmegaConf.merge(OmegaConf.create(own), entrant.llm_options)
+        cfg[side]["llm"] = merged(own, entrant.llm_options)
 
 
-def match_config(scenario: str, red: Entrant, blue: Entrant, game: tuple[str, ...] = ()) -> DictConfig:
+def match_config(scenario: str, red: Entrant, blue: Entrant, game: tuple[str, ...] = ()) -> RunConfig:
     """The full config of a match (checked: one ConfigError line per problem)."""
-    cfg = load_config([*game, f"scenario={scenario}", f"red={red.team}", f"blue={blue.team}"])
-    OmegaConf.set_struct(cfg, False)
+    cfg = to_dict(load_config([*game, f"scenario={scenario}", f"red={red.team}", f"blue={blue.team}"]))
     _side(cfg, "red", red)
     _side(cfg, "blue", blue)
     check_run_config(cfg)
-    for k in RUNNER_KEYS:
-        cfg.pop(k, None)
-    return cfg
+    return RunConfig.of({k: v for k, v in cfg.items() if k not in RUNNER_KEYS})
 
 
 def playable(entrant: Entrant, scenarios: list[str]) -> list[str]:

@@ -10,9 +10,8 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
-from omegaconf import OmegaConf
-
 from pillagerbench.config import ConfigError
+from pillagerbench.config_schema import RunnerConfig
 from pillagerbench.experiments.runner import check_series, execute, load_experiment, series_progress
 from pillagerbench.league import results
 from pillagerbench.league.compose import check_entrant
@@ -36,8 +35,7 @@ def _play_round(run_dir: Path, runner: dict) -> bool:
     title, specs, dirs = load_experiment(run_dir)
     check_series(specs)
     print(f"{run_dir.name}: " + ", ".join(f"{s.red} vs {s.blue} ({s.scenario})" for s in specs), flush=True)
-    cfg = OmegaConf.create(runner)
-    got = asyncio.run(execute(run_dir, title, specs, dirs, cfg))
+    got = asyncio.run(execute(run_dir, title, specs, dirs, RunnerConfig.model_validate(runner)))
     return all(r["status"] == "done" for r in got.values())
 
 

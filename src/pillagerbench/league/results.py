@@ -74,7 +74,7 @@ def spent(league_dir: Path) -> Spent:
         for series in RunDir(d).all_series():
             finished = RunDir(series).finished().values()
             out.episodes += len(finished)
-            out.hours += sum(float(r.get("duration_s") or 0.0) for r in finished) / 3600
+            out.hours += sum(r.duration_s for r in finished) / 3600
             if (series / LEDGER).exists():
                 for r in read_ledger(series / LEDGER):
                     out.llm_tokens += int(r.get("input_tokens") or 0) + int(r.get("output_tokens") or 0)

@@ -12,9 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from omegaconf import OmegaConf
-
-from pillagerbench.config import ConfigError, to_dict
+from pillagerbench.config import ConfigError
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.spec import SeriesSpec, slug
 from pillagerbench.league.compose import match_config
@@ -71,9 +69,10 @@ def write_round(
         for k, (red_name, blue_name) in enumerate(((p.red, p.blue), (p.blue, p.red))):
             red, blue = league.entrant(red_name), league.entrant(blue_name)
             assert red is not None and blue is not None
-            cfg = match_config(p.scenario, red, blue, game)
-            cfg.split = match_split(league.split)  # test: every episode on a fresh test layout
-            cfg.episodes, cfg.seed = episodes, index * 1000 + i
+            cfg = match_config(p.scenario, red, blue, game).updated(
+                # test: every episode on a fresh test layout
+                {"split": match_split(league.split), "episodes": episodes, "seed": index * 1000 + i}
+            )
             specs.append(
                 SeriesSpec(
                     id=f"{2 * i + k:03d}_{p.scenario}_{slug(red_name)}_vs_{slug(blue_name)}",
@@ -85,14 +84,14 @@ def write_round(
                     red_team=red.team,
                     blue_team=blue.team,
                     episodes=episodes,
-                    seed=int(cfg.seed),
-                    config=to_dict(cfg),
+                    seed=cfg.seed,
+                    config=cfg.stored(),
                 )
             )
     involved = {n for p in pairings for n in (p.red, p.blue)}
     stamp = {"game": list(game), "entrants": {n: e.fingerprint() for n in sorted(involved) if (e := league.entrant(n))}}
     run_dir.mkdir(parents=True, exist_ok=True)
     (run_dir / STAMP).write_text(json.dumps(stamp, indent=1))  # first: a round counts once experiment.json exists
-    top = OmegaConf.create({**runner, "experiment": {"name": f"league {run_dir.name}", "design": "league"}})
+    top = {**runner, "experiment": {"name": f"league {run_dir.name}", "design": "league"}}
     write_experiment(run_dir, top, list(game), specs)
     return run_dir, specs

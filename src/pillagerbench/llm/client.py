@@ -23,6 +23,8 @@ from typing import Any
 
 import openai
 
+from pillagerbench.config_schema import LLMCacheConfig, LLMLedgerConfig, RunConfig
+
 from . import errors as E
 from . import provider
 from .budget import Budget
@@ -88,18 +90,36 @@ class LLMClient:
         ledger: Ledger | None = None,
         cache: LLMCache | None = None,
     ) -> LLMClient:
-        """From the full config (sections llm, llm_cache, llm_ledger) or just its `llm` node.
-        With run_dir, the ledger is `<run_dir>/llm_calls.jsonl` and the cache (unless mode off)
+        """From the full config (a run's configuration: sections llm, llm_cache, llm_ledger) or just
+        its `llm` node (the cache and ledger then as the schema's defaults)."""
+        if "llm" in cfg:
+            run = RunConfig.of(cfg)
+            settings, cache_cfg, ledger_cfg = LLMSettings.from_config(run.llm), run.llm_cache, run.llm_ledger
+        else:
+            settings, cache_cfg, ledger_cfg = LLMSettings.from_config(cfg), LLMCacheConfig(), LLMLedgerConfig()
+        return cls.from_settings(
+            settings, cache_cfg, ledger_cfg, team=team, run_dir=run_dir, ledger=ledger, cache=cache
+        )
+
+    @classmethod
+    def from_settings(
+        cls,
+        settings: LLMSettings,
+        cache_cfg: LLMCacheConfig,
+        ledger_cfg: LLMLedgerConfig,
+        *,
+        team: str | None = None,
+        run_dir: str | Path | None = None,
+        ledger: Ledger | None = None,
+        cache: LLMCache | None = None,
+    ) -> LLMClient:
+        """With run_dir, the ledger is `<run_dir>/llm_calls.jsonl` and the cache (unless mode off)
         is llm_cache.dir or `<run_dir>/llm_cache`."""
-        full = "llm" in cfg
-        settings = LLMSettings.from_config(cfg["llm"] if full else cfg)
-        cache_cfg = (cfg.get("llm_cache") if full else None) or {}
-        ledger_cfg = (cfg.get("llm_ledger") if full else None) or {}
         if ledger is None and run_dir is not None:
-            ledger = Ledger(Path(run_dir), content=ledger_cfg.get("content", "hash"))
+            ledger = Ledger(Path(run_dir), content=ledger_cfg.content)
         if cache is None:
-            mode = normalize_mode(cache_cfg.get("mode", "off"))
-            directory = cache_cfg.get("dir") or (Path(run_dir) / "llm_cache" if run_dir else None)
+            mode = normalize_mode(cache_cfg.mode)
+            directory = cache_cfg.dir or (Path(run_dir) / "llm_cache" if run_dir else None)
             if mode != "off" and directory is None:
                 raise E.LLMConfigError(f"llm_cache.mode={mode} needs llm_cache.dir or a run directory")
             cache = LLMCache(directory, mode)

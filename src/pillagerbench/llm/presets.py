@@ -9,13 +9,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Protocol
 
-from omegaconf import OmegaConf
-
+from pillagerbench.config_schema import RunConfig
 from pillagerbench.registry import Registry
 
 from .client import LLMClient
+from .settings import LLMSettings
 
 PRESET_DIR = Path(__file__).resolve().parent.parent / "conf" / "llm"
 
@@ -25,20 +25,18 @@ def presets() -> Registry[Path]:
     return Registry("llm preset", {p.stem: p for p in sorted(PRESET_DIR.glob("*.yaml")) if p.stem != "base"})
 
 
-def side_llm_config(cfg: Any, side: str) -> Any:
-    """The top-level `llm` settings with the side's own `llm` overrides (e.g. `red.llm.model=...`)."""
-    return OmegaConf.merge(cfg, {"llm": cfg[side].get("llm") or {}})
-
-
 class MaybeLLMTeam(Protocol):
     @property
     def uses_llm(self) -> bool: ...  # a Team's class attribute (teams/base.py)
 
 
-def make_llms(cfg: Any, teams: Mapping[str, MaybeLLMTeam], run_dir: Path) -> dict[str, LLMClient]:
-    """A client for each side whose team uses an LLM; they share the run directory's ledger and cache."""
+def make_llms(cfg: RunConfig, teams: Mapping[str, MaybeLLMTeam], run_dir: Path) -> dict[str, LLMClient]:
+    """A client for each side whose team uses an LLM (the run's `llm` with the side's own keys,
+    `red.llm.model=...`); they share the run directory's ledger and cache."""
     return {
-        side: LLMClient.from_config(side_llm_config(cfg, side), team=side, run_dir=run_dir)
+        side: LLMClient.from_settings(
+            LLMSettings.from_config(cfg.llm_of(side)), cfg.llm_cache, cfg.llm_ledger, team=side, run_dir=run_dir
+        )
         for side, team in teams.items()
         if team.uses_llm
     }

@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from typing import Any, cast
+from typing import Any
 
 from .errors import LLMConfigError
 from .redact import register_secret
@@ -42,14 +42,10 @@ class LLMSettings:
 
     @classmethod
     def from_config(cls, cfg: Mapping[str, Any]) -> LLMSettings:
-        """From the `llm` node of the Hydra config (a DictConfig or a plain dict)."""
-        try:
-            from omegaconf import OmegaConf
+        """From the `llm` node of the configuration (a composed node or a plain dict)."""
+        from pillagerbench.config_schema import plain
 
-            raw = OmegaConf.to_container(cfg, resolve=True) if OmegaConf.is_config(cfg) else dict(cfg)
-        except ImportError:  # pragma: no cover
-            raw = dict(cfg)
-        data: dict[str, Any] = dict(cast(Mapping[str, Any], raw))
+        data: dict[str, Any] = plain(cfg)
         price = data.pop("price", None) or {}
         data.setdefault("price_input_per_1m", price.get("input_per_1m"))
         data.setdefault("price_output_per_1m", price.get("output_per_1m"))

@@ -14,11 +14,11 @@ import json
 import random
 import time
 from collections.abc import Callable
-from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
 from pillagerbench import upstream
+from pillagerbench.config_schema import default
 from pillagerbench.control import Server
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
@@ -41,12 +41,12 @@ class Match:
         teams: dict[str, Team],
         run_dir: Path,
         *,
-        episode_length: float = 120.0,
-        seed: int = 0,
+        episode_length: float = default("episode_length"),
+        seed: int = default("seed"),
         on_tick: Callable[[dict], None] | None = None,
         llms: dict[str, LLMClient] | None = None,
-        scoring: str = "clean",
-        protocol: str = "pillagerbench",
+        scoring: str = default("scoring"),
+        protocol: str = default("protocol"),
         step_wait_s: float | None = None,
         split: str | None = None,
         conditions: dict[str, Any] | None = None,
@@ -83,7 +83,7 @@ class Match:
         interleaved."""
         if self.server.port is None:
             raise RuntimeError("the arena server is not running (start it before the match's setup)")
-        port, log_dir = self.server.port, self.run_dir / "logs"
+        port, log_dir = self.server.port, self.rundir.logs_dir()
         specs = {p.name: p for p in self.scenario.all_players()}
         for spec in (specs[n] for n in self.player_order(0)):
             player = Player(
@@ -140,11 +140,12 @@ class Match:
             blue_entrant=self.entrants.get("blue"),
         )
         out = self.rundir.episode(episode)
-        (out / "events").mkdir(parents=True, exist_ok=True)
+        events = self.rundir.files(episode).events_dir
+        events.mkdir(parents=True, exist_ok=True)
         files: dict[str, Any] = {}
 
         def sink(name: str, event: list) -> None:
-            f = files.get(name) or files.setdefault(name, open(out / "events" / f"{name}.jsonl", "a"))
+            f = files.get(name) or files.setdefault(name, open(events / f"{name}.jsonl", "a"))
             f.write(json.dumps(event, default=str) + "\n")
 
         replay, parts = self._parts()
@@ -160,6 +161,8 @@ class Match:
                 f.close()
             rec.duration_s = round(time.monotonic() - t_start, 3)
             self.rundir.write_episode(rec)
+        if rec.ok:  # what the teams see of it next episode: the record as written, as a resumed series reads it
+            self.last_records = {key: self.rundir.last_seen(rec) for key in self.teams}
         return rec
 
     async def _reset(self, rec: EpisodeRecord) -> dict[str, list]:
@@ -228,13 +231,12 @@ class Match:
         rec.red_score, rec.blue_score = rec.scores[self.scoring]["red"], rec.scores[self.scoring]["blue"]
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
-        await self._post_game(rec, contexts, clean.timeline)
+        await self._post_game(rec, contexts)
 
-    async def _post_game(self, rec: EpisodeRecord, contexts: dict, timeline: list) -> None:
+    async def _post_game(self, rec: EpisodeRecord, contexts: dict) -> None:
         """Each team looks back on what it saw; what went wrong for a team goes in the record."""
-        for key, ctx in contexts.items():
-            self.last_records[key] = self.rundir.last_seen(asdict(rec), timeline)
-            ctx.last_episode = self.last_records[key]
+        for ctx in contexts.values():  # this episode's record so far (its post-game and duration still to come)
+            ctx.last_episode = self.rundir.last_seen(rec)
         await asyncio.gather(*(self.teams[k].post_game(contexts[k]) for k in contexts))
         for key, llm in self.llms.items():
             problem = llm.budget.problem()

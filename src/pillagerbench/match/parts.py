@@ -7,7 +7,6 @@ final score, and `abort` when the game failed."""
 from __future__ import annotations
 
 import asyncio
-import json
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -19,7 +18,7 @@ from pillagerbench.machine import lag_verdict
 from pillagerbench.players import Player
 from pillagerbench.registry import Registry
 from pillagerbench.replay.record import RECORDING, Recorder
-from pillagerbench.rundir import EpisodeRecord
+from pillagerbench.rundir import EpisodeDir, EpisodeRecord
 from pillagerbench.scenarios import Scenario
 from pillagerbench.teams import Team
 
@@ -161,15 +160,14 @@ class WorldLog(Part):
         if game.server.control is not None:
             game.server.control.unsubscribe(queue)
         events = [queue.get_nowait() for _ in range(queue.qsize())]
-        with open(game.out / "world_events.jsonl", "w") as f:
-            for e in events:
-                f.write(json.dumps(e) + "\n")
+        files = EpisodeDir(game.out)
+        files.write_world_events(events)
         lines = [
             (f"<{e['player']}> " if e.get("player") else "") + str(e.get("message", ""))
             for e in events
             if e.get("event") == "chat"
         ]
-        (game.out / "chat.txt").write_text("\n".join(lines) + ("\n" if lines else ""))
+        files.write_chat(lines)
         game.rec.refusals = count_refusals(events)
 
     async def abort(self) -> None:

@@ -24,12 +24,14 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.args import Parser
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
 from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, reader_switches
 from pillagerbench.metrics.verified import load_runs
+from pillagerbench.rundir import names
 
-CALIBRATION = "calibration.json"
+CALIBRATION = names.CALIBRATION
 FROM_RUNS = "the do_nothing-red episodes of these runs"  # where σ_blue came from, in resolve's notes
 REFERENCE_FALLBACK = (
     "upstream's reference scores, as these runs carry no calibration for it "
@@ -44,36 +46,36 @@ def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
     if not len(df):
         return
     other = "red" if side == "blue" else "blue"
-    ref = df[(df[f"{other}_team"] == "do_nothing") & df["group"].isna()]
-    yield from ((sc, team, g) for (sc, team), g in ref.groupby(["scenario", side], sort=False))
+    ref = df[(df[Col.team(other)] == "do_nothing") & df[Col.GROUP].isna()]
+    yield from ((sc, team, g) for (sc, team), g in ref.groupby([Col.SCENARIO, Col.name(side)], sort=False))
 
 
 def opponent_groups(df: pd.DataFrame, sigma: dict) -> list:
     """Per opponent (blue entrant) of the red rows in df: (red scores, blue scores, σ_blue, σ estimate),
     the input of formulas.over_opponents."""
     out = []
-    for (scenario, blue), g in df.groupby(["scenario", "blue"], sort=False):
+    for (scenario, blue), g in df.groupby([Col.SCENARIO, Col.BLUE], sort=False):
         s = sigma.get((scenario, blue))
-        out.append((g["red_score"].to_numpy(), g["blue_score"].to_numpy(), s.mean if s else None, s))
+        out.append((g[Col.RED_SCORE].to_numpy(), g[Col.BLUE_SCORE].to_numpy(), s.mean if s else None, s))
     return out
 
 
 def calibration_from_runs(runs: Runs) -> dict:
     scenarios: dict[str, dict] = {}
     for scenario, blue, g in against_do_nothing(runs.episodes, "blue"):
-        e = mean_ci(g["blue_raw"])
+        e = mean_ci(g[Col.BLUE_RAW])
         entry = scenarios.setdefault(
             scenario,
             {
-                "version": str(g["version"].iloc[0]),
-                "episode_length": float(g["episode_length"].iloc[0]),
+                "version": str(g[Col.VERSION].iloc[0]),
+                "episode_length": float(g[Col.EPISODE_LENGTH].iloc[0]),
                 "opponents": {},
             },
         )
         entry["opponents"][blue] = {
             "sigma_blue": e.mean,
             "ci": None if math.isnan(e.ci) else e.ci,
-            "std": float(np.std(g["blue_raw"], ddof=1)) if e.n > 1 else None,
+            "std": float(np.std(g[Col.BLUE_RAW], ddof=1)) if e.n > 1 else None,
             "n": e.n,
         }
     return {
@@ -136,7 +138,10 @@ def resolve(
     want = (
         {}
         if not len(df)
-        else {sc: (str(g["version"].iloc[0]), float(g["episode_length"].iloc[0])) for sc, g in df.groupby("scenario")}
+        else {
+            sc: (str(g[Col.VERSION].iloc[0]), float(g[Col.EPISODE_LENGTH].iloc[0]))
+            for sc, g in df.groupby(Col.SCENARIO)
+        }
     )
     sources = (
         ([(explicit, explicit_calibration(explicit, want), True)] if explicit else [])
@@ -203,18 +208,21 @@ def main(argv: list[str]) -> int:
     else:  # play the calibration experiment first
         from pillagerbench.config import load_config
         from pillagerbench.experiments.runner import main_experiment, make_experiment_dir
+        from pillagerbench.validate import check_run_config
 
         overrides = list(argv)
         if not any(o.startswith(("experiment=", "resume=")) for o in overrides):
             overrides.insert(0, "experiment=calibration")
-        cfg = load_config(overrides)
-        if not cfg.get("resume") and not cfg.get("run_dir"):
-            cfg.run_dir = str(make_experiment_dir(cfg))
-            overrides.append(f"run_dir={cfg.run_dir}")
+        composed = load_config(overrides)
+        cfg = check_run_config(composed, teams=False)
+        if not cfg.resume and not cfg.run_dir:
+            composed.run_dir = str(make_experiment_dir(cfg))
+            overrides.append(f"run_dir={composed.run_dir}")
+            cfg = check_run_config(composed, teams=False)
         code = main_experiment(cfg, overrides)
         if code:
             return code
-        run_dir = Path(cfg.get("resume") or cfg.run_dir)
+        run_dir = Path(cfg.resume or cfg.run_dir or "")
         runs = load_runs([run_dir])
         out = run_dir / CALIBRATION
     cal = calibration_from_runs(runs)

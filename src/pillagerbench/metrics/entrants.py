@@ -13,9 +13,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.teams.entrant import entrant_of
-
-SIDES = ("red", "blue")
 
 
 def series_entrants(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
@@ -31,7 +30,7 @@ def columns(recorded: dict[str, dict | None], derived: dict[str, dict], names: d
     out: dict[str, Any] = {}
     for side in SIDES:
         e = recorded.get(side) or derived.get(side) or {"label": names[side], "id": names[side]}
-        out |= {f"{side}_entrant": e["label"], f"{side}_entrant_id": e["id"], f"{side}_name": names[side]}
+        out |= {Col.entrant(side): e["label"], Col.entrant_id(side): e["id"], Col.series_name(side): names[side]}
     return out
 
 
@@ -40,7 +39,7 @@ def display_names(rows: list[dict[str, Any]]) -> dict[str, str]:
     labels: dict[str, str] = {}
     for r in rows:
         for side in SIDES:
-            labels[r[f"{side}_entrant_id"]] = r[f"{side}_entrant"]
+            labels[r[Col.entrant_id(side)]] = r[Col.entrant(side)]
     shared = {lab for lab in labels.values() if list(labels.values()).count(lab) > 1}
     return {i: f"{lab}#{i[:6]}" if lab in shared else lab for i, lab in labels.items()}
 
@@ -50,12 +49,12 @@ def name_sides(rows: list[dict[str, Any]]) -> dict[str, str]:
     names = display_names(rows)
     for r in rows:
         for side in SIDES:
-            r[side] = names[r[f"{side}_entrant_id"]]
+            r[Col.name(side)] = names[r[Col.entrant_id(side)]]
     return names
 
 
 def label_calls(ledger: list[dict[str, Any]], rows: list[dict[str, Any]]) -> None:
     """Every red-team LLM call labelled as its series' red rows are (calls carry `run` and `series`)."""
-    red = {(r["run"], r["series"]): r["red"] for r in rows}
+    red = {(r[Col.RUN], r[Col.SERIES]): r[Col.RED] for r in rows}
     for call in ledger:
         call["label"] = red.get((call["run"], call["series"]), call["label"])

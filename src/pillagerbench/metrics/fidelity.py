@@ -31,6 +31,7 @@ from pillagerbench.conditions import describe, suite_defaults
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import Estimate, mean_ci, over_opponents, welch_half_width
 from pillagerbench.metrics.reference import (
     REFERENCE_CONDITIONS,
@@ -80,7 +81,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
                 unlike.setdefault(differ, []).append(f"{scenario} {team} ({side})")
             reference = None if differ else REFERENCE_SCORES.get(scenario, {}).get(team)
             for scoring in SCORINGS:
-                mine, theirs = g[f"{side}_{scoring}"].dropna(), g[f"{other}_{scoring}"].dropna()
+                mine, theirs = g[Col.by_scoring(side, scoring)].dropna(), g[Col.by_scoring(other, scoring)].dropna()
                 if not len(mine):
                     continue
                 e, dn = mean_ci(mine), mean_ci(theirs)

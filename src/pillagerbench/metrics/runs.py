@@ -22,7 +22,6 @@ counts a series' used episodes, so a spoiled one leaves no hole.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
@@ -32,14 +31,18 @@ import pandas as pd
 
 from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
+from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
 from pillagerbench.metrics.faults import name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import (
     EPISODES,
+    EpisodeDir,
     EpisodeRecord,
+    Manifest,
     RunDir,
     SeriesSpec,
+    TimelinePoint,
     faults,
     progress,
     read_series,
@@ -66,7 +69,7 @@ class SeriesInfo(SeriesSpec):
     dir: Path = field(default_factory=Path)  # the series' own directory
     version: str = "?"  # the scenario's version (its manifest)
     episode_length: float = 120.0
-    manifest: dict = field(default_factory=dict)  # the series' manifest.json ({} when not started)
+    manifest: Manifest | None = None  # the series' manifest.json (None when not started)
     entrants: dict = field(default_factory=dict)  # side -> its entrant from the config (metrics/entrants.py)
 
 
@@ -151,7 +154,7 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
                 run=name,
                 root=run,
                 dir=series_dir,
-                version=str(manifest.get("scenario", {}).get("version", "?")),
+                version=manifest.scenario_version if manifest else "?",
                 episode_length=float(spec.config.get("episode_length", 120)),
                 manifest=manifest,
                 entrants=series_entrants(spec.config),
@@ -167,21 +170,21 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list, spoilt: 
     for i in sorted(finished):
         rec = finished[i]
         found += [{"run": str(s.run), "series": s.id, "episode": i, **f} for f in faults(rec)]
-        ep = RunDir(s.dir).episode(i)
+        ep = RunDir(s.dir).files(i)
         timeline = _timeline(s, rec, ep, skipped)
         if timeline is None:
             continue
-        row = _row(s, i, rec, ep, timeline, scale, used + s.episode_offset)
+        row = _row(s, i, rec, ep.path, timeline, scale, used + s.episode_offset)
         kind = spoiled(rec)
         if kind:
-            skipped.append((str(ep), f"spoiled on our side ({kind}): in no score (the Failures table lists it)"))
+            skipped.append((str(ep.path), f"spoiled on our side ({kind}): in no score (the Failures table lists it)"))
             spoilt.append(row)
         else:
             rows.append(row)
             used += 1
 
 
-def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
+def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, EpisodeRecord]:
     """The series' finished episodes by index; what is not started, half-written or missing goes to `skipped`."""
     where = str(s.dir)
     if not s.dir.exists():
@@ -210,82 +213,81 @@ def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, dict]:
     return finished
 
 
-def _timeline(s: SeriesInfo, rec: dict, ep: Path, skipped: list) -> list | None:
+def _timeline(s: SeriesInfo, rec: EpisodeRecord, ep: EpisodeDir, skipped: list) -> list[TimelinePoint] | None:
     """An ok episode's score timeline (upstream's rewards file for its scoring), or None with the reason in
     `skipped` (failed, half-written or cut short before the whistle)."""
-    if rec.get("status") != "ok":
-        skipped.append((str(ep), f"failed: {rec.get('error')}"))
+    where, name = str(ep.path), ep.timeline_path().name
+    if not rec.ok:
+        skipped.append((where, f"failed: {rec.error}"))
         return None
     try:
-        timeline = json.loads((ep / "timeline.json").read_text())
+        timeline = ep.timeline()
     except FileNotFoundError:
-        skipped.append((str(ep), "half-written: no timeline.json"))
+        skipped.append((where, f"half-written: no {name}"))
         return None
     except ValueError:
-        skipped.append((str(ep), "half-written: timeline.json cut short"))
+        skipped.append((where, f"half-written: {name} cut short"))
         return None
     if not timeline or float(timeline[-1]["t"]) < s.episode_length:
         end = timeline[-1]["t"] if timeline else None
-        skipped.append((str(ep), f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
+        skipped.append((where, f"half-written: timeline ends at t={end}, before {s.episode_length:g} s"))
         return None
-    if rec.get("scoring") == "upstream" and (ep / "timeline_upstream.json").exists():
+    if rec.scoring == "upstream" and ep.timeline_path("upstream").exists():
         # as upstream's analysis read it: line i of its rewards file stands for second i
-        lines = json.loads((ep / "timeline_upstream.json").read_text())
-        timeline = [{**p, "t": p["line"]} for p in lines]
+        timeline = [{**p, "t": p["line"]} for p in ep.timeline("upstream")]
     return timeline
 
 
-def _row(s: SeriesInfo, i: int, data: dict, ep: Path, timeline: list, scale: float, index: int) -> dict:
+def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, scale: float, index: int) -> dict:
     """One episode's row of the table (`index`: its place among the series' used episodes, for curves)."""
-    rec = EpisodeRecord.from_dict(data)  # whichever version wrote it
     red_it = rec.iterations.get("red") or []
     by_mode = rec.scores
     alternatives = {
-        f"{side}_{mode}": float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
+        Col.by_scoring(side, mode): float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
         for mode in SCORINGS
-        for side in ("red", "blue")
+        for side in SIDES
     }
     return {
-        "run": str(s.run),
-        "dir": str(ep),
-        "series": s.id,
-        "scenario": s.scenario,
-        "version": s.version,
-        "episode_length": s.episode_length,
-        "red": s.red,  # the entrants' names once every row is read (metrics/entrants.py)
-        "blue": s.blue,
+        Col.RUN: str(s.run),
+        Col.DIR: str(ep),
+        Col.SERIES: s.id,
+        Col.SCENARIO: s.scenario,
+        Col.VERSION: s.version,
+        Col.EPISODE_LENGTH: s.episode_length,
+        Col.RED: s.red,  # the entrants' names once every row is read (metrics/entrants.py)
+        Col.BLUE: s.blue,
         **columns({"red": rec.red_entrant, "blue": rec.blue_entrant}, s.entrants, {"red": s.red, "blue": s.blue}),
-        "red_team": s.red_team,
-        "blue_team": s.blue_team,
-        "design": s.design,
-        "variant": s.variant,
-        "repetition": s.repetition,
-        "group": s.group,
-        "group_x": s.group_x,
-        "episode": i,
-        "index": index,
-        "red_raw": float(rec.red_score or 0.0),
-        "blue_raw": float(rec.blue_score or 0.0),
-        "scale": scale,
-        "red_score": float(rec.red_score or 0.0) * scale,
-        "blue_score": float(rec.blue_score or 0.0) * scale,
-        "scoring": rec.scoring,
-        "suite": rec.suite,
-        "stamp": rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
-        "rules": describe(rec.conditions),
-        "conditions": dict(rec.conditions),
-        "layout": rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
-        "split": rec.split,
+        Col.RED_TEAM: s.red_team,
+        Col.BLUE_TEAM: s.blue_team,
+        Col.DESIGN: s.design,
+        Col.VARIANT: s.variant,
+        Col.REPETITION: s.repetition,
+        Col.GROUP: s.group,
+        Col.GROUP_X: s.group_x,
+        Col.EPISODE: i,
+        Col.INDEX: index,
+        Col.RED_RAW: float(rec.red_score or 0.0),
+        Col.BLUE_RAW: float(rec.blue_score or 0.0),
+        Col.SCALE: scale,
+        Col.RED_SCORE: float(rec.red_score or 0.0) * scale,
+        Col.BLUE_SCORE: float(rec.blue_score or 0.0) * scale,
+        Col.SCORING: rec.scoring,
+        Col.SUITE: rec.suite,
+        Col.STAMP: rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
+        Col.RULES: describe(rec.conditions),
+        Col.CONDITIONS: dict(rec.conditions),
+        Col.LAYOUT: rec.layout,  # "paper", a seed or a layout file; split: paper | dev | test | custom
+        Col.SPLIT: rec.split,
         **alternatives,
-        "team_protocol": rec.protocol,
-        "iterations": float(np.mean(red_it)) if red_it else np.nan,
-        "problems": {k: list(v) for k, v in rec.problems.items()},
-        "server_tps": rec.server_tps,
-        "lagged": bool(rec.lagged),
-        "lag_reason": rec.lag_reason,
-        "t": np.array([p["t"] for p in timeline], dtype=float),
-        "red_t": np.array([p["red"] for p in timeline], dtype=float) * scale,
-        "blue_t": np.array([p["blue"] for p in timeline], dtype=float) * scale,
+        Col.TEAM_PROTOCOL: rec.protocol,
+        Col.ITERATIONS: float(np.mean(red_it)) if red_it else np.nan,
+        Col.PROBLEMS: {k: list(v) for k, v in rec.problems.items()},
+        Col.SERVER_TPS: rec.server_tps,
+        Col.LAGGED: bool(rec.lagged),
+        Col.LAG_REASON: rec.lag_reason,
+        Col.T: np.array([p["t"] for p in timeline], dtype=float),
+        Col.RED_T: np.array([p["red"] for p in timeline], dtype=float) * scale,
+        Col.BLUE_T: np.array([p["blue"] for p in timeline], dtype=float) * scale,
     }
 
 
@@ -348,8 +350,8 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     roots = {name: run for run, name in _inputs(inputs)}
     for name, run in roots.items():
         series += _series_of(run, name)
-        if (run / "calibration.json").exists():
-            cals.append(run / "calibration.json")
+        if RunDir(run).calibration_path.exists():
+            cals.append(RunDir(run).calibration_path)
     _check_comparable(series)
     for s in series:
         _load_series(s, rows, skipped, found, spoilt)

@@ -17,6 +17,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import NAN, Estimate, mean_ci, welch_half_width
 
 COLUMNS = [
@@ -54,7 +55,7 @@ def verdict(diff: Estimate) -> str:
 def pairs_of(df: pd.DataFrame) -> list[tuple[str, str, str]]:
     """(scenario, a, b) for every pairing that met, in order of appearance, each once."""
     seen: dict[tuple, None] = {}
-    for sc, red, blue in zip(df["scenario"], df["red"], df["blue"]):
+    for sc, red, blue in zip(df[Col.SCENARIO], df[Col.RED], df[Col.BLUE]):
         seen.setdefault((sc, *sorted((red, blue))), None)
     return list(seen)
 
@@ -65,8 +66,8 @@ def side_symmetry(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     if not len(df):
         return pd.DataFrame(columns=COLUMNS), ["side symmetry: no finished episodes"]
     for sc, a, b in pairs_of(df):
-        one = df[(df["scenario"] == sc) & (df["red"] == a) & (df["blue"] == b)]
-        other = df[(df["scenario"] == sc) & (df["red"] == b) & (df["blue"] == a)]
+        one = df[(df[Col.SCENARIO] == sc) & (df[Col.RED] == a) & (df[Col.BLUE] == b)]
+        other = df[(df[Col.SCENARIO] == sc) & (df[Col.RED] == b) & (df[Col.BLUE] == a)]
         if a != b and (not len(one) or not len(other)):
             red, blue = (a, b) if len(one) else (b, a)
             notes.append(
@@ -75,8 +76,8 @@ def side_symmetry(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
             )
         teams = [(a, b, one, other)] if a == b else [(a, b, one, other), (b, a, other, one)]
         for team, opp, team_red, team_blue in teams:
-            red_pts = team_red["red_score"].to_numpy()
-            blue_pts = team_blue["blue_score"].to_numpy()
+            red_pts = team_red[Col.RED_SCORE].to_numpy()
+            blue_pts = team_blue[Col.BLUE_SCORE].to_numpy()
             r, bl = (mean_ci(red_pts) if len(red_pts) else NAN), (mean_ci(blue_pts) if len(blue_pts) else NAN)
             diff = welch(red_pts, blue_pts)
             if len(red_pts) and len(blue_pts) and math.isnan(diff.ci):

@@ -14,12 +14,13 @@ and its episode.json; bundle.json's suites, episode count and harness failures a
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from pillagerbench.metrics.faults import tally
 from pillagerbench.metrics.runs import ReportError, Runs, read_runs
-from pillagerbench.rundir import RunDir, winner_of
+from pillagerbench.rundir import EpisodeRecord, RunDir, winner_of
 from pillagerbench.rundir.bundle import checksum_problems, is_bundle, unpack
 from pillagerbench.suite import UNVERSIONED, current, label, recorded, same_version
 
@@ -47,11 +48,13 @@ def _final(path: Path) -> dict | None:
     return timeline[-1] if isinstance(timeline, list) and timeline else None
 
 
-def episode_problems(run: RunDir, rec: dict[str, Any]) -> list[str]:
+def episode_problems(run: RunDir, rec: EpisodeRecord) -> list[str]:
     """What disagrees in one finished, ok episode: its scores against its timelines, its headline score,
     its winner, its episode.json."""
-    i, out = int(rec["episode"]), []
-    for scoring, scores in (rec.get("scores") or {"clean": {s: rec.get(f"{s}_score") for s in SIDES}}).items():
+    i, out = rec.episode, []
+    headline: dict[str, float | None] = {"red": rec.red_score, "blue": rec.blue_score}
+    recorded: Mapping[str, Mapping[str, float | None]] = rec.scores or {"clean": headline}
+    for scoring, scores in recorded.items():
         last = _final(run.timeline_path(i, scoring))
         if last is None:
             out.append(f"{run.timeline_path(i, scoring).name}: missing or unreadable")
@@ -61,63 +64,51 @@ def episode_problems(run: RunDir, rec: dict[str, Any]) -> list[str]:
                 out.append(
                     f"{scoring} {side} score {scores.get(side)} in the record, the timeline ends at {last.get(side)}"
                 )
-    headline = (rec.get("scores") or {}).get(rec.get("scoring", "clean"))
-    if headline and any(headline[s] != rec.get(f"{s}_score") for s in SIDES):
-        out.append(
-            f"red_score/blue_score {rec.get('red_score')}/{rec.get('blue_score')} are not its {rec.get('scoring')} scores"
-        )
+    own = rec.scores.get(rec.scoring)
+    if own and any(own[s] != headline[s] for s in SIDES):
+        out.append(f"red_score/blue_score {rec.red_score}/{rec.blue_score} are not its {rec.scoring} scores")
     if (
-        "winner" in rec
-        and rec.get("red_score") is not None
-        and rec["winner"] != winner_of(rec["red_score"], rec["blue_score"])
+        rec.winner is not None  # a winner recorded
+        and rec.red_score is not None
+        and rec.blue_score is not None
+        and rec.winner != winner_of(rec.red_score, rec.blue_score)
     ):
-        out.append(f"winner {rec.get('winner')!r} does not follow from {rec['red_score']}–{rec['blue_score']}")
-    beside = _read(run.record_path(i))
+        out.append(f"winner {rec.winner!r} does not follow from {rec.red_score}–{rec.blue_score}")
+    beside = run.files(i).record()
     if beside is not None and beside != rec:
-        keys = sorted(k for k in set(beside) | set(rec) if beside.get(k) != rec.get(k))
+        mine, theirs = rec.to_dict(), beside.to_dict()
+        keys = sorted(k for k in mine if mine[k] != theirs[k])
         out.append(f"{run.record_path(i).name} differs from its line in the episodes' list ({', '.join(keys)})")
     return [f"{run.episode(i)}: {p}" for p in out]
 
 
-def _records(runs: Runs) -> dict[Path, list[dict]]:
+def _records(runs: Runs) -> dict[Path, list[EpisodeRecord]]:
     """Every series' finished records (ok or not) by series directory."""
     return {s.dir: list(RunDir(s.dir).read_lenient()[0].values()) for s in runs.series}
 
 
-def score_problems(runs: Runs, records: dict[Path, list[dict]]) -> list[str]:
-    return [
-        p
-        for s in runs.series
-        for rec in records[s.dir]
-        if rec.get("status", "ok") == "ok"
-        for p in episode_problems(RunDir(s.dir), rec)
-    ]
+def score_problems(runs: Runs, records: dict[Path, list[EpisodeRecord]]) -> list[str]:
+    return [p for s in runs.series for rec in records[s.dir] if rec.ok for p in episode_problems(RunDir(s.dir), rec)]
 
 
-def _suite_of(rec: dict) -> str:
-    return str(rec.get("suite") or UNVERSIONED)
-
-
-def manifest_problems(runs: Runs, records: dict[Path, list[dict]]) -> list[str]:
+def manifest_problems(runs: Runs, records: dict[Path, list[EpisodeRecord]]) -> list[str]:
     """Each manifest whose suite version is not its episodes' (a series' manifest: its episodes; an
     experiment's: all of them), naming the versions and the episodes; versions compare by hash."""
-    covers: dict[Path, list[tuple[str, dict]]] = {}
+    covers: dict[Path, list[tuple[str, EpisodeRecord]]] = {}
     for s in runs.series:
         for top in dict.fromkeys((s.dir, s.root)):  # a plain run is its own series
             covers.setdefault(top, []).extend((s.id, rec) for rec in records[s.dir])
     out = []
     for top, recs in covers.items():
         manifest = RunDir(top).manifest()
-        if not manifest:
+        if manifest is None:
             continue
-        says = str((manifest.get("suite") or {}).get("label") or UNVERSIONED)
+        says = manifest.suite_label
         several = len({series for series, _ in recs}) > 1  # an experiment's manifest: name the series too
         other: dict[str, list[str]] = {}
         for series, rec in recs:
-            if _suite_of(rec).rpartition("@")[2] != says.rpartition("@")[2]:
-                other.setdefault(_suite_of(rec), []).append(
-                    f"{series}/{rec['episode']}" if several else f"{rec['episode']}"
-                )
+            if rec.suite.rpartition("@")[2] != says.rpartition("@")[2]:
+                other.setdefault(rec.suite, []).append(f"{series}/{rec.episode}" if several else f"{rec.episode}")
         out += [
             f"{RunDir(top).manifest_path}: says {says}, but {len(eps)} episode(s) say {suite} ({_few(eps)})"
             for suite, eps in other.items()

@@ -14,8 +14,9 @@ from pathlib import Path
 
 from pillagerbench.replay.read import Replay, ReplayError, load_replay
 from pillagerbench.replay.record import GROUND_Y
+from pillagerbench.rundir.names import REPLAY_PAGE
 
-PAGE = "replay.html"
+PAGE = REPLAY_PAGE  # the page beside an episode's recording (rundir/names.py)
 
 STYLE = """
 body { font-family: system-ui, sans-serif; margin: 1em; color: #222; }

@@ -10,6 +10,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pillagerbench.replay.record import FORMAT, RECORDING, VERSION
+from pillagerbench.rundir import EpisodeDir
+from pillagerbench.rundir.names import RECORD
 
 
 class ReplayError(RuntimeError):
@@ -38,11 +40,11 @@ def find_recording(episode_dir: Path) -> Path:
         raise ReplayError(f"{episode_dir} is not a directory (give an episode directory such as RUN_DIR/episode_000)")
     path = episode_dir / RECORDING
     if not path.exists():
-        if (episode_dir / "episode.json").exists() or (episode_dir / "timeline.json").exists():
+        if EpisodeDir(episode_dir).is_episode():
             raise ReplayError(
                 f"{episode_dir} has no replay recording ({RECORDING}): it was played before replays were recorded"
             )
-        raise ReplayError(f"{episode_dir} is not an episode directory (no {RECORDING}, no episode.json)")
+        raise ReplayError(f"{episode_dir} is not an episode directory (no {RECORDING}, no {RECORD})")
     return path
 
 

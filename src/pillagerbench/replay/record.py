@@ -20,7 +20,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-RECORDING = "replay.jsonl.gz"
+from pillagerbench.rundir.names import REPLAY
+
+RECORDING = REPLAY  # the recording in an episode directory (rundir/names.py)
 FORMAT = "pillagerbench-replay"
 VERSION = 1
 FRAME_HZ = 5

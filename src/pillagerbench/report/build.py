@@ -24,6 +24,7 @@ import pandas as pd
 
 from pillagerbench.args import Parser
 from pillagerbench.metrics import calibration as calib
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.faults import fault_note, faults_table
 from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, mixed_title, reader_switches
 from pillagerbench.metrics.symmetry import side_symmetry
@@ -132,7 +133,7 @@ def build_report(
     page = out / "report.html"
     page.write_text(html.page("PillagerBench report", runs.runs, notes, shown, toc=True))
     files.append(page)
-    lagged = [(str(r["series"]), int(r["episode"]), str(r["lag_reason"])) for _, r in lag.iterrows()]
+    lagged = [(str(r[Col.SERIES]), int(r[Col.EPISODE]), str(r[Col.LAG_REASON])) for _, r in lag.iterrows()]
     return {"files": files, "notes": notes, "skipped": runs.skipped, "lagged": lagged, "episodes": len(df), "out": out}
 
 
@@ -172,7 +173,7 @@ def scenario_figures(
     view = tables.team_view(main)
     sections = []
     for sc in tables.scenario_order(df):
-        n = int((main["scenario"] == sc).sum())
+        n = int((main[Col.SCENARIO] == sc).sum())
         n_pairs = int(((pairs["scenario"] == sc) & (pairs["blue"] != tables.ALL)).sum())
         title = plots._title(sc)
         sections += [
@@ -206,7 +207,7 @@ def series_figures(
 ) -> list[Section]:
     """The figures over the episodes of a series: D per episode index, per group, self-play."""
     n_groups = int(grouped.loc[grouped["scenario"] != tables.ALL, "episodes"].sum()) if len(grouped) else 0
-    same = df[(df["red"] == df["blue"]) & (df["red_team"] != "do_nothing")] if len(df) else df
+    same = df[(df[Col.RED] == df[Col.BLUE]) & (df[Col.RED_TEAM] != "do_nothing")] if len(df) else df
     return [
         figure(
             "Points difference per episode",
@@ -233,7 +234,7 @@ def more_notes(runs: Runs, sigma: dict, pairs: pd.DataFrame, fidelity_notes: lis
     """Notes a reader needs to weigh the numbers: S without σ, n = 1, teams with problems, the
     fidelity checks, each run's scoring and protocol."""
     df, notes = runs.episodes, []
-    bare = sorted(set(df["scenario"]) - {sc for sc, _ in sigma}) if len(df) else []
+    bare = sorted(set(df[Col.SCENARIO]) - {sc for sc, _ in sigma}) if len(df) else []
     if bare:
         notes.append(f"no σ_blue for {', '.join(bare)} (pillagerbench calibrate): S is left empty there")
     one = pairs[(pairs["blue"] != tables.ALL) & (pairs["episodes"] == 1)]
@@ -242,7 +243,7 @@ def more_notes(runs: Runs, sigma: dict, pairs: pd.DataFrame, fidelity_notes: lis
             f"n = 1: {len(one)} of {int((pairs['blue'] != tables.ALL).sum())} pairing(s) rest on a single episode; "
             "their values have no confidence interval (marked “n = 1”)"
         )
-    problems = [(r, side) for r in df.itertuples() for side in (r.problems or {})] if "problems" in df else []
+    problems = [(r, side) for r in df.itertuples() for side in (r.problems or {})] if Col.PROBLEMS in df else []
     if problems:
         r, side = problems[-1]
         notes.append(
@@ -257,7 +258,7 @@ def lag_notes(lag: pd.DataFrame, one_order: list[str]) -> list[str]:
     if len(lag):
         notes.append(
             f"{len(lag)} episode(s) played under lag (spoiled: in no score; use a lower parallel=), e.g. "
-            f"{lag.iloc[-1]['series']} episode {lag.iloc[-1]['episode']}: {lag.iloc[-1]['lag_reason']}"
+            f"{lag.iloc[-1][Col.SERIES]} episode {lag.iloc[-1][Col.EPISODE]}: {lag.iloc[-1][Col.LAG_REASON]}"
         )
     if one_order:
         notes.append(f"side symmetry: {len(one_order)} note(s), e.g. {one_order[0]} (pillagerbench symmetry lists all)")
@@ -269,9 +270,9 @@ def modes(df) -> list[str]:
     if not len(df):
         return []
     out = []
-    for run, g in df.groupby("run", sort=False):
-        scoring = ", ".join(dict.fromkeys(g["scoring"]))
-        protocol = ", ".join(dict.fromkeys(g["team_protocol"]))
+    for run, g in df.groupby(Col.RUN, sort=False):
+        scoring = ", ".join(dict.fromkeys(g[Col.SCORING]))
+        protocol = ", ".join(dict.fromkeys(g[Col.TEAM_PROTOCOL]))
         out.append(f"{run}: scoring {scoring}; LLM teams' protocol {protocol}")
     return out
 

@@ -13,6 +13,7 @@ import math
 
 import pandas as pd
 
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import Estimate
 from pillagerbench.metrics.generalization import UNSEEN, gap
 from pillagerbench.report.tables import METRICS, per_team
@@ -45,14 +46,14 @@ def _estimates(frame: pd.DataFrame) -> dict[tuple[str, str], dict[str, Estimate]
 
 def unseen_arenas(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     """One row per scenario, team, unseen split and metric; empty without episodes on unseen layouts."""
-    if not len(df) or "split" not in df or not df["split"].isin(UNSEEN).any():
+    if not len(df) or Col.SPLIT not in df or not df[Col.SPLIT].isin(UNSEEN).any():
         return pd.DataFrame(columns=COLUMNS)
     exact = {k: Estimate(e.mean, math.nan, e.n) for k, e in sigma.items()}  # σ as exact: it cancels in the gap
-    paper = df[df["split"] == "paper"]
+    paper = df[df[Col.SPLIT] == "paper"]
     shown_paper, gap_paper = _estimates(per_team(paper, sigma)), _estimates(per_team(paper, exact))
     rows = []
-    for split in (s for s in UNSEEN if (df["split"] == s).any()):
-        unseen = df[df["split"] == split]
+    for split in (s for s in UNSEEN if (df[Col.SPLIT] == s).any()):
+        unseen = df[df[Col.SPLIT] == split]
         shown, for_gap = _estimates(per_team(unseen, sigma)), _estimates(per_team(unseen, exact))
         for key, metrics in shown.items():
             before, before_gap = shown_paper.get(key), gap_paper.get(key)
@@ -65,15 +66,15 @@ def unseen_arenas(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
 
 def unseen_notes(df: pd.DataFrame) -> list[str]:
     """What the section rests on and how to read it (nothing without unseen layouts)."""
-    if not len(df) or "split" not in df or not df["split"].isin(UNSEEN).any():
+    if not len(df) or Col.SPLIT not in df or not df[Col.SPLIT].isin(UNSEEN).any():
         return []
     counts = ", ".join(
-        f"{int((df['split'] == s).sum())} on {df.loc[df['split'] == s, 'layout'].nunique()} {s} layout(s)"
+        f"{int((df[Col.SPLIT] == s).sum())} on {df.loc[df[Col.SPLIT] == s, Col.LAYOUT].nunique()} {s} layout(s)"
         for s in UNSEEN
-        if (df["split"] == s).any()
+        if (df[Col.SPLIT] == s).any()
     )
     return [
-        f"unseen arenas: {counts}, {int((df['split'] == 'paper').sum())} on the paper's layout; gap = unseen − "
+        f"unseen arenas: {counts}, {int((df[Col.SPLIT] == 'paper').sum())} on the paper's layout; gap = unseen − "
         "paper, its 95 % interval Welch's (normal approximation, Welch–Satterthwaite df) from the two standard "
         "errors; the other tables pool every layout"
     ]

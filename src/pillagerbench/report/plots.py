@@ -21,6 +21,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import t_critical
 from pillagerbench.report.tables import ALL, opponent_order, red_order
 
@@ -164,7 +165,7 @@ def timeline_lines(df: pd.DataFrame, scenario: str) -> list[dict]:
         rd = sd[sd["red"] == red]
         n_t = min(len(t) for t in rd["t"])
         for side in ("red", "blue"):
-            y = np.stack([v[:n_t] for v in rd[f"{side}_t"]])
+            y = np.stack([v[:n_t] for v in rd[Col.over_time(side)]])
             half = t_critical(len(y) - 1) * y.std(axis=0, ddof=1) / math.sqrt(len(y)) if len(y) > 1 else None
             label = f"{red} (red, n={len(y)})" if side == "red" else f"{red}'s opponents (blue)"
             t = rd["t"].iloc[0][:n_t]

@@ -7,8 +7,9 @@ from __future__ import annotations
 
 import pandas as pd
 
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.runs import Runs, SeriesInfo
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import Manifest, RunDir
 from pillagerbench.teams import TEAMS
 
 COLUMNS = [
@@ -61,7 +62,7 @@ def entrants(df: pd.DataFrame) -> list[str]:
     return [
         f"{label} ({i})"
         for side in ("red", "blue")
-        for label, i in zip(df[f"{side}_entrant"], df[f"{side}_entrant_id"])
+        for label, i in zip(df[Col.entrant(side)], df[Col.entrant_id(side)])
     ]
 
 
@@ -69,26 +70,26 @@ def provenance(runs: Runs) -> pd.DataFrame:
     df = runs.episodes
     rows = []
     for run in runs.runs:
-        top = RunDir(runs.roots.get(run, run)).manifest()
+        top = RunDir(runs.roots.get(run, run)).manifest() or Manifest()
         series = [s for s in runs.series if s.run == run]
-        used = int((df["run"] == str(run)).sum()) if len(df) else 0
+        used = int((df[Col.RUN] == str(run)).sum()) if len(df) else 0
         rows.append(
             {
                 "run": str(run),
-                "what": f"experiment {top['experiment']}" if top.get("experiment") else "run",
-                "created": top.get("created", "–"),
+                "what": f"experiment {top.experiment}" if top.experiment else "run",
+                "created": top.created if "created" in top.model_fields_set else "–",
                 "revision": _distinct(
                     str(r)[:12]
-                    for r in [top.get("git_revision")] + [s.manifest.get("git_revision") for s in series]
+                    for r in [top.git_revision] + [s.manifest.git_revision for s in series if s.manifest]
                     if r
                 ),
-                "suite": _distinct(df.loc[df["run"] == str(run), "suite"]) if len(df) else "–",  # its episodes'
+                "suite": _distinct(df.loc[df[Col.RUN] == str(run), Col.SUITE]) if len(df) else "–",  # its episodes'
                 "scenarios": _distinct(f"{s.scenario} v{s.version}" for s in series),
                 "seeds": seed_range([int(s.config["seed"]) for s in series if s.config.get("seed") is not None]),
                 "episode_length": _distinct(f"{s.episode_length:g} s" for s in series),
                 "episodes": f"{used} of {sum(s.episodes for s in series)}",
                 "models": _distinct((m for s in series for m in models(s)), "no LLM team"),
-                "entrants": _distinct(entrants(df[df["run"] == str(run)]) if len(df) else []),
+                "entrants": _distinct(entrants(df[df[Col.RUN] == str(run)]) if len(df) else []),
                 "scoring": _distinct(s.config.get("scoring", "clean") for s in series),
                 "protocol": _distinct(s.config.get("protocol", "pillagerbench") for s in series),
             }

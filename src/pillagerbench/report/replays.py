@@ -6,13 +6,13 @@ before replays existed) or with a cut-short one says so."""
 from __future__ import annotations
 
 import html
-import json
 import os
 from pathlib import Path
 
 from pillagerbench.replay.page import write_replay
 from pillagerbench.replay.read import ReplayError
-from pillagerbench.rundir import RunDir
+from pillagerbench.rundir import EpisodeDir, RunDir
+from pillagerbench.rundir.episode import FAILED
 
 REPLAYS = "replays"
 
@@ -36,14 +36,13 @@ def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
                 s.entrants.get(side, {}).get("label", name) for side, name in (("red", s.red), ("blue", s.blue))
             )
             row = {"series": s.id, "episode": ep.name, "red": red, "blue": blue, "score": "", "replay": None}
-            try:
-                rec = json.loads((ep / "episode.json").read_text())
-                if rec.get("red_score") is not None:
-                    row["score"] = f"{rec['red_score']:g} – {rec['blue_score']:g}"
-                elif rec.get("status") == "failed":
-                    row["score"] = "failed"
-            except (OSError, ValueError):
+            rec = EpisodeDir(ep).record()
+            if rec is None:
                 row["score"] = "unfinished"
+            elif rec.red_score is not None:
+                row["score"] = f"{rec.red_score:g} – {rec.blue_score:g}"
+            elif rec.status == FAILED:
+                row["score"] = "failed"
             try:
                 where = out / REPLAYS / folders[Path(s.run)] / ep.relative_to(s.root)
                 page, replay = write_replay(ep, where.with_name(ep.name + ".html"))

@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.metrics.calibration import opponent_groups
+from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.entrants import series_entrants
 from pillagerbench.metrics.formulas import Estimate, iterations, llm_metrics, mean_ci, over_opponents, pairing
 
@@ -33,15 +34,15 @@ ALL = "all"
 
 def scenario_order(df: pd.DataFrame) -> list[str]:
     known = ["mushroom_war", "dash_and_dine"]
-    present = list(dict.fromkeys(df["scenario"])) if len(df) else []
+    present = list(dict.fromkeys(df[Col.SCENARIO])) if len(df) else []
     return [s for s in known if s in present] + [s for s in present if s not in known]
 
 
 def opponent_order(df: pd.DataFrame, scenario: str | None = None) -> list[str]:
     from pillagerbench.experiments.spec import builtin_teams
 
-    sub = df if scenario is None else df[df["scenario"] == scenario]
-    present = list(dict.fromkeys(sub["blue"])) if len(sub) else []
+    sub = df if scenario is None else df[df[Col.SCENARIO] == scenario]
+    present = list(dict.fromkeys(sub[Col.BLUE])) if len(sub) else []
     canon: list[str] = []
     for sc in [scenario] if scenario else scenario_order(df):
         canon += [t for t in builtin_teams(sc) if t not in canon]
@@ -49,14 +50,14 @@ def opponent_order(df: pd.DataFrame, scenario: str | None = None) -> list[str]:
 
 
 def red_order(df: pd.DataFrame) -> list[str]:
-    return list(dict.fromkeys(df["red"])) if len(df) else []
+    return list(dict.fromkeys(df[Col.RED])) if len(df) else []
 
 
 def main_episodes(df: pd.DataFrame) -> pd.DataFrame:
     """Episodes of ordinary series (not evaluation groups such as adaptation's same/different)."""
     if not len(df):
         return df
-    return df[df["group"].isna() | (df["group"] == "training")]
+    return df[df[Col.GROUP].isna() | (df[Col.GROUP] == "training")]
 
 
 def _row(estimates: dict[str, Estimate], n: int) -> dict:
@@ -70,18 +71,18 @@ def _row(estimates: dict[str, Estimate], n: int) -> dict:
 def pairings(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
     rows = []
     for scenario in scenario_order(df):
-        sd = df[df["scenario"] == scenario]
+        sd = df[df[Col.SCENARIO] == scenario]
         for red in red_order(sd):
-            rd = sd[sd["red"] == red]
+            rd = sd[sd[Col.RED] == red]
             for blue in opponent_order(rd, scenario):
-                g = rd[rd["blue"] == blue]
+                g = rd[rd[Col.BLUE] == blue]
                 s = sigma.get((scenario, blue))
                 rows.append(
                     {
                         "scenario": scenario,
                         "red": red,
                         "blue": blue,
-                        **_row(pairing(g["red_score"], g["blue_score"], s.mean if s else None, s), len(g)),
+                        **_row(pairing(g[Col.RED_SCORE], g[Col.BLUE_SCORE], s.mean if s else None, s), len(g)),
                     }
                 )
             rows.append(
@@ -103,7 +104,7 @@ def planned(series: list, *frames: pd.DataFrame) -> dict[tuple[str, str], int]:
     named: dict[tuple[str, str], str] = {}
     for frame in frames:
         if len(frame):
-            named.update({(r, s): red for r, s, red in zip(frame["run"], frame["series"], frame["red"])})
+            named.update({(r, s): red for r, s, red in zip(frame[Col.RUN], frame[Col.SERIES], frame[Col.RED])})
     out: dict[tuple[str, str], int] = {}
     for s in series:
         if s.group is None or s.group == "training":
@@ -121,12 +122,12 @@ def summary(
     plan = plan or {}
     keys: list[tuple[str, str | None]] = [(r, None) for r in red_order(df)]
     if by_scenario:
-        keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df["scenario"] == sc])]
+        keys = [(r, sc) for sc in scenario_order(df) for r in red_order(df[df[Col.SCENARIO] == sc])]
     keys = list(dict.fromkeys(keys + [(r, sc if by_scenario else None) for r, sc in plan]))
     for red, scenario in keys:
         wanted = sum(n for (r, sc), n in plan.items() if r == red and scenario in (None, sc))
         head = {"red": red, **({"scenario": scenario} if by_scenario else {}), "planned": wanted or np.nan}
-        rd = df[(df["red"] == red) & ((df["scenario"] == scenario) if scenario else True)] if len(df) else df
+        rd = df[(df[Col.RED] == red) & ((df[Col.SCENARIO] == scenario) if scenario else True)] if len(df) else df
         rows.append({**head, **(_summary_row(rd, red, scenario, sigma, ledger) if len(rd) else {"episodes": 0})})
     cols = (
         ["red"]
@@ -142,8 +143,8 @@ def _summary_row(rd: pd.DataFrame, red: str, scenario: str | None, sigma: dict, 
     """P S D W over the opponents, the LLM metrics and I of one red row's used episodes."""
     calls = [c for c in ledger if c.get("label") == red and (scenario is None or c.get("scenario") == scenario)]
     llm = llm_metrics(calls)
-    it = iterations([[x] for x in rd["iterations"] if not math.isnan(x)])
-    paid = cost_of(calls, wins=int((rd["red_score"] > rd["blue_score"]).sum()))
+    it = iterations([[x] for x in rd[Col.ITERATIONS] if not math.isnan(x)])
+    paid = cost_of(calls, wins=int((rd[Col.RED_SCORE] > rd[Col.BLUE_SCORE]).sum()))
     return {
         **_row(over_opponents(opponent_groups(rd, sigma)), len(rd)),
         "T_resp": llm["T_resp"],
@@ -185,16 +186,16 @@ def team_view(df: pd.DataFrame) -> pd.DataFrame:
         parts.append(
             pd.DataFrame(
                 {
-                    "scenario": df["scenario"].to_numpy(),
-                    "team": df[side].to_numpy(),
-                    "team_name": df[f"{side}_team"].to_numpy(),
-                    "opponent": df[other].to_numpy(),
-                    "opponent_team": df[f"{other}_team"].to_numpy(),
+                    "scenario": df[Col.SCENARIO].to_numpy(),
+                    "team": df[Col.name(side)].to_numpy(),
+                    "team_name": df[Col.team(side)].to_numpy(),
+                    "opponent": df[Col.name(other)].to_numpy(),
+                    "opponent_team": df[Col.team(other)].to_numpy(),
                     "side": side,
-                    "own": df[f"{side}_score"].to_numpy(),
-                    "opp": df[f"{other}_score"].to_numpy(),
-                    "t": list(df["t"]),
-                    "own_t": list(df[f"{side}_t"]),
+                    "own": df[Col.score(side)].to_numpy(),
+                    "opp": df[Col.score(other)].to_numpy(),
+                    "t": list(df[Col.T]),
+                    "own_t": list(df[Col.over_time(side)]),
                 }
             )
         )
@@ -235,15 +236,15 @@ def per_team(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
 
 
 def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
-    gd = df[df["group"].notna() & (df["group"] != "training")] if len(df) else df
+    gd = df[df[Col.GROUP].notna() & (df[Col.GROUP] != "training")] if len(df) else df
     rows = []
     if len(gd):
-        order = sorted(dict.fromkeys(gd["group"]), key=lambda g: (_sort_x(_group_x(gd, g)), g))
+        order = sorted(dict.fromkeys(gd[Col.GROUP]), key=lambda g: (_sort_x(_group_x(gd, g)), g))
         for red in red_order(gd):
             for scenario in scenario_order(gd) + [ALL]:
-                sd = gd[(gd["red"] == red) & ((gd["scenario"] == scenario) if scenario != ALL else True)]
+                sd = gd[(gd[Col.RED] == red) & ((gd[Col.SCENARIO] == scenario) if scenario != ALL else True)]
                 for group in order:
-                    g = sd[sd["group"] == group]
+                    g = sd[sd[Col.GROUP] == group]
                     if len(g):
                         rows.append(
                             {
@@ -260,7 +261,7 @@ def groups(df: pd.DataFrame, sigma: dict) -> pd.DataFrame:
 
 
 def _group_x(df: pd.DataFrame, group: str) -> float:
-    x = df.loc[df["group"] == group, "group_x"].dropna()
+    x = df.loc[df[Col.GROUP] == group, Col.GROUP_X].dropna()
     return float(x.iloc[0]) if len(x) else math.nan
 
 
@@ -271,10 +272,10 @@ def _sort_x(x: float) -> float:
 def learning_curve(df: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for red in red_order(df):
-        rd = df[df["red"] == red]
-        for index in sorted(rd["index"].unique()):
-            g = rd[rd["index"] == index]
-            d = mean_ci(g["red_score"] - g["blue_score"])
+        rd = df[df[Col.RED] == red]
+        for index in sorted(rd[Col.INDEX].unique()):
+            g = rd[rd[Col.INDEX] == index]
+            d = mean_ci(g[Col.RED_SCORE] - g[Col.BLUE_SCORE])
             rows.append({"red": red, "episode": int(index), "episodes": d.n, "D": d.mean, "D_ci": d.ci})
     return pd.DataFrame(rows, columns=["red", "episode", "episodes", "D", "D_ci"])
 
@@ -290,10 +291,10 @@ def calibration(sigma: dict) -> pd.DataFrame:
 def lagged(df: pd.DataFrame) -> pd.DataFrame:
     """Episodes played under lag (a threshold of pillagerbench/machine.py crossed; give the spoiled
     rows, metrics/runs.py): in no score, listed so a reader sees why and can lower `parallel`."""
-    cols = ["series", "episode", "server_tps", "lag_reason"]
-    if not len(df) or "lagged" not in df:
+    cols = [Col.SERIES, Col.EPISODE, Col.SERVER_TPS, Col.LAG_REASON]
+    if not len(df) or Col.LAGGED not in df:
         return pd.DataFrame(columns=cols)
-    return df.loc[df["lagged"].astype(bool), cols].reset_index(drop=True)
+    return df.loc[df[Col.LAGGED].astype(bool), cols].reset_index(drop=True)
 
 
 def skipped(items: list[tuple[str, str]]) -> pd.DataFrame:

@@ -26,16 +26,17 @@ import zlib
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.rundir import names as N
 from pillagerbench.rundir.directory import RunDir
 
 INFO = "bundle.json"
 CHECKSUMS = "checksums.sha256"
 RUNS = "runs"
 FORMAT = 1
-REPLAY = "replay.jsonl.gz"
+REPLAY = N.REPLAY
 # what a bundle leaves out of a run directory: folders (anywhere in a path) and file names
-_LEFT_OUT_DIRS = {"state", "checkpoints", "logs", "discarded", "report"}
-_LEFT_OUT_FILES = ("live.json", "replay.html", "server*.log")
+_LEFT_OUT_DIRS = {N.STATE, N.CHECKPOINTS, N.LOGS, N.DISCARDED, N.REPORT}
+_LEFT_OUT_FILES = (N.LIVE, N.REPLAY_PAGE, f"{N.SERVER_LOG}*.log")
 
 
 class BundleError(ValueError):

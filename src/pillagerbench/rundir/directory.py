@@ -21,16 +21,17 @@ import json
 import os
 import shutil
 import time
-from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.rundir import names as N
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
-from pillagerbench.rundir.experiment import EXPERIMENT
+from pillagerbench.rundir.episode_dir import EpisodeDir
+from pillagerbench.rundir.manifest_file import Manifest
 
-EPISODES = "episodes.jsonl"
-LEDGER = "llm_calls.jsonl"
-_EPISODE = "episode_"
+EPISODES = N.EPISODES
+LEDGER = N.LEDGER
+_EPISODE = N.EPISODE
 
 
 def episode_index(name: str) -> int | None:
@@ -41,6 +42,13 @@ def episode_index(name: str) -> int | None:
         return int(name[len(_EPISODE) :])
     except ValueError:
         return None
+
+
+def _record(line: str | bytes) -> EpisodeRecord:
+    """One line of episodes.jsonl: ValueError when it is not whole JSON (cut by a crash); a whole line
+    that is no record is an error of its own (KeyError), never taken for a torn one."""
+    data = json.loads(line)
+    return EpisodeRecord.from_dict({**data, "episode": int(data["episode"])})
 
 
 def _write_json_atomic(path: Path, data: Any) -> None:
@@ -70,56 +78,80 @@ class RunDir:
 
     @property
     def live_path(self) -> Path:
-        return self.path / "live.json"
+        return self.path / N.LIVE
 
     @property
     def series_path(self) -> Path:
-        return self.path / "series.json"
+        return self.path / N.SERIES
 
     @property
     def manifest_path(self) -> Path:
-        return self.path / "manifest.json"
+        return self.path / N.MANIFEST
 
     @property
     def experiment_path(self) -> Path:
         """An experiment's top: experiment.json (read it with `read_experiment`)."""
-        return self.path / EXPERIMENT
+        return self.path / N.EXPERIMENT
+
+    @property
+    def calibration_path(self) -> Path:
+        """σ_blue measured from this run (calibration.json, written by `pillagerbench calibrate`)."""
+        return self.path / N.CALIBRATION
 
     def series_dir(self, series_id: str) -> Path:
         """One series of an experiment."""
-        return self.path / "series" / series_id
+        return self.path / N.SERIES_DIR / series_id
 
     def all_series(self) -> list[Path]:
         """Every series directory of an experiment (written so far)."""
-        return sorted(p for p in (self.path / "series").glob("*") if p.is_dir())
+        return sorted(p for p in (self.path / N.SERIES_DIR).glob("*") if p.is_dir())
 
     def is_experiment(self) -> bool:
         return self.experiment_path.exists()
 
-    def manifest(self) -> dict[str, Any]:
-        """manifest.json ({} when the run has not written one yet)."""
-        return json.loads(self.manifest_path.read_text()) if self.manifest_path.exists() else {}
+    def manifest(self) -> Manifest | None:
+        """manifest.json, whichever version wrote it (None when the run has not written one yet)."""
+        if not self.manifest_path.exists():
+            return None
+        return Manifest.model_validate(json.loads(self.manifest_path.read_text()))
 
-    def write_manifest(self, manifest: dict[str, Any]) -> None:
+    def write_manifest(self, manifest: Manifest) -> None:
         self.path.mkdir(parents=True, exist_ok=True)
-        self.manifest_path.write_text(json.dumps(manifest, indent=1, default=str))
+        self.manifest_path.write_text(json.dumps(manifest.to_json(), indent=1, default=str))
 
     def episode(self, index: int) -> Path:
         return self.path / f"{_EPISODE}{index:03d}"
 
+    def files(self, index: int) -> EpisodeDir:
+        """An episode's directory: its files' paths, read and written as what they hold."""
+        return EpisodeDir(self.episode(index))
+
     def record_path(self, index: int) -> Path:
         """An episode's record beside its files (episode.json)."""
-        return self.episode(index) / "episode.json"
+        return self.files(index).record_path
 
     def timeline_path(self, index: int, scoring: str = "clean") -> Path:
         """An episode's score each second: timeline.json, or timeline_<scoring>.json for another scoring's."""
-        return self.episode(index) / ("timeline.json" if scoring == "clean" else f"timeline_{scoring}.json")
+        return self.files(index).timeline_path(scoring)
 
     def state(self, index: int) -> Path:
-        return self.path / "state" / f"{_EPISODE}{index:03d}"
+        return self.path / N.STATE / f"{_EPISODE}{index:03d}"
+
+    def state_dirs(self) -> list[tuple[int, Path]]:
+        """(index, path) of every episode's saved state (state/episode_N)."""
+        parent = self.path / N.STATE
+        return self.episode_dirs(parent) if parent.exists() else []
+
+    def ledger_offset_path(self, index: int) -> Path:
+        """The ledger's length when an episode's state was saved (state/episode_N/ledger_offset)."""
+        return self.state(index) / N.LEDGER_OFFSET
 
     def checkpoint(self, index: int, side: str) -> Path:
-        return self.path / "checkpoints" / f"{_EPISODE}{index:03d}" / side
+        return self.path / N.CHECKPOINTS / f"{_EPISODE}{index:03d}" / side
+
+    def logs_dir(self) -> Path:
+        """The bots' logs."""
+        return self.path / N.LOGS
 
     def episode_dirs(self, parent: Path | None = None) -> list[tuple[int, Path]]:
         """(index, path) of every episode_N directory under `parent` (default: the run directory), in order."""
@@ -129,43 +161,41 @@ class RunDir:
 
     # --- records -----------------------------------------------------------------------------------
 
-    def append(self, record: EpisodeRecord | dict[str, Any]) -> None:
+    def append(self, record: EpisodeRecord) -> None:
         """Add an episode's line to episodes.jsonl (flushed to disk: it marks the episode finished)."""
-        data = asdict(record) if isinstance(record, EpisodeRecord) else record
         self.path.mkdir(parents=True, exist_ok=True)
         with open(self.episodes_path, "a") as f:
-            f.write(json.dumps(data) + "\n")
+            f.write(json.dumps(record.to_dict()) + "\n")
             f.flush()
             os.fsync(f.fileno())
 
     def write_episode(self, record: EpisodeRecord) -> None:
         """The record beside the episode's files (episode.json), finished or failed."""
-        self.episode(record.episode).mkdir(parents=True, exist_ok=True)
-        (self.episode(record.episode) / "episode.json").write_text(json.dumps(asdict(record), indent=1))
+        self.files(record.episode).write_record(record)
 
-    def read(self) -> tuple[dict[int, dict], int, int]:
+    def read(self) -> tuple[dict[int, EpisodeRecord], int, int]:
         """Finished episodes by index from episodes.jsonl, the byte length of its good lines, and its size."""
         if not self.episodes_path.exists():
             return {}, 0, 0
         data = self.episodes_path.read_bytes()
-        finished: dict[int, dict] = {}
+        finished: dict[int, EpisodeRecord] = {}
         good = 0
         for raw in data.splitlines(keepends=True):
             if not raw.endswith(b"\n"):
                 break  # cut by a crash
             try:
-                rec = json.loads(raw)
+                rec = _record(raw)
             except ValueError:
                 break
-            finished.setdefault(int(rec["episode"]), rec)
+            finished.setdefault(rec.episode, rec)
             good += len(raw)
         return finished, good, len(data)
 
-    def read_lenient(self) -> tuple[dict[int, dict], list[int]]:
+    def read_lenient(self) -> tuple[dict[int, EpisodeRecord], list[int]]:
         """Every whole line of episodes.jsonl by episode (the first one wins) and the numbers of the
         lines that are not whole: what a reader of a damaged run uses, where `read` stops at the first
         bad line as a resume must."""
-        finished: dict[int, dict] = {}
+        finished: dict[int, EpisodeRecord] = {}
         bad: list[int] = []
         if not self.episodes_path.exists():
             return finished, bad
@@ -173,46 +203,53 @@ class RunDir:
             if not line.strip():
                 continue
             try:
-                rec = json.loads(line)
+                rec = _record(line)
             except ValueError:
                 bad.append(n)
                 continue
-            finished.setdefault(int(rec["episode"]), rec)
+            finished.setdefault(rec.episode, rec)
         return finished, bad
 
-    def finished(self) -> dict[int, dict]:
+    def finished(self) -> dict[int, EpisodeRecord]:
         return self.read()[0]
 
-    def records(self) -> list[dict]:
+    def records(self) -> list[EpisodeRecord]:
         """Every line of episodes.jsonl in order (a torn last line left out)."""
-        return list(self.finished().values()) if self.episodes_path.exists() else []
+        return list(self.finished().values())
 
-    def last_seen(self, record: dict[str, Any], timeline: list[dict[str, Any]] | None = None) -> LastEpisode:
-        """What a team sees of a finished episode, read from its directory where not given. The match
-        builds it after each episode; a resumed series rebuilds it from the directory, the same."""
-        out = self.episode(int(record["episode"]))
-        if timeline is None:
-            path = out / "timeline.json"
-            timeline = json.loads(path.read_text()) if path.exists() else []
-        chat = out / "chat.txt"
+    def last_seen(self, record: EpisodeRecord) -> LastEpisode:
+        """What a team sees of a finished episode: its record and what its directory holds. The match
+        builds it after each episode from the record it wrote; a resumed series rebuilds it from the
+        same record read back, so both give the same."""
+        files = self.files(record.episode)
         return {
-            "record": record,
-            "events_dir": str(out / "events"),
-            "timeline": timeline,
-            "chat": chat.read_text().splitlines() if chat.exists() else [],
+            "record": EpisodeRecord.from_dict(json.loads(json.dumps(record.to_dict()))),  # as written
+            "events_dir": str(files.events_dir),
+            "timeline": files.timeline() if files.timeline_path().exists() else [],
+            "chat": files.chat(),
         }
+
+    def ledger_offset(self, index: int) -> int | None:
+        """The ledger's length after an episode (None for a run from before it was kept)."""
+        path = self.ledger_offset_path(index)
+        return int(path.read_text()) if path.exists() else None
+
+    def write_ledger_offset(self, index: int) -> None:
+        """The ledger's length now, kept beside the episode's state (what a resume truncates it to)."""
+        size = self.ledger_path.stat().st_size if self.ledger_path.exists() else 0
+        self.ledger_offset_path(index).write_text(str(size))
 
     def free_server_log(self) -> Path:
         """A server log that does not overwrite an earlier one (server.log, server.1.log, ...): a
         resumed series keeps the log of the run that was killed."""
-        path, n = self.path / "server.log", 1
+        path, n = self.path / f"{N.SERVER_LOG}.log", 1
         while path.exists():
-            path, n = self.path / f"server.{n}.log", n + 1
+            path, n = self.path / f"{N.SERVER_LOG}.{n}.log", n + 1
         return path
 
     def note_resume(self, finished: list[int], discarded: list[str]) -> None:
         """One line in resumes.jsonl: when the series was resumed, what it had finished, what it discarded."""
-        with open(self.path / "resumes.jsonl", "a") as f:
+        with open(self.path / N.RESUMES, "a") as f:
             f.write(
                 json.dumps({"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "finished": finished, "discarded": discarded})
                 + "\n"
@@ -230,16 +267,16 @@ class RunDir:
     # --- repair ------------------------------------------------------------------------------------
 
     def _discard(self, path: Path, note: list[str]) -> None:
-        target = self.path / "discarded" / f"{path.name}.{time.strftime('%Y%m%d-%H%M%S')}"
+        target = self.path / N.DISCARDED / f"{path.name}.{time.strftime('%Y%m%d-%H%M%S')}"
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.move(str(path), str(target))
         note.append(f"{path.name} -> discarded/{target.name}")
 
     def _keep_tail(self, name: str, data: bytes) -> None:
-        (self.path / "discarded").mkdir(exist_ok=True)
-        (self.path / "discarded" / f"{name}.tail.{time.strftime('%Y%m%d-%H%M%S')}").write_bytes(data)
+        (self.path / N.DISCARDED).mkdir(exist_ok=True)
+        (self.path / N.DISCARDED / f"{name}.tail.{time.strftime('%Y%m%d-%H%M%S')}").write_bytes(data)
 
-    def recover(self) -> tuple[dict[int, dict], list[str]]:
+    def recover(self) -> tuple[dict[int, EpisodeRecord], list[str]]:
         """Make the directory consistent after a crash; returns finished episodes and what was discarded:
         a torn last line, the unfinished episodes' directories, state and checkpoints, and their ledger lines."""
         note: list[str] = []
@@ -252,16 +289,13 @@ class RunDir:
         for i, d in self.episode_dirs():
             if i not in finished:
                 self._discard(d, note)
-        for parent in (self.path / "state", self.path / "checkpoints"):
+        for parent in (self.path / N.STATE, self.path / N.CHECKPOINTS):
             for i, d in self.episode_dirs(parent) if parent.exists() else []:
                 if i not in finished:
                     shutil.rmtree(d, ignore_errors=True)
         if self.ledger_path.exists():
-            offset = 0
-            if finished:
-                offset_file = self.state(max(finished)) / "ledger_offset"
-                whole = self.ledger_path.stat().st_size
-                offset = int(offset_file.read_text()) if offset_file.exists() else whole  # older run: keep all
+            kept = self.ledger_offset(max(finished)) if finished else 0
+            offset = self.ledger_path.stat().st_size if kept is None else kept  # older run: keep all
             if self.ledger_path.stat().st_size > offset:
                 data = self.ledger_path.read_bytes()
                 self._keep_tail(LEDGER, data[offset:])

@@ -3,8 +3,8 @@ finished episode (`TeamContext.last_episode`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
-from typing import Any, TypedDict
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any, NotRequired, TypedDict
 
 from pillagerbench.conditions import RULES, stamp, suite_defaults
 from pillagerbench.suite import UNVERSIONED, current
@@ -20,7 +20,7 @@ class EpisodeRecord:
     blue_score: float | None = None
     winner: str | None = None
     duration_s: float = 0.0  # wall time of the whole episode (reset .. post-game)
-    status: str = "ok"  # ok | failed
+    status: str = "ok"  # OK | FAILED
     error: str | None = None
     reset_s: float = 0.0
     pre_game_s: dict[str, float] = field(default_factory=dict)
@@ -55,7 +55,8 @@ class EpisodeRecord:
         red_score/blue_score where it was not recorded, null lists and maps are empty, a record before
         entrants has none (its reader derives them from the config); unknown keys are dropped."""
         known = {f.name for f in fields(cls)}
-        rec = cls(**{k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE})
+        given = {k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE}
+        rec = cls(**{**_UNNAMED, **given})  # a killed run's line may hold no more than its episode and status
         if not rec.scores and rec.red_score is not None and rec.blue_score is not None:
             rec.scores = {rec.scoring: {"red": rec.red_score, "blue": rec.blue_score}}
         if not data.get("suite"):
@@ -63,6 +64,15 @@ class EpisodeRecord:
         if "conditions" not in data:  # before conditions were stamped: the rules the record itself names
             rec.conditions = _recorded_rules(rec)
         return rec
+
+    def to_dict(self) -> dict[str, Any]:
+        """The record as it is written (episodes.jsonl, episode.json, a remote team's message): its
+        fields in their order."""
+        return asdict(self)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == OK
 
     @property
     def stamp(self) -> str:
@@ -76,18 +86,41 @@ def _recorded_rules(rec: EpisodeRecord) -> dict[str, Any]:
     return {k: v for k, v in named.items() if k in RULES and k in defaults and v != defaults[k]}
 
 
+OK = "ok"
+FAILED = "failed"
+# what a line that names no more than its episode (and status) stands for
+_UNNAMED: dict[str, Any] = {"scenario": "", "red": "", "blue": ""}
 # keys whose null is a value (not "missing in an earlier version")
 _NULLABLE = {"red_score", "blue_score", "winner", "error", "server_tps", "lag_reason"}
+
+
+class TimelinePoint(TypedDict):
+    """One point of an episode's score timeline: the second and each side's score then (upstream's
+    samples also name the line of its rewards file)."""
+
+    t: float
+    red: float
+    blue: float
+    line: NotRequired[int]
 
 
 class LastEpisode(TypedDict, total=False):
     """What a team sees of its last finished episode: its record, its events directory, its score
     timeline and the world chat ("<player> message" lines, game-master lines plain)."""
 
-    record: dict[str, Any]
+    record: EpisodeRecord
     events_dir: str
-    timeline: list[dict[str, Any]]
+    timeline: list[TimelinePoint]
     chat: list[str]
+
+
+def last_seen_json(last: LastEpisode) -> dict[str, Any]:
+    """What a team sees of its last episode as JSON (a remote team's message): the record as it is
+    written, the rest as it is."""
+    out: dict[str, Any] = dict(last)
+    if "record" in last:
+        out["record"] = last["record"].to_dict()
+    return out
 
 
 def winner_of(red: float, blue: float) -> str:

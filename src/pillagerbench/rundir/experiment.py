@@ -1,5 +1,5 @@
 """An experiment's run directory at its top: experiment.json (the experiment's name, its config, the
-command's overrides and every series as a SeriesSpec), read back whichever version wrote it."""
+command's overrides and every series as a SeriesSpec's dict), read back whichever version wrote it."""
 
 from __future__ import annotations
 
@@ -7,10 +7,31 @@ import json
 from pathlib import Path
 from typing import Any
 
-EXPERIMENT = "experiment.json"
+from pydantic import BaseModel, ConfigDict
+
+from pillagerbench.rundir.names import EXPERIMENT
 
 
-def read_experiment(run_dir: str | Path) -> dict[str, Any]:
+class ExperimentFile(BaseModel):
+    """experiment.json: written with its fields in this order, as it always was."""
+
+    model_config = ConfigDict(extra="allow")
+
+    name: str
+    created: str | None = None
+    experiment: dict[str, Any] = {}  # the experiment's config node (its design, teams, episodes, ...)
+    overrides: list[str] = []  # the command's overrides
+    series: list[dict[str, Any]] = []  # every series as SeriesSpec.to_dict() (rundir/series.py reads them)
+
+    def to_json(self) -> dict[str, Any]:
+        return self.model_dump(exclude_unset=True)
+
+
+def write_experiment_file(run_dir: str | Path, data: ExperimentFile) -> None:
+    (Path(run_dir) / EXPERIMENT).write_text(json.dumps(data.to_json(), indent=1, default=str))
+
+
+def read_experiment(run_dir: str | Path) -> ExperimentFile:
     """experiment.json as this version writes it, whichever version wrote it: the one place that knows
     its earlier versions. Before the experiment's design (round_robin, benchmark, ...) had its own
     word it was called `protocol`, in the experiment's config and in every series; `protocol` now
@@ -19,4 +40,4 @@ def read_experiment(run_dir: str | Path) -> dict[str, Any]:
     for node in (data.get("experiment") or {}, *data.get("series", [])):
         if "design" not in node and "protocol" in node:
             node["design"] = node.pop("protocol")
-    return data
+    return ExperimentFile.model_validate(data)

@@ -12,7 +12,7 @@ when it starts with one of `HARNESS_PROBLEMS`; every other is the team's.
 
 from __future__ import annotations
 
-from typing import Any
+from pillagerbench.rundir.episode import EpisodeRecord
 
 HARNESS = "harness"
 TEAM = "team"
@@ -42,22 +42,22 @@ def _problem(problem: str) -> tuple[str, str]:
     return (HARNESS, ours) if ours else (TEAM, "the team's own")
 
 
-def faults(data: dict[str, Any]) -> list[dict[str, str]]:
+def faults(rec: EpisodeRecord) -> list[dict[str, str]]:
     """One row per fault of an episode's record: whose (harness | team), kind, side ('' for both), what."""
     out = []
-    if data.get("status", "ok") != "ok":  # a line may hold no more than its status (a killed run's)
-        what = str(data.get("error") or data.get("status"))
+    if not rec.ok:  # a line may hold no more than its status (a killed run's)
+        what = str(rec.error or rec.status)
         whose, kind = FAILED.get(what.partition(":")[0], (HARNESS, "failed (cause not named)"))
         out.append({"whose": whose, "kind": kind, "side": "", "what": what})
-    if data.get("lagged"):
-        out.append({"whose": HARNESS, "kind": "lagged", "side": "", "what": str(data.get("lag_reason"))})
-    for side, problems in (data.get("problems") or {}).items():
+    if rec.lagged:
+        out.append({"whose": HARNESS, "kind": "lagged", "side": "", "what": str(rec.lag_reason)})
+    for side, problems in rec.problems.items():
         for problem in problems:
             whose, kind = _problem(problem)
             out.append({"whose": whose, "kind": kind, "side": side, "what": problem})
     return out
 
 
-def spoiled(data: dict[str, Any]) -> str | None:
+def spoiled(rec: EpisodeRecord) -> str | None:
     """The kind of our first fault in an episode's record (it is spoiled: not a result), or None."""
-    return next((f["kind"] for f in faults(data) if f["whose"] == HARNESS), None)
+    return next((f["kind"] for f in faults(rec) if f["whose"] == HARNESS), None)

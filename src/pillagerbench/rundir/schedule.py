@@ -10,10 +10,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from pillagerbench.config_schema import RETRIES  # the config's default `retries` (runs from before the key: this)
 from pillagerbench.rundir.directory import RunDir
+from pillagerbench.rundir.episode import EpisodeRecord
 from pillagerbench.rundir.faults import spoiled
-
-RETRIES = 2  # the config's default `retries` (runs from before the key: this)
 
 
 @dataclass
@@ -31,7 +31,7 @@ class Progress:
         return self.next is None
 
 
-def progress(records: dict[int, dict], planned: int, retries: int = RETRIES) -> Progress:
+def progress(records: dict[int, EpisodeRecord], planned: int, retries: int = RETRIES) -> Progress:
     """Walk the finished records in index order: each planned episode takes tries until one is not
     spoiled or 1 + `retries` were."""
     out = Progress(planned)

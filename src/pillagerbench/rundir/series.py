@@ -3,6 +3,7 @@ series of any run directory, an experiment's or a plain `pillagerbench run`'s.""
 
 from __future__ import annotations
 
+import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -52,6 +53,11 @@ class SeriesSpec:
         return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
 
 
+def write_series(rundir: RunDir, spec: SeriesSpec) -> None:
+    """An experiment's series directory's series.json: its spec without the config (the manifest has it)."""
+    rundir.series_path.write_text(json.dumps({k: v for k, v in spec.to_dict().items() if k != "config"}, indent=1))
+
+
 def read_series(
     run_dir: str | Path, runner_keys: tuple[str, ...] = ()
 ) -> tuple[str, list[tuple[SeriesSpec, Path]]] | None:
@@ -60,11 +66,12 @@ def read_series(
     rundir = RunDir(run_dir)
     if rundir.is_experiment():
         data = read_experiment(rundir.path)  # whichever version wrote it
-        specs = [SeriesSpec.from_dict(s) for s in data["series"]]
-        return data["name"], [(s, rundir.series_dir(s.id)) for s in specs]
-    if not rundir.manifest_path.exists():
+        specs = [SeriesSpec.from_dict(s) for s in data.series]
+        return data.name, [(s, rundir.series_dir(s.id)) for s in specs]
+    manifest = rundir.manifest()
+    if manifest is None:
         return None
-    config = {k: v for k, v in rundir.manifest()["config"].items() if k not in runner_keys}
+    config = {k: v for k, v in manifest.config.items() if k not in runner_keys}
     return "run", [(plain_series(config, rundir.path.name), rundir.path)]
 
 

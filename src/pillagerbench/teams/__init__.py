@@ -17,7 +17,6 @@ from pillagerbench.teams.registry import (
     make_team,
     register,
     team_from_config,
-    team_options,
 )
 from pillagerbench.teams.remote import RemoteTeam
 from pillagerbench.teams.tacticrafter import TactiCrafter
@@ -51,5 +50,4 @@ __all__ = [
     "make_team",
     "register",
     "team_from_config",
-    "team_options",
 ]

@@ -8,7 +8,6 @@ cancelled at the whistle; all of its players' code is stopped then), `post_game`
 from __future__ import annotations
 
 import asyncio
-import json
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -16,7 +15,7 @@ from pathlib import Path
 from typing import Any, ClassVar, Protocol
 
 from pillagerbench.llm import LLMClient
-from pillagerbench.rundir import LastEpisode
+from pillagerbench.rundir import LastEpisode, TeamState
 from pillagerbench.scenarios import Scenario, Side
 from pillagerbench.teams.options import TeamOptions
 
@@ -108,13 +107,10 @@ class Team:
         pass
 
     def save_checkpoint(self, directory: Path) -> Path:
-        directory.mkdir(parents=True, exist_ok=True)
-        path = directory / "team.json"
-        path.write_text(json.dumps({"team": self.name, "state": self.state()}, indent=1))
-        return path
+        return TeamState(self.name, self.state()).write(directory)
 
     def load_checkpoint(self, directory: Path) -> None:
-        data = json.loads((Path(directory) / "team.json").read_text())
-        if data.get("team") != self.name:
-            raise ValueError(f"checkpoint {directory} is of team {data.get('team')!r}, not {self.name!r}")
-        self.load_state(data.get("state", {}))
+        saved = TeamState.read(directory)
+        if saved.team != self.name:
+            raise ValueError(f"checkpoint {directory} is of team {saved.team!r}, not {self.name!r}")
+        self.load_state(saved.state)

@@ -13,9 +13,8 @@ from dataclasses import dataclass, field
 from importlib.metadata import entry_points
 from typing import Any
 
-from omegaconf import OmegaConf
-
 from pillagerbench.config import ConfigError
+from pillagerbench.config_schema import TeamConfig
 from pillagerbench.registry import Registry
 from pillagerbench.teams.base import Team
 from pillagerbench.teams.options import defaults, options_model
@@ -127,15 +126,6 @@ def make_team(name: str, scenario_key: str, **options: Any) -> Team:
     return cls(**options)
 
 
-def team_options(team_cfg: Any) -> dict[str, Any]:
-    """The team's constructor options: its config node without `name` and `llm`."""
-    opts = OmegaConf.to_container(team_cfg, resolve=True)
-    assert isinstance(opts, dict)
-    opts.pop("name", None)
-    opts.pop("llm", None)
-    return {str(k): v for k, v in opts.items()}
-
-
-def team_from_config(team_cfg: Any, scenario_key: str) -> Team:
+def team_from_config(team_cfg: TeamConfig, scenario_key: str) -> Team:
     """The team a side's config node (`cfg.red`, `cfg.blue`) names, with its options."""
-    return make_team(team_cfg.name, scenario_key, **team_options(team_cfg))
+    return make_team(team_cfg.name, scenario_key, **team_cfg.options)

@@ -26,6 +26,7 @@ from urllib.parse import urlparse
 from pydantic import BaseModel, Field, ValidationError
 
 from pillagerbench.players import primitives as prim
+from pillagerbench.rundir import last_seen_json
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions, defaults
 from pillagerbench.teams.remote import protocol as P
@@ -199,7 +200,7 @@ class RemoteTeam(Team):
             observations={
                 n: (obs[-1][1] if obs and obs[-1][0] == "observe" else {}) for n, obs in ctx.observations.items()
             },
-            last_episode=_jsonable(ctx.last_episode) if ctx.last_episode else None,
+            last_episode=_jsonable(last_seen_json(ctx.last_episode)) if ctx.last_episode else None,
         )
         self._take(ctx, await self._call("/pregame", message, P.Programs, self.pregame_timeout_s))
 
@@ -249,7 +250,7 @@ class RemoteTeam(Team):
                 await asyncio.sleep(min(self.restart_pause_s - quick, ctx.time_left()))
 
     async def post_game(self, ctx: TeamContext) -> None:
-        last = ctx.last_episode or {}
+        last = last_seen_json(ctx.last_episode) if ctx.last_episode else {}
         message = P.PostgameRequest(
             episode=ctx.episode, record=_jsonable(last.get("record") or {}), chat=list(last.get("chat") or [])
         )

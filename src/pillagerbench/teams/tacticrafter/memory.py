@@ -20,6 +20,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.rundir import team_state_path
+
 from .causal import CausalGraph
 from .opponent import UNKNOWN
 
@@ -103,10 +105,10 @@ class Memory:
     @classmethod
     def read(cls, directory: Path) -> Memory:
         directory = Path(directory)
-        team = directory / "team.json"
+        team = team_state_path(directory)
         if team.exists():
             data = json.loads(team.read_text())
-            return cls.from_dict(data.get("state", data))
+            return cls.from_dict(data.get("state", data))  # a checkpoint of an early version: the memory alone
         if not any((directory / f).exists() for f in FILES):
             raise FileNotFoundError(f"{directory} holds no TactiCrafter checkpoint (team.json or {', '.join(FILES)})")
         mem = cls()

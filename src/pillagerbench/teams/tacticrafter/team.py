@@ -27,6 +27,7 @@ from pydantic import Field, field_validator
 
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, RoleLLM, role_settings
+from pillagerbench.rundir import has_team_state
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
@@ -395,8 +396,7 @@ class TactiCrafter(Team):
 
     def load_checkpoint(self, directory: Path) -> None:
         directory = Path(directory)
-        team_json = directory / "team.json"
-        if team_json.exists():
+        if has_team_state(directory):
             super().load_checkpoint(directory)
         else:
             self.memory = Memory.read(directory)
