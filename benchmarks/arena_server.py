@@ -52,9 +52,9 @@ async def measure(proc: psutil.Process, seconds: float) -> tuple[float, float]:
 
 
 async def tps(server: ArenaServer, seconds: float) -> float:
-    t0, k0 = time.monotonic(), (await server.request("status"))["tick"]
+    t0, k0 = time.monotonic(), (await server.status())["tick"]
     await asyncio.sleep(seconds)
-    return ((await server.request("status"))["tick"] - k0) / (time.monotonic() - t0)
+    return ((await server.status())["tick"] - k0) / (time.monotonic() - t0)
 
 
 async def main(n_bots: int, seconds: float) -> dict:
@@ -74,8 +74,8 @@ async def main(n_bots: int, seconds: float) -> dict:
     for i in range(n_bots):
         bots.append(await TestBot(server.port, f"worker{i}").start())
     for i, b in enumerate(bots):
-        await server.request("set_inventory", player=b.username, items={"dirt": 64})
-        await server.request("teleport", player=b.username, pos=[40 * i + 0.5, 4, 0.5])
+        await server.set_inventory(b.username, {"dirt": 64})
+        await server.teleport(b.username, [40 * i + 0.5, 4, 0.5])
     await asyncio.sleep(2)
     work = [asyncio.create_task(b.eval(WORK % int(seconds * 1000), timeout=seconds + 60)) for b in bots]
     await asyncio.sleep(2)

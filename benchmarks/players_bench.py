@@ -108,12 +108,12 @@ async def main(n_bots: int, seconds: float, repeats: int) -> dict:
                 p0, "await bot.pathfinder.goto(new GoalNear(bot.entity.position.x + 200, 4, 0, 1))", repeats
             )
         )
-        await server.request("fill", **{"from": [3, 4, -3], "to": [20, 4, 3], "block": "slime_block"})
+        await server.fill([3, 4, -3], [20, 4, 3], "slime_block")
         await p0.reset(position=(0, 4, 0))
         results["stop_while_mining"] = summary(
             await stop_latency(p0, "await mineBlock(bot, 'slime_block', 100)", max(3, repeats // 4), after=1.5)
         )
-        await server.request("fill", **{"from": [3, 4, -3], "to": [20, 4, 3], "block": "air"})
+        await server.fill([3, 4, -3], [20, 4, 3], "air")
 
         procs = [psutil.Process(p.proc.pid) for p in players]
         for i, p in enumerate(players):

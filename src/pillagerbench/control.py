@@ -115,8 +115,8 @@ class UndeclaredOp(TypeError):
 class Control(Protocol):
     """The control channel: one request, one answer (game masters, arenas, players' server checks).
 
-    Implementations give `request`; the typed ops below send through it. What each op does:
-    `control_ops.json`."""
+    Implementations give `request`; the typed ops below send through it. What each op does is in
+    `control_ops.json` (and each method's `__doc__`)."""
 
     async def request(self, op: str, **args: Any) -> Any: ...
 
@@ -247,6 +247,11 @@ class Control(Protocol):
 
     async def player_order(self, names: Sequence[str]) -> list[str]:
         return await self.send("player_order", names=names)
+
+
+for _op in OPS.values():  # each typed method's documentation is its op's, from the declaration
+    if (_method := getattr(Control, _op.name, None)) is not None:
+        _method.__doc__ = _op.doc
 
 
 class Events(Protocol):

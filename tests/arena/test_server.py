@@ -37,6 +37,9 @@ async def test_ready_with_flat_world_and_log(arena):
         ("toString", {}, 'unknown op "toString"'),
         ("set_block", {"pos": [0, 4, 0], "block": "stone", "colour": "red"}, 'op set_block has no argument "colour"'),
         ("get_block", {}, 'op get_block needs the argument "pos"'),
+        ("give", {"player": "nobody", "item": 5}, "op give: argument item must be a string, got 5"),
+        ("give", {"player": "nobody", "item": "bread", "count": 1.5}, "argument count must be an integer, got 1.5"),
+        ("replay_frame", {"start": "yes"}, 'argument start must be a boolean, got "yes"'),
     ],
 )
 async def test_bad_requests_get_an_error_naming_the_problem(arena, op, args, message):

@@ -11,6 +11,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from pillagerbench.control import Control
+
 Pos = tuple[int, int, int]
 GROUND_Y = 3
 Y_SHIFT = 64  # upstream (1.19.4, ground -61) -> ours (1.16.5, ground 3)
@@ -45,7 +47,7 @@ class Arena:
     def block_names(self) -> dict[Pos, str]:
         return {tuple(b[:3]): b[3] for b in self.blocks}
 
-    async def build(self, server) -> None:
+    async def build(self, server: Control) -> None:
         """Build the arena, or put it back exactly as it was built (chests, crops, mobs, items)."""
         await server.reset_state()
         (x0, y0, z0), (x1, y1, z1) = self.box

@@ -7,7 +7,7 @@
 // gets an error reply and never affects players.
 // The ops are declared once, in control_ops.json (each op's arguments and answer, read by Python too:
 // pillagerbench/control.py). A request is dispatched from that declaration: an undeclared op or
-// argument, or a missing one, is refused before its handler runs; the handlers below are the
+// argument, a missing one or a scalar of another type, is refused before its handler runs; the handlers below are the
 // declared ops exactly (checked when this module loads; tests/arena/test_control_ops.py).
 const { Vec3 } = require('vec3')
 const { ControlError, toPos, toBlockPos, stateIdOf, itemByName, blockByName } = require('./util')
@@ -184,12 +184,23 @@ function handlerOf (op) {
   return OPS[op]
 }
 
-// A request's arguments against its op's declaration: each one declared, none required missing ('?': optional).
+// The declared types checked here, before the handler; the others (positions, lists, maps) the handlers check.
+const SCALARS = {
+  string: (v) => typeof v === 'string',
+  integer: (v) => Number.isInteger(v),
+  number: (v) => typeof v === 'number' && Number.isFinite(v),
+  boolean: (v) => typeof v === 'boolean'
+}
+
+// A request's arguments against its op's declaration: each one declared, none required missing ('?':
+// optional), each scalar of its declared type.
 function checkArgs (op, args) {
   const declared = DECLARED[op].args
   const names = Object.keys(declared)
-  for (const name of Object.keys(args)) {
+  for (const [name, value] of Object.entries(args)) {
     if (!Object.hasOwn(declared, name)) throw new ControlError(`op ${op} has no argument ${JSON.stringify(name)} (valid: ${names.join(', ') || 'none'})`)
+    const type = declared[name].replace(/\?$/, '')
+    if (Object.hasOwn(SCALARS, type) && !SCALARS[type](value)) throw new ControlError(`op ${op}: argument ${name} must be a${type === 'integer' ? 'n' : ''} ${type}, got ${JSON.stringify(value)}`)
   }
   for (const name of names) {
     if (!declared[name].endsWith('?') && args[name] === undefined) throw new ControlError(`op ${op} needs the argument ${JSON.stringify(name)}`)
