@@ -21,7 +21,7 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from pillagerbench.arena import ArenaServer
+from pillagerbench.server import ArenaServer
 from tests.support.bots import TestBot
 
 WORK = """

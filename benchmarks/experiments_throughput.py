@@ -21,7 +21,7 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.experiments import build_series
 from pillagerbench.experiments.runner import local_launcher, run_all
 

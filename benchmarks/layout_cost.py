@@ -24,9 +24,9 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.scenarios import SCENARIOS, make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import make_team
 
 

@@ -24,10 +24,10 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from idle_players import still_stretches
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.rundir import RunDir
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import TEAMS, make_team
 
 OPPONENTS = {name: cls.scenarios[0] for name, cls in TEAMS.items() if cls.scenarios}

@@ -27,7 +27,7 @@ from urllib.parse import urlparse
 
 import httpx2
 
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.llm import Ledger, LLMCache, LLMClient
 
 MESSAGES = [

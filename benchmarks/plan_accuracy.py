@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.experiments.plan import build_plan
 
 COMMAND = [sys.executable, "-m", "pillagerbench.cli", "run"]

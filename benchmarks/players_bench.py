@@ -23,8 +23,8 @@ import time
 
 import psutil
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.players import Player
+from pillagerbench.server import ArenaServer
 
 
 def pct(values: list[float], q: float) -> float:

@@ -20,7 +20,7 @@ import sys
 import time
 from pathlib import Path
 
-from pillagerbench.teams.remote import protocol as P
+from pillagerbench.teams.remote import wire as P
 from pillagerbench.teams.remote.team import call
 
 ROOT = Path(__file__).resolve().parents[1]

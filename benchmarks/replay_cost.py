@@ -26,10 +26,10 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from pillagerbench.arena import ArenaServer
 from pillagerbench.replay.read import load_replay
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from tests.support.bots import TestBot
 
 

@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.config import load_config, to_dict
+from pillagerbench.config.compose import load_config, to_dict
 from pillagerbench.experiments.series import run_series
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.rundir import RunDir, SeriesSpec, faults, progress
@@ -42,8 +42,8 @@ def kinds(records: dict[int, dict]) -> dict[str, int]:
 
 
 def no_lag_verdict() -> None:
-    """Lag thresholds out of reach (pillagerbench.machine): on a loaded machine, only the outage spoils."""
-    from pillagerbench import machine
+    """Lag thresholds out of reach (pillagerbench.host.machine): on a loaded machine, only the outage spoils."""
+    from pillagerbench.host import machine
 
     machine.SERVER_TPS_MIN = machine.BOT_TICK_RATE_MIN = 0.0
     machine.BOT_LATE_MEAN_MS_MAX, machine.BOT_LATE_PCT_MAX = 1e9, 101.0

@@ -12,7 +12,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from pillagerbench.node import ensure_node_modules, node_binary
+from pillagerbench.host.node import ensure_node_modules, node_binary
 
 
 def main(argv: list[str]) -> int:

@@ -1,4 +1,4 @@
-"""The suite's own reference figures (src/pillagerbench/reference_figures.json) from a fidelity run
+"""The suite's own reference figures (src/pillagerbench/suite/reference_figures.json) from a fidelity run
 played under this installation's suite version: each built-in opponent's points (blue) against
 do_nothing, mean and 95 % interval per scoring, as `pillagerbench fidelity` computes them.
 
@@ -17,12 +17,12 @@ import sys
 from datetime import date
 from pathlib import Path
 
-from pillagerbench import suite
-from pillagerbench.conditions import stamp
 from pillagerbench.experiments import builtin_teams
 from pillagerbench.metrics.fidelity import fidelity_table
 from pillagerbench.metrics.reference import REFERENCE_CONDITIONS, SUITE_FIGURES
 from pillagerbench.metrics.verified import load_runs
+from pillagerbench.suite import version as suite
+from pillagerbench.suite.conditions import stamp
 
 TITLES = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
 

@@ -97,9 +97,9 @@ def test_an_unknown_model_is_named_by_the_preflight(tmp_path):
 
 
 def test_a_reachable_provider_passes_the_preflight_with_one_request(tmp_path):
-    from pillagerbench import preflight
-    from pillagerbench.config import load_config
-    from pillagerbench.config_schema import RunConfig
+    from pillagerbench.config.compose import load_config
+    from pillagerbench.config.schema import RunConfig
+    from pillagerbench.match import preflight
 
     with FakeLLMServer() as fake:
         cfg = load_config(["red=cot", "blue=cot", "llm=fake", f"llm.base_url={fake.url}"])
@@ -134,7 +134,7 @@ def test_without_preflight_a_team_without_its_model_is_recorded_and_shown(tmp_pa
 
 
 def test_an_internal_error_is_one_line_naming_the_traceback_file(tmp_path, monkeypatch, capsys):
-    from pillagerbench import cli
+    from pillagerbench.cli import commands as cli
 
     monkeypatch.setenv("PILLAGERBENCH_CACHE", str(tmp_path / "cache"))
     monkeypatch.setitem(cli.COMMANDS, "boom", ("json:loads", "test"))
@@ -208,7 +208,7 @@ KEY = "sk-proj-Abcdefghijklmnop1234567890"
 
 def refused(capsys, *argv):
     """cli.main(argv) refuses in one line (exit 2, nothing on stdout); that line."""
-    from pillagerbench import cli
+    from pillagerbench.cli import commands as cli
 
     assert cli.main(list(argv)) == 2
     out, err = capsys.readouterr()
@@ -279,6 +279,6 @@ def test_a_light_command_starts_without_pandas_or_openai(tmp_path, argv):
     """The error types a command may raise are looked up after it ran (cli._refuse), so `suite`,
     `--version` and `layout` start in a fraction of a second instead of paying for pandas and openai."""
     argv = [str(tmp_path / "map.html") if a == "OUT" else a for a in argv]
-    code = f"import sys\nfrom pillagerbench.cli import main\nmain({argv!r})\nprint(sorted({{'pandas', 'openai'}} & set(sys.modules)))"
+    code = f"import sys\nfrom pillagerbench.cli.commands import main\nmain({argv!r})\nprint(sorted({{'pandas', 'openai'}} & set(sys.modules)))"
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, cwd=tmp_path)
     assert proc.returncode == 0 and proc.stdout.splitlines()[-1] == "[]", (proc.stdout, proc.stderr)

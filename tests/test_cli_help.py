@@ -14,9 +14,9 @@ from pathlib import Path
 import pytest
 import tomllib
 
-from pillagerbench import cli
-from pillagerbench.cli_help import HELP, yaml_keys
-from pillagerbench.config import config_options, load_config
+from pillagerbench.cli import commands as cli
+from pillagerbench.cli.help import HELP, yaml_keys
+from pillagerbench.config.compose import config_options, load_config
 
 ROOT = Path(__file__).resolve().parents[1]
 CONF = ROOT / "src" / "pillagerbench" / "conf"
@@ -28,6 +28,14 @@ MENTIONS = {
     "server": ["server.port=0", "server.operators=[]", "watch=null"],
     "try": ["scenario", "player", "code", "timeout", "inventory"],
     "llm-ping": ["llm=openai_compatible", "llm.base_url=", "llm.api_key_env=null", "llm.timeout=60"],
+    "compare": [
+        "opponent=O",
+        "cap=PAIRS",
+        "sprt.alpha",
+        "resume=RUN_DIR",
+        "episode_length=120",
+        "scenario=mushroom_war",
+    ],
     "teams": ["keys: none"],
     "league": ["init", "add", "play", "board", "team=TEAM", "mix_suites=true"],
     "replay": ["RUN_DIR/episode"],
@@ -113,7 +121,7 @@ def test_run_help_with_an_experiment_shows_its_keys(capsys):
 
 
 def test_help_does_none_of_the_commands_work(capsys, monkeypatch, tmp_path):
-    from pillagerbench import node
+    from pillagerbench.host import node
 
     def no(*a, **kw):
         raise AssertionError("the command ran")
@@ -140,7 +148,7 @@ def test_the_examples_compose(capsys, command):
 
 
 def test_version(capsys):
-    from pillagerbench.suite import current
+    from pillagerbench.suite.version import current
 
     out = helped(capsys, "--version")
     assert (

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.node import ensure_node_modules, modules_dir
+from pillagerbench.host.node import ensure_node_modules, modules_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"

@@ -1,4 +1,4 @@
-"""The conditions of play (pillagerbench/conditions.py): every key of every configuration is declared as
+"""The conditions of play (pillagerbench/suite/conditions.py): every key of every configuration is declared as
 moving a score or not; each rule, changed alone, moves the stamp of the run and, changed as a default in
 conf/, the suite's hash; a real run records its conditions on every episode, and a reader refuses to put
 it beside a run of the suite's defaults unless asked."""
@@ -13,11 +13,12 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench import conditions, suite
-from pillagerbench.config import load_config
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.metrics.runs import ReportError
 from pillagerbench.metrics.verified import load_runs
+from pillagerbench.suite import conditions
+from pillagerbench.suite import version as suite
 from tests.metrics.fake_runs import write_run
 
 CONF = suite.PACKAGE / "conf"

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.config import load_config
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.teams import team_from_config
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -10,7 +10,7 @@ import re
 
 import pytest
 
-from pillagerbench import cli
+from pillagerbench.cli import commands as cli
 from pillagerbench.scenarios import make_scenario
 from tests.support.browser import chromium
 from tests.support.map_cells import at_spawns, drawn, probe_cells

@@ -1,4 +1,4 @@
-"""Played under lag (pillagerbench/machine.py): the thresholds on synthetic values, the default
+"""Played under lag (pillagerbench/host/machine.py): the thresholds on synthetic values, the default
 `parallel` from headroom, the bot's physics-tick lag meter (js/bot/lag.js) against a fake clock,
 and the lag fields of episodes.jsonl from a real short match."""
 
@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import json
 
-from pillagerbench import machine
-from pillagerbench.config_schema import RunnerConfig
+from pillagerbench.config.schema import RunnerConfig
 from pillagerbench.experiments.runner import local_parallel
-from pillagerbench.machine import choose_parallel, lag_verdict
+from pillagerbench.host import machine
+from pillagerbench.host.machine import choose_parallel, lag_verdict
 from tests.support.cli import run_cli
 from tests.support.node_script import run_node_script
 

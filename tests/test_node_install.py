@@ -7,8 +7,8 @@ from __future__ import annotations
 import json
 import re
 
-from pillagerbench.cli import main as cli_main
-from pillagerbench.node import JS_DIR, _npm
+from pillagerbench.cli.commands import main as cli_main
+from pillagerbench.host.node import JS_DIR, _npm
 
 REQUIRE = re.compile(r"require\('([^'./][^']*)'\)")
 

@@ -8,8 +8,8 @@ from importlib import resources
 
 import pytest
 
-from pillagerbench.config import PAPER, ConfigError, config_options, load_config
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.compose import PAPER_SWITCHES, ConfigError, config_options, load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.spec import build_series
 
 OURS = {"symmetry", "generalization"}  # experiments of our own, not the paper's
@@ -17,7 +17,7 @@ OURS = {"symmetry", "generalization"}  # experiments of our own, not the paper's
 
 def test_paper_true_sets_upstreams_scoring_and_protocol_and_the_default_is_ours():
     cfg = load_config(["paper=true"])
-    assert {k: cfg[k] for k in PAPER} == {"scoring": "upstream", "protocol": "upstream"}
+    assert {k: cfg[k] for k in PAPER_SWITCHES} == {"scoring": "upstream", "protocol": "upstream"}
     cfg = load_config([])
     assert (cfg.paper, cfg.scoring, cfg.protocol) == (False, "clean", "pillagerbench")
 

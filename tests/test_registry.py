@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import pytest
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.registry import Registry
 from pillagerbench.experiments.spec import DESIGNS
 from pillagerbench.llm.presets import presets
 from pillagerbench.match.parts import PARTS
 from pillagerbench.match.scoring import SCORINGS
-from pillagerbench.registry import Registry
 from pillagerbench.scenarios import SCENARIOS
 from pillagerbench.scenarios.layout import SPLITS
 from pillagerbench.teams import TEAMS, find_team

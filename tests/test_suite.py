@@ -1,4 +1,4 @@
-"""The suite version (pillagerbench/suite.py): the files that can move a score hash to the newest
+"""The suite version (pillagerbench/suite/version.py): the files that can move a score hash to the newest
 recorded version, or this suite fails with one line saying what to do; a change to one built-in
 opponent's script (on a copy of the package's score files) moves the hash, a file that moves no score
 does not; re-recording is one command; `pillagerbench suite` prints it."""
@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench import cli, suite
+from pillagerbench.cli import commands as cli
+from pillagerbench.suite import version as suite
 
 
 def test_the_files_that_can_move_a_score_hash_to_the_recorded_suite_version():

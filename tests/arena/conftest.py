@@ -10,7 +10,7 @@ import asyncio
 
 import pytest_asyncio
 
-from pillagerbench.arena import ArenaServer
+from pillagerbench.server import ArenaServer
 from tests.support.bots import TestBot
 
 

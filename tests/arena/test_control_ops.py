@@ -16,8 +16,8 @@ from typing import Any
 
 import pytest
 
-from pillagerbench.control import DECLARATION, OPS, TYPES, Control, OpSpec, UndeclaredOp, read_declaration
-from pillagerbench.node import JS_DIR, node_binary, node_env
+from pillagerbench.host.node import JS_DIR, node_binary, node_env
+from pillagerbench.server.seams import DECLARATION, OPS, TYPES, Control, OpSpec, UndeclaredOp, read_declaration
 
 NOT_OPS = {"request", "send"}  # Control's own methods: the channel and the sending of a declared op
 

@@ -8,8 +8,8 @@ import signal
 
 import pytest
 
-from pillagerbench.arena import ArenaServer, ControlError
-from pillagerbench.arena.control import ChannelClosed
+from pillagerbench.server import ArenaServer, ControlError
+from pillagerbench.server.control import ChannelClosed
 
 
 async def test_ready_with_flat_world_and_log(arena):
@@ -90,7 +90,7 @@ async def test_request_to_a_peer_gone_before_the_read_loop_noticed_names_why():
     not a bare ConnectionResetError (seen under load: the kill raced the reader)."""
     import socket
 
-    from pillagerbench.arena.control import ControlChannel
+    from pillagerbench.server.control import ControlChannel
 
     ours, theirs = socket.socketpair()
     theirs.close()

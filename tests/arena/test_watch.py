@@ -14,9 +14,9 @@ import psutil
 import pytest
 from PIL import Image
 
-from pillagerbench.arena import ArenaServer, ArenaServerError
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer, ArenaServerError
 from pillagerbench.teams import make_team
 from tests.support.browser import chromium, console_errors, screenshot
 from tests.support.cli import run_cli

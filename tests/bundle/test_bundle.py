@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench import cli
+from pillagerbench.cli import commands as cli
 from pillagerbench.rundir import RunDir
 from pillagerbench.rundir.bundle import CHECKSUMS, INFO, sha256_of
 from tests.metrics.fake_runs import write_run

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench import cli
+from pillagerbench.cli import commands as cli
 from tests.bundle.test_bundle import OLD_RUN, SUITE, export, raise_a_score, repack, series_of, tables
 from tests.metrics.fake_runs import write_run
 

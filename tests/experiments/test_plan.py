@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench import cli
+from pillagerbench.cli import commands as cli
 from pillagerbench.experiments import plan as P
 from pillagerbench.experiments.spec import SeriesSpec
 
@@ -17,11 +17,11 @@ def nothing_played(monkeypatch, tmp_path):
     def played(*args, **kw):
         raise AssertionError("plan=true played something")
 
-    import pillagerbench.arena
     import pillagerbench.experiments.plain_run
     import pillagerbench.experiments.runner
+    import pillagerbench.server
 
-    monkeypatch.setattr(pillagerbench.arena.ArenaServer, "start", played)
+    monkeypatch.setattr(pillagerbench.server.ArenaServer, "start", played)
     monkeypatch.setattr(pillagerbench.experiments.runner, "run_series", played)
     monkeypatch.setattr(pillagerbench.experiments.runner, "write_experiment", played)
     monkeypatch.setattr(pillagerbench.experiments.plain_run, "run_match", played)

@@ -12,14 +12,14 @@ from fnmatch import fnmatch
 from pathlib import Path
 from typing import get_args
 
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import main as report_main
 from pillagerbench.rundir import EpisodeRecord, RunDir, progress, read_experiment, spoiled
 from pillagerbench.rundir import names as N
-from pillagerbench.suite import SCORE_FILES
+from pillagerbench.suite.version import SCORE_FILES
 from tests.support.cli import run_cli
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from pillagerbench.config import ConfigError, load_config
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.compose import ConfigError, load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments import build_series, builtin_teams
 
 

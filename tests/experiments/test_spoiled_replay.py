@@ -5,7 +5,7 @@ next index so the series has its planned episodes; with the retries spent the se
 used episodes and the report says so; a team's own budget spent stays its own (scored, not replayed).
 
 A lagged episode is spoiled too and played again, and this machine is shared with other test runs:
-the `calm` fixture sets the lag thresholds (pillagerbench.machine) beyond reach, so that only the
+the `calm` fixture sets the lag thresholds (pillagerbench.host.machine) beyond reach, so that only the
 provider's outage spoils an episode here and the counts are exact (tests/report/test_lagged.py and
 tests/metrics/test_spoiled.py cover lag).
 """
@@ -17,9 +17,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pillagerbench import machine
-from pillagerbench.config import load_config, to_dict
+from pillagerbench.config.compose import load_config, to_dict
 from pillagerbench.experiments.series import run_series
+from pillagerbench.host import machine
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 import yaml  # type: ignore[import-untyped]  # pyyaml ships no stubs
 
-from pillagerbench.cli import main as cli_main
+from pillagerbench.cli.commands import main as cli_main
 from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.league import play
 from pillagerbench.league.rounds import round_dirs

@@ -9,7 +9,7 @@ import html
 
 import pytest
 
-from pillagerbench.cli import main as cli_main
+from pillagerbench.cli.commands import main as cli_main
 from pillagerbench.league import results
 from pillagerbench.league.board import write_board
 from pillagerbench.league.rounds import write_round

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.llm import LLMClient, read_ledger
 from pillagerbench.llm.fake_server import FakeLLMServer
 

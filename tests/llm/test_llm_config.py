@@ -2,7 +2,7 @@
 
 import pytest
 
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.llm import LLMConfigError, LLMSettings
 
 PRESETS = ["openai", "openrouter", "ollama", "vllm", "llamacpp", "openai_compatible", "fake"]

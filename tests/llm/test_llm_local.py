@@ -8,7 +8,7 @@ import urllib.request
 
 import pytest
 
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.llm import LLMClient, read_ledger
 
 URL = os.environ.get("PILLAGERBENCH_LOCAL_LLM_URL")

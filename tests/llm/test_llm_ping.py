@@ -1,6 +1,6 @@
 """`pillagerbench llm-ping` against the fake server (through the real CLI dispatch)."""
 
-from pillagerbench.cli import main as cli_main
+from pillagerbench.cli.commands import main as cli_main
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 
 

@@ -69,12 +69,8 @@ def write_run(
                 "status": "ok",
                 "iterations": {"red": iterations or [1, 1], "blue": [1, 1]},
             }
-            if suite:
-                rec["suite"] = suite
-            if protocol:
-                rec["protocol"] = protocol
-            if seeds:
-                rec["seed"] = seeds[i]
+            given = {"suite": suite, "protocol": protocol, "seed": seeds[i] if seeds else None}
+            rec.update({k: v for k, v in given.items() if v is not None})
             if layouts:
                 rec.update(layout=layouts[i], split=split_of(layouts[i]))
             if failed and i in failed:

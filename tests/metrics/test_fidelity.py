@@ -33,7 +33,7 @@ def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
         f"fidelity: vs_suite compares with {suite_reference()['suite']}'s own reference"
     )
     rows = {r.opponent: r for r in table.itertuples()}
-    # the suite's own reference (reference_figures.json): passive 27.40 ± 4.04 agrees with
+    # the suite's own reference (suite/reference_figures.json): passive 27.40 ± 4.04 agrees with
     # 25.0 ± 0.75, slimy 23.80 ± 2.84 does not with 11 ± 0
     mine = suite_reference()["scenarios"]["mushroom_war"]
     passive, slimy = mine["passive"]["clean"], mine["slimy"]["clean"]

@@ -10,14 +10,14 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench import cli
+from pillagerbench.cli import commands as cli
 from pillagerbench.league import results
 from pillagerbench.league.board import write_board
 from pillagerbench.league.spec import Entrant, League
 from pillagerbench.metrics.runs import ReportError
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.rundir import EpisodeRecord
-from pillagerbench.suite import UNVERSIONED, current
+from pillagerbench.suite.version import UNVERSIONED, current
 from tests.metrics.fake_runs import write_run
 
 OLD_RUN = Path(__file__).resolve().parents[1] / "experiments" / "fixtures" / "run_6198d49"
@@ -98,11 +98,11 @@ def test_an_old_run_reads_as_unversioned_and_a_new_record_names_this_suite(tmp_p
 def test_every_manifest_names_the_suite(tmp_path):
     from types import SimpleNamespace
 
-    from pillagerbench.config import load_config
-    from pillagerbench.config_schema import RunConfig
+    from pillagerbench.config.compose import load_config
+    from pillagerbench.config.schema import RunConfig
     from pillagerbench.experiments.runner import write_experiment
-    from pillagerbench.manifest import write_manifest
     from pillagerbench.rundir import RunDir
+    from pillagerbench.rundir.manifest import write_manifest
 
     scenario = SimpleNamespace(key="mushroom_war", title="Mushroom War", version="1")
     write_manifest(tmp_path / "run", RunConfig.of(load_config([])), scenario)
@@ -119,7 +119,7 @@ def test_the_same_files_named_before_and_after_their_hash_was_recorded_are_one_v
 
 
 def test_a_version_re_recorded_for_a_change_that_moved_no_score_is_still_one_version(tmp_path):
-    from pillagerbench.suite import label, same_version
+    from pillagerbench.suite.version import label, same_version
 
     earlier = next(h for h, now in same_version().items() if h != now)  # suite 1.1 before issue 40's registry
     old, new = label("suite 1.1", earlier), current()["label"]

@@ -6,8 +6,8 @@ import itertools
 
 import pytest_asyncio
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.players import Player
+from pillagerbench.server import ArenaServer
 
 _area_ids = itertools.count(1)
 _names = itertools.count(1)

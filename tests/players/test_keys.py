@@ -7,10 +7,10 @@ import json
 import secrets
 from pathlib import Path
 
-from pillagerbench.arena import ArenaServer
-from pillagerbench.node import NODE_ENV_ALLOWED
+from pillagerbench.host.node import NODE_ENV_ALLOWED
 from pillagerbench.players import Player
 from pillagerbench.players.events import errors
+from pillagerbench.server import ArenaServer
 
 # Routes agent code might take to the process's environment; each yields a string (what it reached
 # or the error that stopped it), so the secret would show in the answer if any route led to it.

@@ -10,10 +10,10 @@ import urllib.request
 
 import pytest
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.replay.page import write_replay
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import make_team
 from tests.support.browser import chromium
 from tests.support.map_cells import at_spawns, drawn, probe_cells

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import asyncio
 
-from pillagerbench.control import Control
 from pillagerbench.replay.record import Recorder
+from pillagerbench.server.seams import Control
 
 FRAME = {"tick": 1, "players": [], "blocks": [], "items": [], "mobs": []}
 

@@ -8,11 +8,11 @@ import json
 
 import pytest
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.replay.page import page_data
 from pillagerbench.replay.read import load_replay
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import make_team
 
 LENGTH = 15

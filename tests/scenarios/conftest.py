@@ -4,7 +4,7 @@ import random
 
 import pytest_asyncio
 
-from pillagerbench.arena import ArenaServer
+from pillagerbench.server import ArenaServer
 
 
 @pytest_asyncio.fixture(scope="module", loop_scope="session")

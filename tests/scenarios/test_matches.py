@@ -10,10 +10,10 @@ import signal
 
 import pytest
 
-from pillagerbench.arena import ArenaServer
-from pillagerbench.machine import SERVER_TPS_MIN
+from pillagerbench.host.machine import SERVER_TPS_MIN
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import TEAMS, make_team
 
 OPPONENTS = {name: cls.scenarios[0] for name, cls in TEAMS.items() if cls.scenarios}

@@ -7,7 +7,7 @@ import itertools
 import json
 from pathlib import Path
 
-from pillagerbench.node import node_binary, node_env
+from pillagerbench.host.node import node_binary, node_env
 
 DRIVER = Path(__file__).with_name("bot_driver.js")
 

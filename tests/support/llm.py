@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from pillagerbench.config import load_config
+from pillagerbench.config.compose import load_config
 from pillagerbench.llm import LLMClient
 from pillagerbench.llm.fake_server import FakeLLMServer
 

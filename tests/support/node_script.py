@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 
-from pillagerbench.node import JS_DIR, node_binary, node_env
+from pillagerbench.host.node import JS_DIR, node_binary, node_env
 
 
 def run_node_script(script: str):

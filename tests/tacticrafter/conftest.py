@@ -6,10 +6,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import TeamContext, make_team
 from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
 

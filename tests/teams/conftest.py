@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pillagerbench.arena import ArenaServer
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
+from pillagerbench.server import ArenaServer
 from pillagerbench.teams import make_team
 from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
 

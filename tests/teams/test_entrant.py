@@ -8,7 +8,7 @@ import json
 import subprocess
 import sys
 
-from pillagerbench.config import load_config, to_dict
+from pillagerbench.config.compose import load_config, to_dict
 from pillagerbench.teams.entrant import entrant_of
 
 
@@ -53,7 +53,7 @@ def test_a_role_on_its_own_model_is_in_the_entrant():
 def test_the_id_is_the_same_in_another_process():
     overrides = ["llm=openai", "red=tacticrafter", "red.llm.model=gpt-4o", "red.opponent=false"]
     code = (
-        "import json, sys; from pillagerbench.config import load_config, to_dict; "
+        "import json, sys; from pillagerbench.config.compose import load_config, to_dict; "
         "from pillagerbench.teams.entrant import entrant_of; "
         "print(json.dumps(entrant_of(to_dict(load_config(sys.argv[1:])), 'red')))"
     )

@@ -13,10 +13,10 @@ from importlib import resources
 import pytest
 from omegaconf import OmegaConf
 
-from pillagerbench.config import config_options, load_config, team_yaml_options
+from pillagerbench.config.compose import config_options, load_config, team_yaml_options
+from pillagerbench.match.validate import team_problems
 from pillagerbench.teams import BUILT_IN, TEAMS
 from pillagerbench.teams.options import defaults, options_model, yaml_lines
-from pillagerbench.validate import team_problems
 
 YAML_TEAMS = config_options("team")
 OPTION_LINE = re.compile(r"^(\w+):\s*(.*?)\s*(?:#\s*(.*))?$")

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.teams import find_team
 from pillagerbench.teams.remote import RemoteTeam
-from pillagerbench.teams.remote.protocol import schemas
+from pillagerbench.teams.remote.wire import schemas
 from tests.support.cli import run_cli
 from tests.teams.conftest import play_series
 

@@ -24,7 +24,7 @@ import threading
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
-from pillagerbench.node import JS_DIR
+from pillagerbench.host.node import JS_DIR
 from pillagerbench.players import primitives as prim
 
 # What agent code may reference without defining it: the sandbox's names, declared once in
@@ -220,7 +220,7 @@ class JSParser:
             return cls._shared
 
     def _start(self) -> subprocess.Popen:
-        from pillagerbench.node import node_binary, node_env
+        from pillagerbench.host.node import node_binary, node_env
 
         return subprocess.Popen(
             [str(node_binary()), "-e", _PARSER_JS],

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.metrics.verified import load_runs, summary
 from pillagerbench.rundir.bundle import write_bundle
-from pillagerbench.suite import current
+from pillagerbench.suite.version import current
 
 
 def main(argv: list[str]) -> int:

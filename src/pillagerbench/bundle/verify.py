@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.metrics.verified import bundle_problems
 
 

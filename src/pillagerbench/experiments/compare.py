@@ -25,8 +25,8 @@ import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from pillagerbench.config import ConfigError, load_config
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.compose import ConfigError, load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.series import run_series
 from pillagerbench.llm.ledger import read_ledger
@@ -93,7 +93,7 @@ def parse(argv: list[str]) -> tuple[Comparison | None, Path | None]:
 
 def configs(c: Comparison) -> dict[str, RunConfig]:
     """Each series' whole configuration, checked (one ConfigError line per problem, nothing played)."""
-    from pillagerbench.validate import check_run_config
+    from pillagerbench.match.validate import check_run_config
 
     return {
         sid: check_run_config(load_config([*c.game, f"red={red}", f"blue={blue}"]))
@@ -196,7 +196,7 @@ def play(c: Comparison, run_dir: Path, series: dict[str, SeriesSpec]) -> str:
 
 def start(c: Comparison, run_dir: Path | None) -> tuple[Path, dict[str, SeriesSpec]]:
     """A new compare's run directory (compare.json, experiment.json); refused where one exists."""
-    from pillagerbench import preflight
+    from pillagerbench.match import preflight
 
     cfgs = configs(c)
     for cfg in cfgs.values():

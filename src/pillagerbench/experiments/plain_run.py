@@ -18,12 +18,12 @@ import asyncio
 import time
 from pathlib import Path
 
-from pillagerbench.config_schema import RunConfig
-from pillagerbench.display import MatchDisplay
+from pillagerbench.config.schema import RunConfig
+from pillagerbench.experiments.display import MatchDisplay
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
-from pillagerbench.run import scenario_from_config
+from pillagerbench.match.run import scenario_from_config
 from pillagerbench.rundir import RunDir, SeriesSpec, plain_series, progress
 from pillagerbench.teams.entrant import labels_of
 
@@ -100,7 +100,7 @@ def summarize_problems(records: list) -> tuple[list[str], bool]:
 
 
 def summarize_lag(records: list) -> list[str]:
-    """One line per episode played under lag (pillagerbench/machine.py), after a count."""
+    """One line per episode played under lag (pillagerbench/host/machine.py), after a count."""
     hit = [r for r in records if getattr(r, "lagged", False)]
     if not hit:
         return []

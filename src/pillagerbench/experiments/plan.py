@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec, build_series
 from pillagerbench.llm.tokens import count_tokens
 from pillagerbench.teams.entrant import entrant_of
@@ -388,8 +388,8 @@ def main_plan(cfg: RunConfig, argv: list[str]) -> int:
     """`pillagerbench run ... plan=true`: print the plan, play nothing. An experiment's series are
     checked as a run checks them (teams, options, LLM settings), without the preflight."""
     if cfg.experiment is not None and not cfg.resume:
-        from pillagerbench.config_schema import check
-        from pillagerbench.validate import team_problems
+        from pillagerbench.config.schema import check
+        from pillagerbench.match.validate import team_problems
 
         seen: dict[str, None] = {}
         for s in build_series(cfg, argv):

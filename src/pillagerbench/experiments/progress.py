@@ -18,7 +18,7 @@ from rich.live import Live
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from pillagerbench.config_schema import default
+from pillagerbench.config.schema import default
 from pillagerbench.rundir import EpisodeRecord, RunDir, progress, retries_of, spoiled
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.experiments.spec import SeriesSpec
 
 

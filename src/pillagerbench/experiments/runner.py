@@ -25,13 +25,13 @@ from collections.abc import Awaitable, Callable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config import ConfigError
-from pillagerbench.config_schema import RunConfig, RunnerConfig, default
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.schema import RunConfig, RunnerConfig, default
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
+from pillagerbench.host.machine import choose_parallel
 from pillagerbench.llm.spend import spend_lines
-from pillagerbench.machine import choose_parallel
 from pillagerbench.rundir import (
     ExperimentFile,
     Manifest,
@@ -48,7 +48,7 @@ IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run an
 
 def local_parallel(cfg: RunnerConfig, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
     """Matches at once on this machine: the user's `parallel` if given, else as many as the measured
-    headroom allows (pillagerbench/machine.py), with one line saying so when that is not the CPU count."""
+    headroom allows (pillagerbench/host/machine.py), with one line saying so when that is not the CPU count."""
     if cfg.parallel:
         return cfg.parallel, None
     choice = choose_parallel(cpus, load)
@@ -69,8 +69,8 @@ def write_experiment(run_dir: Path, top: dict[str, Any], argv: list[str], specs:
     """experiment.json and manifest.json of a new experiment; `top`: its configuration as stored
     (RunConfig.stored(), or a league round's runner keys and experiment)."""
     from pillagerbench import __version__
-    from pillagerbench.manifest import git_revision
-    from pillagerbench.suite import current
+    from pillagerbench.rundir.manifest import git_revision
+    from pillagerbench.suite.version import current
 
     run_dir.mkdir(parents=True, exist_ok=True)
     data = ExperimentFile(
@@ -237,11 +237,11 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
 
 
 def check_series(specs: list[SeriesSpec]) -> None:
-    """Before anything starts: each distinct series config checked whole (validate.py: teams, their
-    options, LLM settings), then the preflight (preflight.py: every LLM and team server answers)."""
-    from pillagerbench import preflight
-    from pillagerbench.config_schema import check
-    from pillagerbench.validate import team_problems
+    """Before anything starts: each distinct series config checked whole (match/validate.py: teams, their
+    options, LLM settings), then the preflight (match/preflight.py: every LLM and team server answers)."""
+    from pillagerbench.config.schema import check
+    from pillagerbench.match import preflight
+    from pillagerbench.match.validate import team_problems
 
     seen: dict[str, None] = {}
     for s in specs:
@@ -252,7 +252,7 @@ def check_series(specs: list[SeriesSpec]) -> None:
 
 
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
-    """The episodes played under lag (pillagerbench/machine.py): a count, then up to `show` of them."""
+    """The episodes played under lag (pillagerbench/host/machine.py): a count, then up to `show` of them."""
     hit = [
         (s.id, i, rec.lag_reason)
         for s in specs

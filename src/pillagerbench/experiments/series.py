@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec
 from pillagerbench.rundir import (
     EpisodeRecord,
@@ -54,8 +54,8 @@ async def run_series(
 ) -> dict:
     """Play the unfinished episodes of a series (`watch`: the live view's port). Returns {"id",
     "finished", "failed", "played", "used", "spoiled", "given_up"}."""
-    from pillagerbench.manifest import write_manifest
-    from pillagerbench.run import scenario_from_config
+    from pillagerbench.match.run import scenario_from_config
+    from pillagerbench.rundir.manifest import write_manifest
     from pillagerbench.teams import team_from_config
 
     rundir = RunDir(series_dir)
@@ -117,7 +117,7 @@ async def _play(
     on_tick: Callable[[dict], None] | None,
     watch: int | None = None,
 ) -> None:
-    from pillagerbench.run import play_match
+    from pillagerbench.match.run import play_match
 
     ok = [i for i in sorted(finished) if finished[i].ok]
     # what the teams saw of the last episode before the kill, as an uninterrupted series would

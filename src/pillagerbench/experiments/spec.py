@@ -27,9 +27,9 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.config_schema import ExperimentConfig, RunConfig
-from pillagerbench.registry import Registry
+from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.registry import Registry
+from pillagerbench.config.schema import ExperimentConfig, RunConfig
 from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 

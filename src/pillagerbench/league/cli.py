@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.league.board import write_board
 from pillagerbench.league.compose import check_entrant

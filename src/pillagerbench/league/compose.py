@@ -8,12 +8,12 @@ from __future__ import annotations
 from functools import cache
 from typing import Any
 
-from pillagerbench.config import ConfigError, load_config, to_dict
-from pillagerbench.config_schema import RunConfig, merged
+from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.schema import RunConfig, merged
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.league.spec import Entrant
+from pillagerbench.match.validate import check_run_config
 from pillagerbench.teams import find_team
-from pillagerbench.validate import check_run_config
 
 
 @cache

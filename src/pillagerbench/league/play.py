@@ -10,8 +10,8 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
-from pillagerbench.config import ConfigError
-from pillagerbench.config_schema import RunnerConfig
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.schema import RunnerConfig
 from pillagerbench.experiments.runner import check_series, execute, load_experiment, series_progress
 from pillagerbench.league import results
 from pillagerbench.league.compose import check_entrant

@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.spec import SeriesSpec, slug
 from pillagerbench.league.compose import match_config

@@ -27,7 +27,7 @@ from typing import Any
 
 import yaml  # type: ignore[import-untyped]  # pyyaml ships no stubs
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.league.splits import check_split
 
 LEAGUE_FILE = "league.yaml"

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any
 
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.metrics.runs import Runs
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 

@@ -23,7 +23,7 @@ from typing import Any
 
 import openai
 
-from pillagerbench.config_schema import LLMCacheConfig, LLMLedgerConfig, RunConfig
+from pillagerbench.config.schema import LLMCacheConfig, LLMLedgerConfig, RunConfig
 
 from . import errors as E
 from . import provider

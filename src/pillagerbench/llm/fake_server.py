@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
-from pillagerbench.llm.protocol import ROLE_HEADER, TEAM_HEADER
+from pillagerbench.llm.headers import ROLE_HEADER, TEAM_HEADER
 from pillagerbench.llm.tokens import count_tokens
 
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 import asyncio
 import sys
 
-from pillagerbench.config import ConfigError, load_config
-from pillagerbench.config_schema import LLMConfig, check, problems
+from pillagerbench.config.compose import ConfigError, load_config
+from pillagerbench.config.schema import LLMConfig, check, problems
 
 from .client import LLMClient
 from .errors import LLMConfigError, LLMError

@@ -11,8 +11,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Protocol
 
-from pillagerbench.config_schema import RunConfig
-from pillagerbench.registry import Registry
+from pillagerbench.config.registry import Registry
+from pillagerbench.config.schema import RunConfig
 
 from .client import LLMClient
 from .settings import LLMSettings

@@ -15,8 +15,8 @@ from typing import Any
 import openai
 
 from . import errors as E
+from .headers import ROLE_HEADER, TEAM_HEADER
 from .parsing import strip_think
-from .protocol import ROLE_HEADER, TEAM_HEADER
 from .settings import LLMSettings
 
 

@@ -43,7 +43,7 @@ class LLMSettings:
     @classmethod
     def from_config(cls, cfg: Mapping[str, Any]) -> LLMSettings:
         """From the `llm` node of the configuration (a composed node or a plain dict)."""
-        from pillagerbench.config_schema import plain
+        from pillagerbench.config.schema import plain
 
         data: dict[str, Any] = plain(cfg)
         price = data.pop("price", None) or {}

@@ -1,6 +1,6 @@
 """A match (`match.py`) made of parts: the game loop (`game.py`), what follows a game (`parts.py`:
 replay, live view, world log, lag meter, progress), the scorings (`scoring.py`), and the player
-handle a team gets (`player.py`); upstream's quirks are `pillagerbench/upstream.py`."""
+handle a team gets (`player.py`); upstream's quirks are `pillagerbench/scenarios/upstream.py`."""
 
 from pillagerbench.match.match import Match
 from pillagerbench.match.scoring import SCORINGS

@@ -17,9 +17,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench import upstream
-from pillagerbench.config_schema import default
-from pillagerbench.control import Server
+from pillagerbench.config.schema import default
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay
@@ -27,8 +25,9 @@ from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
-from pillagerbench.scenarios import Scenario
+from pillagerbench.scenarios import Scenario, upstream
 from pillagerbench.scenarios.layout import episode_layout
+from pillagerbench.server.seams import Server
 from pillagerbench.teams import Team, TeamContext
 from pillagerbench.teams.base import PlayerHandle
 
@@ -65,7 +64,7 @@ class Match:
         self.rundir = RunDir(run_dir)  # every path and record of the run directory
         self.last_records: dict[str, LastEpisode] = {}
         self.layout, self.split = scenario.layout_key, split  # split: each episode on a layout of its own
-        self.conditions = dict(conditions or {})  # the rules differing from the suite's (conditions.py)
+        self.conditions = dict(conditions or {})  # the rules differing from the suite's (suite/conditions.py)
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,

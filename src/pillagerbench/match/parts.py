@@ -13,13 +13,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.control import Server
-from pillagerbench.machine import lag_verdict
+from pillagerbench.config.registry import Registry
+from pillagerbench.host.machine import lag_verdict
 from pillagerbench.players import Player
-from pillagerbench.registry import Registry
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.rundir import EpisodeDir, EpisodeRecord
 from pillagerbench.scenarios import Scenario
+from pillagerbench.server.seams import Server
 from pillagerbench.teams import Team
 
 
@@ -184,7 +184,7 @@ async def bot_lag(players: dict[str, Any], *, reset: bool = False) -> dict[str, 
 
 
 class LagMeter(Part):
-    """Was the game played under lag (pillagerbench/machine.py): the server's ticks per second and each
+    """Was the game played under lag (pillagerbench/host/machine.py): the server's ticks per second and each
     bot's physics-tick lag over the game, and the verdict, in the record."""
 
     def __init__(self) -> None:

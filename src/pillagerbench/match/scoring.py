@@ -18,8 +18,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.registry import Registry
-from pillagerbench.upstream import UPSTREAM_WAIT_S
+from pillagerbench.config.registry import Registry
+from pillagerbench.scenarios.upstream import UPSTREAM_WAIT_S
 
 
 class CleanScoring:

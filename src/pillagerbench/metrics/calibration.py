@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
@@ -206,9 +206,9 @@ def main(argv: list[str]) -> int:
         runs = load_runs(a.runs, a.mix_suites, not a.no_verify)
         out = Path(a.out) if a.out else beside(Path(a.runs[0]), CALIBRATION)
     else:  # play the calibration experiment first
-        from pillagerbench.config import load_config
+        from pillagerbench.config.compose import load_config
         from pillagerbench.experiments.runner import main_experiment, make_experiment_dir
-        from pillagerbench.validate import check_run_config
+        from pillagerbench.match.validate import check_run_config
 
         overrides = list(argv)
         if not any(o.startswith(("experiment=", "resume=")) for o in overrides):

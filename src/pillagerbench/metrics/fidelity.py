@@ -4,7 +4,7 @@ Analysis claims hold on our runs?
 1. Against do_nothing (experiment=fidelity, or the do_nothing rows of a calibration or round robin):
    per opponent and side its mean points ± 95 % interval, upstream's reference value, the ratio and
    ✓ when the ratio is within ±25 % (REFERENCE_SCORES, Dash & Dine ×0.1 like every reported score);
-   beside it the suite's own reference (reference_figures.json) and ✓ in `vs_suite` when the two
+   beside it the suite's own reference (suite/reference_figures.json) and ✓ in `vs_suite` when the two
    means differ by no more than their combined 95 % intervals (sqrt(ci² + ci_ref²)).
    Episodes that recorded both scorings (scoring=upstream) give a row per scoring.
 2. From a round robin (experiment=round_robin_mushroom_war / round_robin_dash_and_dine): each
@@ -27,7 +27,6 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from pillagerbench.conditions import describe, suite_defaults
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
@@ -40,6 +39,7 @@ from pillagerbench.metrics.reference import (
     REFERENCE_SPLIT,
     suite_reference,
 )
+from pillagerbench.suite.conditions import describe, suite_defaults
 
 TOLERANCE = 0.25  # ✓ when mean / reference is within 1 ± TOLERANCE
 MIN_EPISODES = 10  # per opponent and side (the fidelity check's default)
@@ -127,7 +127,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     if len(table) and table["suite_reference"].notna().any():
         figures = suite_reference()
         notes.append(
-            f"fidelity: vs_suite compares with {figures['suite']}'s own reference (reference_figures.json; "
+            f"fidelity: vs_suite compares with {figures['suite']}'s own reference (suite/reference_figures.json; "
             f"{figures['status'].split(':')[0]})"
         )
     unknown = sorted(set(table["scenario"]) - set(REFERENCE_SCORES)) if len(table) else []

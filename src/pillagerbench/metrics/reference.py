@@ -4,9 +4,9 @@ fidelity check compares with them; `--calibration reference` uses them as σ_blu
 metric, as upstream's analysis did. Upstream measured blue only; the red side is compared with the
 same values.
 
-The suite's own reference (`reference_figures.json` in the package, `suite_reference`): the same
+The suite's own reference (`suite/reference_figures.json` in the package, `suite_reference`): the same
 opponents' points against do_nothing with their 95 % intervals, per scoring, under a named suite
-version (pillagerbench/suite.py), for putting a run beside the benchmark's own figures as well."""
+version (pillagerbench/suite/version.py), for putting a run beside the benchmark's own figures as well."""
 
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ REFERENCE_SCORES: dict[str, dict[str, float]] = {
     "mushroom_war": {"aggressive": 20.27, "balanced": 16.75, "passive": 25.23, "slimy": 22.18},
     "dash_and_dine": {"berries": 34.73, "cake_beetroot": 7.83, "melon_pumpkin": 15.82, "potato_cookie": 13.12},
 }
-# the conditions both references were measured under (conditions.py), besides the scoring each column
+# the conditions both references were measured under (suite/conditions.py), besides the scoring each column
 # names: upstream's step protocol, 120 s episodes (the suite's default length), the paper's layout
 REFERENCE_CONDITIONS: dict[str, object] = {"protocol": "upstream"}
 REFERENCE_LENGTH = 120.0
@@ -26,7 +26,7 @@ REFERENCE_SPLIT = "paper"
 # the value of --calibration that selects them
 REFERENCE_CALIBRATION = "reference"
 
-SUITE_FIGURES = Path(__file__).resolve().parents[1] / "reference_figures.json"
+SUITE_FIGURES = Path(__file__).resolve().parents[1] / "suite/reference_figures.json"
 
 
 @lru_cache(maxsize=1)

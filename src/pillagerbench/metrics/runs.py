@@ -7,7 +7,7 @@ analysis read it: its score over time is upstream's samples (timeline_upstream.j
 second i). Everything else is listed in `skipped` (failed episodes, half-written
 episodes of a killed run, series that did not finish). Runs of different versions of a scenario
 (or different episode lengths) are refused: their scores do not compare. So are episodes of different
-suite versions (suite.py; records from before it read "unversioned") unless `mix_suites` asks for them,
+suite versions (suite/version.py; records from before it read "unversioned") unless `mix_suites` asks for them,
 and then `mixed_notes` says so. A results bundle (rundir/bundle.py) is read as the run directories in it,
 named by the paths they were exported from; `read_runs` reads it as it is: readers call
 metrics/verified.py `load_runs`, which verifies it first (or, asked not to, marks it in `unverified`,
@@ -29,7 +29,6 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from pillagerbench.conditions import describe
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
@@ -50,7 +49,8 @@ from pillagerbench.rundir import (
     spoiled,
 )
 from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
-from pillagerbench.suite import one_version
+from pillagerbench.suite.conditions import describe
+from pillagerbench.suite.version import one_version
 
 # the scorings an episode can record (match.SCORINGS): red_score/blue_score are the run's own scoring,
 # and red_<mode>/blue_<mode> every scoring the episode recorded (else nan)
@@ -273,7 +273,7 @@ def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, sc
         Col.BLUE_SCORE: float(rec.blue_score or 0.0) * scale,
         Col.SCORING: rec.scoring,
         Col.SUITE: rec.suite,
-        Col.STAMP: rec.stamp,  # the suite and the rules differing from its defaults (conditions.py)
+        Col.STAMP: rec.stamp,  # the suite and the rules differing from its defaults (suite/conditions.py)
         Col.RULES: describe(rec.conditions),
         Col.CONDITIONS: dict(rec.conditions),
         Col.LAYOUT: rec.layout,
@@ -309,7 +309,7 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
 
 def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
     """The stamps of the episodes (suite version and the rules differing from its defaults,
-    conditions.py), in order; more than one is refused unless `mix_suites`. A version is its hash: the
+    suite/conditions.py), in order; more than one is refused unless `mix_suites`. A version is its hash: the
     same files named before and after their hash was recorded (`suite 1.0+dev@H`, `suite 1.0@H`) are
     one version, written with both names; so are a version's earlier hashes (re-recorded after a change
     that moved no score: suite.same_version)."""

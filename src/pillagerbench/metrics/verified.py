@@ -22,7 +22,7 @@ from pillagerbench.metrics.faults import tally
 from pillagerbench.metrics.runs import ReportError, Runs, read_runs
 from pillagerbench.rundir import EpisodeRecord, RunDir, winner_of
 from pillagerbench.rundir.bundle import checksum_problems, is_bundle, unpack
-from pillagerbench.suite import UNVERSIONED, current, label, recorded, same_version
+from pillagerbench.suite.version import UNVERSIONED, current, label, recorded, same_version
 
 SIDES = ("red", "blue")
 

@@ -19,7 +19,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
-from pillagerbench.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
+from pillagerbench.host.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
 
 BOT_MAIN = JS_DIR / "bot" / "main.js"
 HEAP_LIMIT_MB = 256

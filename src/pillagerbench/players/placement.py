@@ -8,7 +8,7 @@ import asyncio
 from collections.abc import Awaitable, Callable, Sequence
 from typing import Any
 
-from pillagerbench.control import Control
+from pillagerbench.server.seams import Control
 
 from .channel import BotChannel, PlayerError
 from .observation import Observation

@@ -22,7 +22,7 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from pillagerbench.control import Control
+from pillagerbench.server.seams import Control
 
 from . import placement
 from .channel import BotChannel, PlayerError

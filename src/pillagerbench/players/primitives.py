@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 
-from pillagerbench.node import JS_DIR
+from pillagerbench.host.node import JS_DIR
 
 PRIMITIVES_DIR = JS_DIR / "bot" / "primitives"
 

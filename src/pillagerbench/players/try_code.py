@@ -18,11 +18,11 @@ import json
 import sys
 from pathlib import Path
 
-from pillagerbench.arena import ArenaServer
-from pillagerbench.config import ConfigError
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.players.player import Player, PlayerError
 from pillagerbench.scenarios import SCENARIOS, Scenario, make_scenario
 from pillagerbench.scenarios.layout import PAPER, LayoutKey, parse_layout
+from pillagerbench.server import ArenaServer
 
 USAGE = (
     "usage: pillagerbench try scenario=mushroom_war player=Ryn code=FILE.js [layout=paper|SEED|FILE.json] "

@@ -22,7 +22,7 @@ from typing import Any
 
 import pandas as pd
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.faults import fault_note, faults_table

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.fidelity import claims_table, fidelity_table
 from pillagerbench.metrics.runs import ReportError, Runs, mixed_notes, mixed_title, reader_switches

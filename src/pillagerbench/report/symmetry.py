@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.metrics.runs import ReportError, mixed_notes, reader_switches
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.metrics.verified import load_runs

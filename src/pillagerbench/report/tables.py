@@ -11,7 +11,7 @@ entrants' labels, and σ_blue is keyed by the opponent's entrant (a built-in tea
                  evaluation "after k" (paper's adaptation table and self-play figure)
 - learning_curve: D per episode index (experience) per red team (paper's D-per-episode figure)
 - calibration:   σ_blue used per scenario and opponent
-- lagged:        episodes played under lag (pillagerbench/machine.py) and why: spoiled, in no score
+- lagged:        episodes played under lag (pillagerbench/host/machine.py) and why: spoiled, in no score
 - skipped:       what was left out and why
 """
 
@@ -289,7 +289,7 @@ def calibration(sigma: dict) -> pd.DataFrame:
 
 
 def lagged(df: pd.DataFrame) -> pd.DataFrame:
-    """Episodes played under lag (a threshold of pillagerbench/machine.py crossed; give the spoiled
+    """Episodes played under lag (a threshold of pillagerbench/host/machine.py crossed; give the spoiled
     rows, metrics/runs.py): in no score, listed so a reader sees why and can lower `parallel`."""
     cols = [Col.SERIES, Col.EPISODE, Col.SERVER_TPS, Col.LAG_REASON]
     if not len(df) or Col.LAGGED not in df:

@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any, NotRequired, TypedDict
 
-from pillagerbench.conditions import RULES, stamp, suite_defaults
-from pillagerbench.suite import UNVERSIONED, current
+from pillagerbench.suite.conditions import RULES, stamp, suite_defaults
+from pillagerbench.suite.version import UNVERSIONED, current
 
 
 @dataclass
@@ -29,8 +29,10 @@ class EpisodeRecord:
     seed: int = 0
     player_order: list[str] = field(default_factory=list)  # the server's player order this episode
     server_tps: float | None = None  # game ticks per wall second during the game (20 = no server lag)
-    bot_lag: dict[str, dict | None] = field(default_factory=dict)  # player -> physics-tick lag in the game (machine.py)
-    lagged: bool = False  # played under lag: a threshold of machine.py crossed (scores may be low for it)
+    bot_lag: dict[str, dict | None] = field(
+        default_factory=dict
+    )  # player -> physics-tick lag in the game (host/machine.py)
+    lagged: bool = False  # played under lag: a threshold of host/machine.py crossed (scores may be low for it)
     lag_reason: str | None = None
     problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
     refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
@@ -40,8 +42,8 @@ class EpisodeRecord:
     runs: dict[str, int] = field(default_factory=dict)  # code runs started per player (upstream's steps)
     layout: str | int = "paper"  # the arena's layout: "paper", a seed, or a layout file (docs/layouts.md)
     split: str = "paper"  # paper | dev | test | custom (scenarios/layout.py split_of)
-    suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite.py)
-    conditions: dict[str, Any] = field(default_factory=dict)  # rules differing from the suite's (conditions.py)
+    suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite/version.py)
+    conditions: dict[str, Any] = field(default_factory=dict)  # rules differing from the suite's (suite/conditions.py)
     # who played each side: {label, id, team, models, options} (teams/entrant.py); None in records from
     # before entrants (readers derive it from the series' config: metrics/entrants.py)
     red_entrant: dict[str, Any] | None = None

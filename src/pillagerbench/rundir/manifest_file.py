@@ -10,7 +10,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict
 
-from pillagerbench.suite import UNVERSIONED
+from pillagerbench.suite.version import UNVERSIONED
 
 
 class ScenarioStamp(BaseModel):
@@ -31,7 +31,7 @@ class Manifest(BaseModel):
     seed: int | None = None
     git_revision: str | None = None
     suite: dict[str, Any] | None = None  # suite.current(): name, sha256, label
-    conditions: dict[str, Any] | None = None  # the rules differing from the suite's (conditions.py)
+    conditions: dict[str, Any] | None = None  # the rules differing from the suite's (suite/conditions.py)
     experiment: str | None = None  # an experiment's top-level manifest: its name
 
     def to_json(self) -> dict[str, Any]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from pillagerbench.config_schema import RETRIES  # the config's default `retries` (runs from before the key: this)
+from pillagerbench.config.schema import RETRIES  # the config's default `retries` (runs from before the key: this)
 from pillagerbench.rundir.directory import RunDir
 from pillagerbench.rundir.episode import EpisodeRecord
 from pillagerbench.rundir.faults import spoiled

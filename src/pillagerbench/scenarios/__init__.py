@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from pillagerbench.registry import Registry
+from pillagerbench.config.registry import Registry
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side
 from pillagerbench.scenarios.dash_and_dine import DashAndDine
 from pillagerbench.scenarios.layout import PAPER, LayoutKey

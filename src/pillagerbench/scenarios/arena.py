@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from pillagerbench.control import Control
+from pillagerbench.server.seams import Control
 
 Pos = tuple[int, int, int]
 GROUND_Y = 3

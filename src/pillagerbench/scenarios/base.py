@@ -8,9 +8,9 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field, replace
 from typing import Any, ClassVar, Generic
 
-from pillagerbench.control import Control
 from pillagerbench.scenarios.arena import Arena
 from pillagerbench.scenarios.layout import LayoutKey, LayoutRules, LayoutT, split_of
+from pillagerbench.server.seams import Control
 
 
 @dataclass(frozen=True)

@@ -21,8 +21,8 @@ from typing import Any, Generic, Protocol, Self, TypeVar
 
 from pydantic import ValidationError
 
-from pillagerbench.config import ConfigError
-from pillagerbench.registry import Registry
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.registry import Registry
 
 PAPER = "paper"
 DEV_SEEDS = range(1_000_000)  # for tuning, reporting and debugging: documented, public

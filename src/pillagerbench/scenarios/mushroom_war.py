@@ -16,7 +16,7 @@ from pillagerbench.scenarios import mushroom_war_layout as L
 from pillagerbench.scenarios.arena import GROUND_Y, Arena, standing
 from pillagerbench.scenarios.base import GameMaster, Scenario, Side, sides_at, vec
 from pillagerbench.scenarios.layout import LayoutRules
-from pillagerbench.upstream import UPSTREAM_STEPS
+from pillagerbench.scenarios.upstream import UPSTREAM_STEPS
 
 Y = L.Y  # the layer players stand in
 WASTE_CUTOFF = 7  # a team's mushrooms regrow only while its area holds at most this many slime blocks

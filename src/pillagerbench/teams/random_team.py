@@ -23,7 +23,7 @@ from typing import ClassVar
 
 from pydantic import Field
 
-from pillagerbench.node import JS_DIR
+from pillagerbench.host.node import JS_DIR
 from pillagerbench.players import events as ev
 from pillagerbench.players import primitives as prim
 from pillagerbench.players.observation import Observation

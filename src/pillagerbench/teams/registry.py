@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 from importlib.metadata import entry_points
 from typing import Any
 
-from pillagerbench.config import ConfigError
-from pillagerbench.config_schema import TeamConfig
-from pillagerbench.registry import Registry
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.registry import Registry
+from pillagerbench.config.schema import TeamConfig
 from pillagerbench.teams.base import Team
 from pillagerbench.teams.options import defaults, options_model
 

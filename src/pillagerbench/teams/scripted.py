@@ -11,8 +11,8 @@ from pathlib import Path
 from typing import ClassVar
 
 from pillagerbench.players import events as ev
+from pillagerbench.scenarios.upstream import UPSTREAM_STEPS
 from pillagerbench.teams.base import Team, TeamContext
-from pillagerbench.upstream import UPSTREAM_STEPS
 
 SCRIPTS = Path(__file__).parent / "scripts"
 

@@ -6,7 +6,7 @@
 // The game master and the arena builder use only this. Every op validates its input; a bad request
 // gets an error reply and never affects players.
 // The ops are declared once, in control_ops.json (each op's arguments and answer, read by Python too:
-// pillagerbench/control.py). A request is dispatched from that declaration: an undeclared op or
+// pillagerbench/server/seams.py). A request is dispatched from that declaration: an undeclared op or
 // argument, a missing one or a scalar of another type, is refused before its handler runs; the handlers below are the
 // declared ops exactly (checked when this module loads; tests/arena/test_control_ops.py).
 const { Vec3 } = require('vec3')

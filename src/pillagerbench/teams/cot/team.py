@@ -26,9 +26,9 @@ from pillagerbench.agents.code import ProgramsResult, programs_from_answer
 from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
+from pillagerbench.scenarios.upstream import UPSTREAM_ATTEMPTS, UPSTREAM_STEPS
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
-from pillagerbench.upstream import UPSTREAM_ATTEMPTS, UPSTREAM_STEPS
 
 PROMPTS = load_prompts(Path(__file__).parent)
 ROLE = "cot"

@@ -29,7 +29,7 @@ from pillagerbench.players import primitives as prim
 from pillagerbench.rundir import last_seen_json
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions, defaults
-from pillagerbench.teams.remote import protocol as P
+from pillagerbench.teams.remote import wire as P
 
 
 class RemoteOptions(TeamOptions):

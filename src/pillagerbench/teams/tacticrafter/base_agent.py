@@ -33,8 +33,8 @@ from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
 from pillagerbench.players.observation import Observation
+from pillagerbench.scenarios.upstream import UPSTREAM_ATTEMPTS
 from pillagerbench.teams.base import TeamContext
-from pillagerbench.upstream import UPSTREAM_ATTEMPTS
 
 from .events import DedupStats, dedupe, last_observation, tail
 from .memory import Memory

@@ -8,13 +8,13 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-from pillagerbench.arena import ArenaServer
-from pillagerbench.conditions import conditions_of
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.match import Match
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
 from pillagerbench.scenarios.layout import parse_layout
+from pillagerbench.server import ArenaServer
+from pillagerbench.suite.conditions import conditions_of
 from pillagerbench.teams import Team
 from pillagerbench.teams.entrant import entrant_of
 

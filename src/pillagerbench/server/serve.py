@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import asyncio
 
-from pillagerbench.arena.server import MC_VERSION, ArenaServer
-from pillagerbench.config import load_config
-from pillagerbench.config_schema import ServerConfig, check, plain, problems, watch_problems
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import ServerConfig, check, plain, problems, watch_problems
+from pillagerbench.server.process import MC_VERSION, ArenaServer
 
 
 async def _serve(server: ArenaServer) -> None:

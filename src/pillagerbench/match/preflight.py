@@ -8,8 +8,8 @@ import asyncio
 from collections.abc import Iterable
 from typing import Any
 
-from pillagerbench.config import ConfigError
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.llm.preflight import preflight as llm_preflight
 from pillagerbench.teams import find_team
 

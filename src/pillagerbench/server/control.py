@@ -13,7 +13,7 @@ import json
 from collections.abc import Callable
 from typing import Any
 
-from pillagerbench.control import Control
+from pillagerbench.server.seams import Control
 
 
 class ControlError(RuntimeError):

@@ -1,6 +1,6 @@
 """The whole run configuration checked at once, before anything is created or started.
 
-The top-level keys are typed (config_schema.py); a team's options are checked against its options
+The top-level keys are typed (config/schema.py); a team's options are checked against its options
 model (`Team.Options`: keys, types, ranges; teams/options.py); `red.llm.*` / `blue.llm.*` only for
 teams that use an LLM; the LLM settings of every side that uses one. Every problem is one line naming the key, the bad value and what is
 valid; `check_run_config` raises one `ConfigError` holding all of them, or returns the typed
@@ -10,10 +10,11 @@ as plain data (a composed DictConfig or a stored dict), since it may be any valu
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
-from pillagerbench.config import ConfigError
-from pillagerbench.config_schema import (
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.schema import (
     LLMConfig,
     RunConfig,
     check,
@@ -22,13 +23,15 @@ from pillagerbench.config_schema import (
     top_level_problems,
     watch_problems,
 )
-from pillagerbench.config_schema import merged as merged_llm
+from pillagerbench.config.schema import merged as merged_llm
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
 from pillagerbench.scenarios import SCENARIOS
 from pillagerbench.scenarios.layout import PAPER, LayoutError, parse_layout, parse_split
 from pillagerbench.teams import TEAMS, find_team
 from pillagerbench.teams.options import defaults, options_model
+
+Composed = Mapping[str, Any]  # a composed configuration (a dict, or Hydra's node) before it is typed
 
 SIDES = ("red", "blue")
 
@@ -72,7 +75,7 @@ def _team_problems(data: dict[str, Any], side: str, scenario: str) -> list[str]:
     return out
 
 
-def team_problems(cfg: Any) -> list[str]:
+def team_problems(cfg: Composed) -> list[str]:
     """Problems of a match config's scenario and both sides (teams, options, LLM settings)."""
     found: list[str] = []
     data = plain(cfg)
@@ -86,7 +89,7 @@ def team_problems(cfg: Any) -> list[str]:
     return found
 
 
-def layout_problems(cfg: Any) -> list[str]:
+def layout_problems(cfg: Composed) -> list[str]:
     """`layout=` and `split=`: a known value, one or the other, and a layout of the chosen scenario."""
     data = plain(cfg)
     layout, split = data.get("layout", PAPER), data.get("split")
@@ -103,7 +106,7 @@ def layout_problems(cfg: Any) -> list[str]:
     return []
 
 
-def check_run_config(cfg: Any, *, teams: bool = True) -> RunConfig:
+def check_run_config(cfg: Composed, *, teams: bool = True) -> RunConfig:
     """The typed configuration of `cfg`, or one ConfigError listing every problem of it (one line
     each). With teams=False (experiments choose teams themselves, see experiments/runner.check_series)
     only the top-level keys are checked."""

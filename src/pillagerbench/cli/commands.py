@@ -11,9 +11,9 @@ from pathlib import Path
 
 # name -> ("module:function", help). Each function takes the remaining argv and returns an exit code.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "run": ("pillagerbench.cli:run_main", "play a match between two teams and record it"),
-    "setup": ("pillagerbench.node:setup_main", "install the pinned Node packages into the cache"),
-    "server": ("pillagerbench.arena.serve:main", "start an arena server to watch with a 1.16.5 client"),
+    "run": ("pillagerbench.cli.commands:run_main", "play a match between two teams and record it"),
+    "setup": ("pillagerbench.host.node:setup_main", "install the pinned Node packages into the cache"),
+    "server": ("pillagerbench.server.serve:main", "start an arena server to watch with a 1.16.5 client"),
     "try": ("pillagerbench.players.try_code:main", "run a JavaScript file as one player and print its events"),
     "llm-ping": ("pillagerbench.llm.ping:main", "send one short request to an LLM provider"),
     "teams": ("pillagerbench.teams.catalog:main", "list every team: where it comes from, scenarios, LLM, options"),
@@ -26,7 +26,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "pillagerbench.experiments.compare:main",
         "is entrant A better than B? paired play and a sequential test that stops when the answer is clear",
     ),
-    "layout": ("pillagerbench.layout_show:main", "show a layout's map (a page), or write the layout as JSON"),
+    "layout": ("pillagerbench.cli.layout_show:main", "show a layout's map (a page), or write the layout as JSON"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": (
         "pillagerbench.report.symmetry:main",
@@ -41,7 +41,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "σ_blue for the sabotage metric (runs or plays do_nothing vs every opponent)",
     ),
     "suite": (
-        "pillagerbench.suite:main",
+        "pillagerbench.suite.version:main",
         "the suite version: its name and the hash of every file that can move a score",
     ),
     "export": (
@@ -59,9 +59,9 @@ def run_main(argv: list[str]) -> int:
     """`pillagerbench run`: one match (experiments/plain_run.py: a one-series experiment), or many
     series with experiment= (experiments/); resume= finishes either. The command line and conf/ are
     composed and checked here, once, into the typed configuration every layer below takes."""
-    from pillagerbench import preflight
-    from pillagerbench.config import load_config, to_dict
-    from pillagerbench.validate import check_run_config
+    from pillagerbench.config.compose import load_config, to_dict
+    from pillagerbench.match import preflight
+    from pillagerbench.match.validate import check_run_config
 
     composed = to_dict(load_config(argv))
     experiment = composed.get("experiment") is not None or bool(composed.get("resume"))
@@ -99,8 +99,8 @@ def main(argv: list[str] | None = None) -> int:
         print(usage())
         return 0
     if argv[0] in ("-V", "--version"):
-        from pillagerbench.cli_help import version
-        from pillagerbench.suite import current
+        from pillagerbench.cli.help import version
+        from pillagerbench.suite.version import current
 
         print(f"pillagerbench {version()}\n{current()['name']} sha256:{current()['sha256']}")
         return 0
@@ -109,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"pillagerbench: unknown command {name!r}; valid commands: {', '.join(COMMANDS)}", file=sys.stderr)
         return 2
     if any(a in HELP_FLAGS for a in rest):  # help only: the command itself never starts
-        from pillagerbench.cli_help import command_help
+        from pillagerbench.cli.help import command_help
 
         try:
             print(command_help(name, COMMANDS[name], rest), flush=True)
@@ -129,12 +129,12 @@ def main(argv: list[str] | None = None) -> int:
 # The user's errors, by module and class, imported only once a command has run: an error of one of
 # them can only come from a module that was imported, and the start of a light command (suite,
 # layout, --version) does not pay for pandas, openai and Hydra.
-CONFIG_ERRORS = (("pillagerbench.config", "ConfigError"),)  # one line per problem, nothing started
+CONFIG_ERRORS = (("pillagerbench.config.compose", "ConfigError"),)  # one line per problem, nothing started
 USER_ERRORS = (
-    ("pillagerbench.node", "NodeSetupError"),
+    ("pillagerbench.host.node", "NodeSetupError"),
     ("pillagerbench.metrics.runs", "ReportError"),
-    ("pillagerbench.arena.server", "ArenaServerError"),
-    ("pillagerbench.args", "UsageError"),
+    ("pillagerbench.server.process", "ArenaServerError"),
+    ("pillagerbench.config.args", "UsageError"),
     ("pillagerbench.rundir.bundle", "BundleError"),
     ("pillagerbench.experiments.series", "ResumeError"),
 )
@@ -164,7 +164,7 @@ def _refuse(name: str, exc: Exception) -> int:
 
 def write_traceback(command: str) -> Path:
     """The current exception's traceback in the cache's errors/ folder; returns its path."""
-    from pillagerbench.node import cache_root
+    from pillagerbench.host.node import cache_root
 
     folder = cache_root() / "errors"
     folder.mkdir(parents=True, exist_ok=True)

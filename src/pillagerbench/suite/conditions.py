@@ -1,6 +1,6 @@
 """The conditions of play: every configuration key, declared once as moving a score or not.
 
-A score names the rules that made it. The suite version (suite.py) hashes the files that can move a
+A score names the rules that made it. The suite version (suite/version.py) hashes the files that can move a
 score; this table declares the *settings* that can: each key of the configuration is here, either as a
 `RULE` (a setting of the whole run that changes the game: the tick rate, the episode's length, the
 scoring, the step protocol, crop growth, what a bot can see), as an `ARENA` setting (the layout of each
@@ -79,7 +79,7 @@ SETTINGS: tuple[Setting, ...] = (
 )
 RULES: tuple[str, ...] = tuple(s.key for s in SETTINGS if s.kind == RULE)
 
-CONF = Path(__file__).resolve().parent / "conf"
+CONF = Path(__file__).resolve().parents[1] / "conf"
 
 
 def setting_of(key: str) -> Setting | None:

@@ -1,5 +1,5 @@
 """The manifest of a run directory (`manifest.json`): config, versions, seed, git revision, suite and
-the rules differing from the suite's defaults (conditions.py).
+the rules differing from the suite's defaults (suite/conditions.py).
 
 Written by every series (experiments/series.py): an experiment's, and the one series of a plain
 `pillagerbench run`; the experiment's own top-level manifest uses `git_revision` too.
@@ -14,10 +14,10 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench import __version__
-from pillagerbench.conditions import conditions_of
-from pillagerbench.config_schema import RunConfig
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.rundir import Manifest, RunDir, ScenarioStamp
-from pillagerbench.suite import current
+from pillagerbench.suite.conditions import conditions_of
+from pillagerbench.suite.version import current
 
 
 def git_revision() -> str | None:
@@ -34,7 +34,7 @@ def git_revision() -> str | None:
 
 def write_manifest(run_dir: Path, cfg: RunConfig, scenario: Any) -> None:
     """`run_dir/manifest.json` for one match; `scenario` is the Scenario played (key, title, version)."""
-    from pillagerbench.node import node_binary
+    from pillagerbench.host.node import node_binary
 
     node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
     manifest = Manifest(

@@ -6,7 +6,7 @@ the server's plugins and tables, scoring, the clock and upstream's step waits (t
 and the npm lock. The hash is sha256 over one line per file, `path\\0sha256(content)`, in path order
 (caches and compiled files left out), so it moves exactly when one of those files does.
 
-`suite_versions.json` (beside this module) records each released version's hash; a test fails when the
+`suite/suite_versions.json` (beside this module) records each released version's hash; a test fails when the
 files no longer hash to the newest recorded one (docs/suite-versions.md says what to do). The suite a
 run is played under is that version's name when the hash is recorded, else the newest name + "+dev".
 `pillagerbench suite` prints it; `pillagerbench suite --record` records today's hash.
@@ -20,11 +20,11 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-from pillagerbench.args import Parser
-from pillagerbench.conditions import defaults_from
+from pillagerbench.config.args import Parser
+from pillagerbench.suite.conditions import defaults_from
 
-PACKAGE = Path(__file__).resolve().parent
-VERSIONS = PACKAGE / "suite_versions.json"
+PACKAGE = Path(__file__).resolve().parents[1]
+VERSIONS = PACKAGE / "suite/suite_versions.json"
 UNVERSIONED = "unversioned"  # what a run written before suite versions reads as
 
 SCORE_FILES: tuple[str, ...] = (
@@ -39,7 +39,6 @@ SCORE_FILES: tuple[str, ...] = (
     "match/scoring.py",
     "match/game.py",  # the clock, the game master's period, the whistle
     "match/player.py",  # upstream's step waits around each run (the team-loop timings)
-    "upstream.py",
     "metrics/formulas.py",  # P, S, D, W and each scenario's reported scale (Dash & Dine x0.1)
 )
 _SKIP_PARTS = {"__pycache__", "node_modules"}
@@ -57,7 +56,7 @@ def score_files(root: Path = PACKAGE, patterns: tuple[str, ...] = SCORE_FILES) -
 
 def suite_hash(root: Path = PACKAGE, patterns: tuple[str, ...] = SCORE_FILES) -> str:
     """sha256 (hex) over the score files' paths and contents, then the defaults of the rules
-    (conditions.py: the tick rate, the episode's length ... as conf/ sets them for each scenario)."""
+    (suite/conditions.py: the tick rate, the episode's length ... as conf/ sets them for each scenario)."""
     outer = hashlib.sha256()
     for path in score_files(root, patterns):
         inner = hashlib.sha256(path.read_bytes()).hexdigest()
@@ -122,7 +121,7 @@ def check(root: Path = PACKAGE, path: Path = VERSIONS) -> str | None:
         f"files that can move scores changed without a new suite version ({name} recorded {expected[:16]}, "
         f"now {actual[:16]}): scores may move. Bump the version (pillagerbench suite --record 'suite X.Y'; "
         "--record alone re-records the same version for a change that moves no score), re-measure the "
-        "reference figures (reference_figures.json) and add an entry to docs/suite-versions.md"
+        "reference figures (suite/reference_figures.json) and add an entry to docs/suite-versions.md"
     )
 
 

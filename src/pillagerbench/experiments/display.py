@@ -9,7 +9,7 @@ from rich.console import Console
 from rich.live import Live
 from rich.table import Table
 
-from pillagerbench.config_schema import default
+from pillagerbench.config.schema import default
 
 
 class MatchDisplay:

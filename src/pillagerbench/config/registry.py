@@ -11,7 +11,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from typing import TypeVar, overload
 
-from pillagerbench.config import ConfigError, unknown
+from pillagerbench.config.compose import ConfigError, unknown
 
 T = TypeVar("T")
 

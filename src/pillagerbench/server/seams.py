@@ -1,6 +1,6 @@
 """The seams to the arena server, as the game master, the players and the match see it: small
 Protocols, so that each side names what it uses (the arena's `ArenaServer` is the one real
-implementation; `arena/server.py`).
+implementation; `server/process.py`).
 
 The control channel's ops are declared once, in `js/server/control_ops.json` (each op's arguments with
 their types, and its answer's type), which `js/server/control.js` dispatches from. `Control` has one
@@ -16,7 +16,9 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, NamedTuple, Protocol, TypedDict
 
-DECLARATION = Path(__file__).parent / "js" / "server" / "control_ops.json"
+from pillagerbench.host.node import JS_DIR
+
+DECLARATION = JS_DIR / "server" / "control_ops.json"
 
 Pos = Sequence[float]  # [x, y, z]; a block position is floored by the server
 Stack = Sequence[Any] | Mapping[str, Any]  # [item name, count] or {"name", "count"}

@@ -232,13 +232,13 @@ def load_config(overrides: list[str] | None = None, config_name: str = "config")
 # paper=true: the settings the paper's tables were measured with, upstream's scoring and upstream's
 # step protocol (docs/faithful.md says what each reproduces). A run that asks for it and sets one of
 # them otherwise is refused rather than half comparable.
-PAPER = {"scoring": "upstream", "protocol": "upstream"}
+PAPER_SWITCHES = {"scoring": "upstream", "protocol": "upstream"}
 
 
 def _apply_paper(cfg: DictConfig, overrides: list[str]) -> None:
     if OmegaConf.select(cfg, "paper") is not True:
         return
-    for key, value in PAPER.items():
+    for key, value in PAPER_SWITCHES.items():
         given = [v for k, sep, v in (o.partition("=") for o in overrides) if sep and k.lstrip("+~") == key]
         if given and given[-1] != value:
             raise ConfigError(

@@ -1,6 +1,6 @@
 """`pillagerbench <command> --help`: what the command does, its keys with their defaults and choices,
 and examples, built when asked from the config files (conf/config.yaml and conf/llm/base.yaml: keys,
-defaults and their comments), the schema (config_schema.py: the choices of a key), the registries
+defaults and their comments), the schema (config/schema.py: the choices of a key), the registries
 (scenarios, teams) and the config groups' folders (experiments, LLM presets). Each command's own
 arguments (those that are not config keys) come from its docstring or its argparse parser.
 HELP below only says which of these parts each command shows, and gives its examples.
@@ -237,7 +237,7 @@ def _literals(annotation: Any) -> list[str]:
 
 
 def schema_choices(model: type[BaseModel], path: list[str]) -> list[str]:
-    """The choices of a key (a Literal in config_schema.py), or [] for a free value."""
+    """The choices of a key (a Literal in config/schema.py), or [] for a free value."""
     field = model.model_fields.get(path[0])
     if field is None:
         return []
@@ -271,7 +271,7 @@ def _group_defaults() -> dict[str, str]:
 def scenario_key_lines() -> list[str]:
     """The keys of the scenario group (conf/scenario/NAME.yaml but `name`): each with its value in
     every scenario, since that, not a top-level default, is what a match plays."""
-    from pillagerbench.config import config_options
+    from pillagerbench.config.compose import config_options
 
     found: dict[str, tuple[list[str], str]] = {}
     for name in config_options("scenario"):
@@ -286,7 +286,7 @@ def scenario_key_lines() -> list[str]:
 
 
 def key_lines(spec: CommandHelp) -> list[str]:
-    from pillagerbench.config_schema import LLMConfig, RunConfig
+    from pillagerbench.config.schema import LLMConfig, RunConfig
 
     lines = []
     chosen = _group_defaults()
@@ -319,7 +319,7 @@ def _header(text: str) -> str:
 
 
 def choice_lines(which: str) -> list[str]:
-    from pillagerbench.config import config_options
+    from pillagerbench.config.compose import config_options
 
     if which == "scenarios":
         from pillagerbench.scenarios import SCENARIOS
@@ -376,7 +376,7 @@ def argparse_help(func: Any) -> str:
 
 
 def _chosen_experiment(argv: list[str]) -> str | None:
-    from pillagerbench.config import config_options
+    from pillagerbench.config.compose import config_options
 
     names = [v for k, sep, v in (a.partition("=") for a in argv) if sep and k == "experiment"]
     return names[-1] if names and names[-1] in config_options("experiment") else None

@@ -3,7 +3,7 @@ groups `scenario`, `red`/`blue` and `llm`, each default written once) is what th
 (cli, validate.check_run_config) makes of the command line and conf/, and what every layer below
 takes, whole or in part (RunnerConfig, TeamConfig, ServerConfig, LLMCacheConfig, LLMLedgerConfig).
 `problems(model, data)` gives one line per problem, naming the key, the bad value and what is valid.
-Groups (scenario, teams) are checked against their registries in validate.py.
+Groups (scenario, teams) are checked against their registries in match/validate.py.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from omegaconf import OmegaConf
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator
 from pydantic_core import PydanticCustomError
 
-from pillagerbench.config import ENV_NAME, ConfigError, looks_like_key, to_dict
+from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
 
 SECRET = "secret"  # the error type of a value that must not be echoed (problems() names the key only)
 
@@ -85,7 +85,7 @@ RETRIES = 2  # replays of a spoiled episode (rundir/schedule.py)
 
 
 class ScenarioConfig(BaseModel):
-    """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry in validate.py."""
+    """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry in match/validate.py."""
 
     model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # scenario=5: unknown scenario, once
 
@@ -95,7 +95,7 @@ class ScenarioConfig(BaseModel):
 
 class TeamConfig(BaseModel):
     """A side's node (`red`, `blue`): the team's name, its own `llm` keys, and its options (every other
-    key, checked against the team's options model in validate.py)."""
+    key, checked against the team's options model in match/validate.py)."""
 
     model_config = ConfigDict(extra="allow", coerce_numbers_to_str=True)  # red=7: unknown team '7', once
 
@@ -170,7 +170,7 @@ class RunConfig(RunnerConfig):
     run_dir: str | None = None
     scoring: Literal["clean", "upstream"] = "clean"
     protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
-    paper: bool = False  # sets scoring and protocol to upstream's (config.PAPER)
+    paper: bool = False  # sets scoring and protocol to upstream's (config.compose.PAPER_SWITCHES)
     watch: int | None = Field(None, ge=0, le=65535)
     retries: int = Field(RETRIES, ge=0)
     layout: int | str = "paper"  # checked in full by validate.layout_problems
@@ -181,7 +181,7 @@ class RunConfig(RunnerConfig):
     scenario: ScenarioConfig
     red: TeamConfig
     blue: TeamConfig
-    llm: dict[str, Any]  # the preset; checked per side that uses an LLM (validate.py, LLMConfig)
+    llm: dict[str, Any]  # the preset; checked per side that uses an LLM (match/validate.py, LLMConfig)
     experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
 
     _stored: dict[str, Any] = PrivateAttr(default_factory=dict)

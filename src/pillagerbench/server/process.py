@@ -1,7 +1,7 @@
 """Start, watch and stop the arena server process (node + flying-squid + our plugins).
 
     async with ArenaServer() as server:          # free port on 127.0.0.1
-        await server.set_block([0, 4, 0], "chest")    # the ops: pillagerbench.control.Control
+        await server.set_block([0, 4, 0], "chest")    # the ops: pillagerbench.server.seams.Control
 
 The server log goes to a file (`log_path`); the control channel is a socket pair inherited by
 the child. If the process dies, pending and later requests fail with the exit code and the
@@ -20,15 +20,15 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from pillagerbench.arena.control import ControlChannel
-from pillagerbench.control import Control
-from pillagerbench.node import JS_DIR, node_binary, node_env, profile_args
+from pillagerbench.host.node import JS_DIR, node_binary, node_env, profile_args
 from pillagerbench.rundir.names import SERVER_LOG
+from pillagerbench.server.control import ControlChannel
+from pillagerbench.server.seams import Control
 
 LOG = f"{SERVER_LOG}.log"  # the server's log where no path is given (a run directory keeps its own: RunDir)
 
 if TYPE_CHECKING:
-    from pillagerbench.config_schema import ServerConfig
+    from pillagerbench.config.schema import ServerConfig
 
 MAIN_JS = JS_DIR / "server" / "main.js"
 MC_VERSION = "1.16.5"

@@ -114,5 +114,5 @@ def schema_section() -> str:
     return "\n".join(parts)
 
 
-if __name__ == "__main__":  # python -m pillagerbench.teams.remote.protocol > section.md
+if __name__ == "__main__":  # python -m pillagerbench.teams.remote.wire > section.md
     print(schema_section(), end="")

@@ -15,7 +15,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from pillagerbench.args import Parser
+from pillagerbench.config.args import Parser
 from pillagerbench.replay.map_page import render_still, still_data
 from pillagerbench.scenarios import SCENARIOS, Scenario, make_scenario
 from pillagerbench.scenarios.arena import GROUND_Y, Arena

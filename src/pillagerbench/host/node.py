@@ -21,7 +21,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-JS_DIR = Path(__file__).parent / "js"
+JS_DIR = Path(__file__).resolve().parents[1] / "js"
 _LOCKFILES = ("package.json", "package-lock.json")
 
 

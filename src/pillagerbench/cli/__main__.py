@@ -1,0 +1,3 @@
+from pillagerbench.cli.commands import main
+
+raise SystemExit(main())
