@@ -21,9 +21,9 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
-from pillagerbench.metrics.reference import suite_reference
 from pillagerbench.stats.sample_size import fixed_test, sd_of
 from pillagerbench.stats.sprt import BETTER, Bounds, run
+from pillagerbench.suite.figures import reference_figures
 
 
 def main() -> None:
@@ -35,7 +35,7 @@ def main() -> None:
     fixed_pairs = fixed_test(0.5, bounds.p1 - bounds.p0, bounds.alpha, bounds.beta)
     rng = random.Random(a.seed)
     rows = []
-    for scenario, teams in suite_reference()["scenarios"].items():
+    for scenario, teams in reference_figures()["scenarios"].items():
         model = {t: (v["clean"]["mean"], sd_of(v["clean"]["ci"], v["clean"]["n"])) for t, v in teams.items()}
         for x, y in itertools.combinations(model, 2):
             better, worse = (x, y) if model[x][0] >= model[y][0] else (y, x)

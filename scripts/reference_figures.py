@@ -19,10 +19,11 @@ from pathlib import Path
 
 from pillagerbench.experiments import builtin_teams
 from pillagerbench.metrics.fidelity import fidelity_table
-from pillagerbench.metrics.reference import REFERENCE_CONDITIONS, SUITE_FIGURES
+from pillagerbench.metrics.reference import REFERENCE_CONDITIONS
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.suite import version as suite
 from pillagerbench.suite.conditions import stamp
+from pillagerbench.suite.figures import FIGURES
 
 TITLES = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
 
@@ -67,7 +68,7 @@ def main() -> None:
     ap.add_argument("--source", required=True, help="where the figures come from: run, commit, command")
     a = ap.parse_args()
     scenarios = figures(a.run)
-    data = json.loads(SUITE_FIGURES.read_text())
+    data = json.loads(FIGURES.read_text())
     name = suite.current()["name"]
     data.update(
         suite=name,
@@ -75,7 +76,7 @@ def main() -> None:
         source=a.source,
         scenarios=scenarios,
     )
-    SUITE_FIGURES.write_text(dump(data))
+    FIGURES.write_text(dump(data))
     for scenario, teams in scenarios.items():
         for team, by in teams.items():
             cells = " | ".join(f"{by[s]['mean']:.2f} ± {by[s]['ci']:.2f}" for s in ("clean", "upstream"))

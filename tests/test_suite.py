@@ -73,12 +73,12 @@ def test_the_command_prints_the_name_and_hash(capsys):
 
 
 def test_docs_suite_versions_has_a_section_per_version_and_the_shipped_reference_figures():
-    from pillagerbench.metrics.reference import suite_reference
+    from pillagerbench.suite.figures import reference_figures
 
     doc = (Path(__file__).resolve().parents[1] / "docs" / "suite-versions.md").read_text(encoding="utf-8")
     for name in suite.recorded():
         assert f"\n### {name} (" in doc, f"docs/suite-versions.md has no section for {name}"
-    figures = suite_reference()
+    figures = reference_figures()
     section = doc.split(f"\n### {figures['suite']} (")[1].split("\n### ")[0]
     titles = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
     for scenario, teams in figures["scenarios"].items():

@@ -92,3 +92,20 @@ def test_schedule_follows_parallel_and_dependencies():
     assert P.schedule(specs, durations, 2) == 40.0  # a slot is free at 10 s, but s2 waits for s0 (30 s)
     assert P.schedule(specs, durations, 3) == 40.0
     assert P.schedule(specs[:2], durations, 2) == 30.0
+
+
+def test_the_plan_answers_how_many_episodes_a_question_needs(capsys):
+    import math
+
+    from pillagerbench.cli import main
+    from pillagerbench.stats.sample_size import fixed_test
+    from pillagerbench.suite.figures import widest_spread
+
+    assert main(["run", "red=passive", "blue=balanced", "plan=true", "plan_width=1.5", "plan_difference=4"]) == 0
+    (line,) = [x for x in capsys.readouterr().out.splitlines() if x.startswith("how many (mushroom_war;")]
+    sd = widest_spread("mushroom_war")
+    assert f"± 1.5 points on a mean: {math.ceil((1.959964 * sd / 1.5) ** 2)} episodes" in line
+    assert f"4 points apart against one opponent: {fixed_test(sd * math.sqrt(2), 4)} episodes each" in line
+    assert "with `pillagerbench compare`" in line
+    assert main(["run", "plan=true", "plan_width=0"]) == 2
+    assert "plan_width=0" in capsys.readouterr().err

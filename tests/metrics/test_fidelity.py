@@ -11,11 +11,12 @@ import pytest
 from pillagerbench.metrics.calibration import resolve
 from pillagerbench.metrics.fidelity import CLAIMS, claims_table, fidelity_table
 from pillagerbench.metrics.formulas import Estimate
-from pillagerbench.metrics.reference import REFERENCE_SCORES, suite_reference
+from pillagerbench.metrics.reference import REFERENCE_SCORES
 from pillagerbench.metrics.runs import ReportError
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.report.fidelity import main as fidelity_main
+from pillagerbench.suite.figures import reference_figures
 from tests.metrics.fake_runs import write_run
 from tests.support.cli import run_cli
 
@@ -30,12 +31,12 @@ def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
     write_run(tmp_path / "b", "dash_and_dine", "do_nothing", "berries", [(0, 340), (0, 360)] * 5, **AS_REFERENCES)
     table, notes = fidelity_table(load_runs([tmp_path / x for x in "psb"]).episodes)
     assert len(notes) == 1 and notes[0].startswith(
-        f"fidelity: vs_suite compares with {suite_reference()['suite']}'s own reference"
+        f"fidelity: vs_suite compares with {reference_figures()['suite']}'s own reference"
     )
     rows = {r.opponent: r for r in table.itertuples()}
     # the suite's own reference (suite/reference_figures.json): passive 27.40 ± 4.04 agrees with
     # 25.0 ± 0.75, slimy 23.80 ± 2.84 does not with 11 ± 0
-    mine = suite_reference()["scenarios"]["mushroom_war"]
+    mine = reference_figures()["scenarios"]["mushroom_war"]
     passive, slimy = mine["passive"]["clean"], mine["slimy"]["clean"]
     assert abs(passive["mean"] - 25) < passive["ci"] and slimy["mean"] - slimy["ci"] > 11  # the premise
     assert (rows["passive"].suite_reference, rows["passive"].vs_suite) == (passive["mean"], "✓")

@@ -69,3 +69,13 @@ def test_the_ratio_crosses_the_upper_bound_for_a_clear_lead_and_the_lower_for_a_
 def test_bad_bounds_are_named(bounds, problem):
     assert bounds.problems() and bounds.problems()[0].startswith(problem)
     assert Bounds().problems() == []
+
+
+@pytest.mark.parametrize("p_ahead", [0.3, 0.5, 0.65, 0.75, 0.94])
+def test_walds_approximation_of_the_pairs_is_close_to_the_simulated_mean(p_ahead):
+    from pillagerbench.stats.sample_size import sprt_pairs
+
+    b = Bounds()
+    _, simulated = simulate(p_ahead, b, seed=6)
+    approx = sprt_pairs(p_ahead, b.p0, b.p1, b.alpha, b.beta)
+    assert 0.8 * simulated <= approx <= 1.05 * simulated, (approx, simulated)  # it leaves out the overshoot

@@ -178,6 +178,8 @@ class RunConfig(RunnerConfig):
     resume: str | None = None
     calibration: str | None = None
     plan: bool = False
+    plan_width: float = Field(default=2.0, gt=0)
+    plan_difference: float = Field(default=5.0, gt=0)
     scenario: ScenarioConfig
     red: TeamConfig
     blue: TeamConfig

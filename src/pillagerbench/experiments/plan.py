@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.experiments.how_many import how_many
 from pillagerbench.experiments.spec import SeriesSpec, build_series
 from pillagerbench.llm.tokens import count_tokens
 from pillagerbench.teams.entrant import entrant_of
@@ -106,6 +107,7 @@ class Plan:
     wall_high: float
     models: dict[str, ModelCost]
     retries: int = 0  # an episode spoiled on our side is played again up to this many times (not estimated)
+    how_many: list[str] = field(default_factory=list)  # episodes a question needs (how_many.py)
 
     @property
     def episodes(self) -> int:
@@ -321,7 +323,19 @@ def build_plan(cfg: RunConfig, argv: list[str], *, cpus: int | None = None, load
         wall_high=RUN_OVERHEAD_S + schedule(specs, high, parallel),
         models=models,
         retries=cfg.retries,
+        how_many=how_many(
+            sorted({s.scenario for s in specs}), cfg.plan_width, cfg.plan_difference, _per_episode(models, plans)
+        ),
     )
+
+
+def _per_episode(models: dict[str, ModelCost], plans: list[SeriesPlan]) -> tuple[float, float] | None:
+    """This run's LLM cost per episode, low and high (None without LLM teams or a price)."""
+    episodes = sum(p.episodes for p in plans)
+    costs = [m.cost() for m in models.values()]
+    if not episodes or not costs or any(lo is None or hi is None for lo, hi in costs):
+        return None
+    return sum(lo or 0.0 for lo, _ in costs) / episodes, sum(hi or 0.0 for _, hi in costs) / episodes
 
 
 # --- printing -----------------------------------------------------------------------------------
@@ -381,7 +395,7 @@ def lines(plan: Plan) -> list[str]:
             )
     if plan.models:
         out.append("assumptions: calls, tokens and latency as in docs/experiments.md (Before a run: plan=true)")
-    return out
+    return out + plan.how_many
 
 
 def main_plan(cfg: RunConfig, argv: list[str]) -> int:

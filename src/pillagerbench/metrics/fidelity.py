@@ -37,9 +37,9 @@ from pillagerbench.metrics.reference import (
     REFERENCE_LENGTH,
     REFERENCE_SCORES,
     REFERENCE_SPLIT,
-    suite_reference,
 )
 from pillagerbench.suite.conditions import describe, suite_defaults
+from pillagerbench.suite.figures import reference_figures
 
 TOLERANCE = 0.25  # ✓ when mean / reference is within 1 ± TOLERANCE
 MIN_EPISODES = 10  # per opponent and side (the fidelity check's default)
@@ -125,7 +125,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     ]
     table = pd.DataFrame(rows, columns=FIDELITY_COLUMNS)
     if len(table) and table["suite_reference"].notna().any():
-        figures = suite_reference()
+        figures = reference_figures()
         notes.append(
             f"fidelity: vs_suite compares with {figures['suite']}'s own reference (suite/reference_figures.json; "
             f"{figures['status'].split(':')[0]})"
@@ -170,7 +170,7 @@ NO_SUITE_FIGURE = {"suite_reference": math.nan, "suite_reference_ci": math.nan, 
 def beside_suite(scenario: str, team: str, scoring: str, e) -> dict:
     """The suite's own figure for this opponent and scoring, and ✓ when the run's mean agrees with
     it within the two intervals combined (– without a figure or an interval)."""
-    ref = suite_reference()["scenarios"].get(scenario, {}).get(team, {}).get(scoring)
+    ref = reference_figures()["scenarios"].get(scenario, {}).get(team, {}).get(scoring)
     if ref is None:
         return NO_SUITE_FIGURE
     spread = math.hypot(e.ci, ref["ci"])

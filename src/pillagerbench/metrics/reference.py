@@ -4,15 +4,11 @@ fidelity check compares with them; `--calibration reference` uses them as σ_blu
 metric, as upstream's analysis did. Upstream measured blue only; the red side is compared with the
 same values.
 
-The suite's own reference (`suite/reference_figures.json` in the package, `suite_reference`): the same
-opponents' points against do_nothing with their 95 % intervals, per scoring, under a named suite
-version (pillagerbench/suite/version.py), for putting a run beside the benchmark's own figures as well."""
+The suite's own reference (suite/figures.py) holds the same opponents' points against do_nothing
+with their 95 % intervals, per scoring, under a named suite version, for putting a run beside the
+benchmark's own figures as well."""
 
 from __future__ import annotations
-
-import json
-from functools import lru_cache
-from pathlib import Path
 
 REFERENCE_SCORES: dict[str, dict[str, float]] = {
     "mushroom_war": {"aggressive": 20.27, "balanced": 16.75, "passive": 25.23, "slimy": 22.18},
@@ -25,12 +21,3 @@ REFERENCE_LENGTH = 120.0
 REFERENCE_SPLIT = "paper"
 # the value of --calibration that selects them
 REFERENCE_CALIBRATION = "reference"
-
-SUITE_FIGURES = Path(__file__).resolve().parents[1] / "suite/reference_figures.json"
-
-
-@lru_cache(maxsize=1)
-def suite_reference() -> dict:
-    """{"suite", "status", "source", "scenarios": {scenario: {team: {scoring: {"mean", "ci", "n"}}}}}
-    (Dash & Dine ×0.1, as reported)."""
-    return json.loads(SUITE_FIGURES.read_text())

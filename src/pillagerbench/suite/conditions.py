@@ -75,6 +75,8 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("resume", NOT, "finishing a killed run with the same settings"),
     Setting("calibration", NOT, "σ_blue for the sabotage metric; the report names the calibration it used"),
     Setting("plan", NOT, "prints the plan; plays nothing"),
+    Setting("plan_width", NOT, "a question the plan answers; plays nothing"),
+    Setting("plan_difference", NOT, "a question the plan answers; plays nothing"),
     Setting("retries", NOT, "how often an episode spoiled on our side is played again (it is in no score)"),
 )
 RULES: tuple[str, ...] = tuple(s.key for s in SETTINGS if s.kind == RULE)
