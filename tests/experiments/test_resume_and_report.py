@@ -79,12 +79,14 @@ def test_resume_loses_and_repeats_nothing_and_replays_the_half_written_episode(k
     run, before, kept, out = killed_and_resumed
     for d in (run / "series").iterdir():
         recs = lines(d / "episodes.jsonl")
-        assert [r["episode"] for r in recs] == list(range(EPISODES)), d.name
-        assert all(r["status"] == "ok" for r in recs)
+        # none repeated or skipped; an episode spoiled by lag on a loaded machine is played again as the next index
+        assert [r["episode"] for r in recs] == list(range(len(recs))), d.name
+        used = [r for r in recs if not r.get("lagged")]
+        assert len(used) == EPISODES and all(r["status"] == "ok" for r in recs), d.name
         assert recs[: len(before[d.name])] == before[d.name]  # finished ones untouched
         if d.name in kept:
             assert (d / "episode_000" / "timeline.json").read_text() == kept[d.name]
-        for i in range(EPISODES):
+        for i in range(len(recs)):
             timeline = json.loads((d / f"episode_{i:03d}" / "timeline.json").read_text())
             assert timeline[-1]["t"] == 10
     first = run / "series" / "000_mushroom_war_do_nothing_vs_balanced"
