@@ -83,3 +83,10 @@ def test_the_report_has_the_differences_paired_where_the_runs_share_their_worlds
     (row,) = [r for r in csv.DictReader((tmp_path / "report" / "differences.csv").open()) if r["side"] == "red"]
     assert (row["a"], row["b"], row["design"]) == ("A", "B", "paired (12 pairs)")
     assert float(row["a_minus_b_ci"]) < float(row["unpaired_ci"]) / 3
+
+
+def test_no_episodes_give_an_empty_table_with_its_columns():
+    from pillagerbench.metrics.paired import COLUMNS
+
+    table = differences(by_entrant(pd.DataFrame()))
+    assert list(table.columns) == COLUMNS and not len(table)

@@ -79,6 +79,8 @@ COLUMNS = ["scenario", "opponent", "side", "a", "b", "a_minus_b", "a_minus_b_ci"
 def by_entrant(episodes: pd.DataFrame) -> pd.DataFrame:
     """The episodes as one row per entrant and episode (red's and blue's views): scenario, side,
     entrant, opponent, points, and the world (layout, seed) where recorded."""
+    if not len(episodes):  # nothing used (every episode spoiled): no rows, the same columns
+        return pd.DataFrame(columns=[Col.SCENARIO, "side", "entrant", "opponent", "points", *KEY])
     views = []
     for side, other in (("red", "blue"), ("blue", "red")):
         view = pd.DataFrame(
