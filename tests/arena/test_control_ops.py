@@ -60,9 +60,11 @@ class Recording(Control):
 
     def __init__(self) -> None:
         self.sent: list[tuple[str, dict[str, Any]]] = []
+        self.timeouts: dict[str, float | None] = {}  # op -> the reply timeout it was sent with
 
-    async def request(self, op: str, **args: Any) -> Any:
+    async def request(self, op: str, timeout: float | None = 30, **args: Any) -> Any:
         self.sent.append((op, args))
+        self.timeouts[op] = timeout
 
 
 async def sending_problems(name: str, method: Callable, control: Recording) -> list[str]:
@@ -128,9 +130,16 @@ def test_every_js_handler_is_a_declared_op_and_back():
     assert json.loads(proc.stdout) == list(OPS)  # the same ops, in the same order (the "valid: ..." list)
 
 
+async def test_an_op_that_waits_is_sent_without_a_reply_timeout():
+    control = Recording()
+    await control.wait_tick(7)
+    await control.hold("red")
+    assert control.timeouts == {"wait_tick": None, "hold": 30}
+
+
 async def test_every_python_method_is_a_declared_op_with_its_arguments():
     assert await python_problems(Control, OPS, TYPES) == []
-    assert len(typed_methods(Control)) == len(OPS) == 36
+    assert len(typed_methods(Control)) == len(OPS) == 40
 
 
 # ---- and the checks fail where they should ----
@@ -139,6 +148,7 @@ async def test_every_python_method_is_a_declared_op_with_its_arguments():
 def test_control_js_does_not_load_with_a_broken_declaration(tmp_path):
     server_dir = tmp_path / "server"
     shutil.copytree(JS_DIR / "server", server_dir)
+    shutil.copytree(JS_DIR / "clock", tmp_path / "clock")  # what control.js requires beside it
     broken_declaration(server_dir / "control_ops.json")
     proc = js_handlers(server_dir)
     assert proc.returncode != 0

@@ -33,7 +33,16 @@ def bot_command(settings: dict[str, Any]) -> list[str]:
     """The node command line of a bot process, under Node's permission model."""
     modules = ensure_node_modules(quiet=True)
     profile = profile_args()  # Node writes no profile under its permission model: measuring only
-    permission = [] if profile else ["--permission", f"--allow-fs-read={modules}", f"--allow-fs-read={JS_DIR / 'bot'}"]
+    permission = (
+        []
+        if profile
+        else [
+            "--permission",
+            f"--allow-fs-read={modules}",
+            f"--allow-fs-read={JS_DIR / 'bot'}",
+            f"--allow-fs-read={JS_DIR / 'clock'}",
+        ]
+    )
     return [
         str(node_binary()),
         *permission,

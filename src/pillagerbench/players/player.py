@@ -63,8 +63,10 @@ class Player:
         server: Control | None = None,
         watchdog_s: float = 1.0,
         login_timeout: float = 30.0,
+        clock: str = "real",
     ):
         self.name = name
+        self.clock = clock  # "real" or "lockstep": the bot's timers on the wall clock or the server's ticks
         self.server_port = server_port
         self.host = host
         self.log_dir = Path(log_dir) if log_dir else None
@@ -117,6 +119,7 @@ class Player:
             "username": self.name,
             "primitives": self.primitives,
             "heartbeatMs": 200,
+            "clock": self.clock,
         }
         loop = asyncio.get_running_loop()
         self._generation += 1

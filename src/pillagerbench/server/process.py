@@ -68,8 +68,10 @@ class ArenaServer(Control):
         tps: int = 20,
         operators: list[str] | None = None,
         watch: int | None = None,
+        clock: str = "real",
     ):
         self.host = host
+        self.clock_mode = clock  # "real" or "lockstep" (js/server/plugins/lockstep.js)
         self.requested_port = port
         self.port: int | None = None
         self.log_path = Path(log_path) if log_path else Path(tempfile.mkdtemp(prefix="pillagerbench-server-")) / LOG
@@ -80,6 +82,7 @@ class ArenaServer(Control):
             "cropGrowthChance": crop_growth_chance,
             "tps": tps,
             "operators": list(operators or []),
+            "clock": clock,
         }
         if watch is not None:  # the live view (js/server/plugins/watch.js) on this port, 0 = a free one
             self.settings["watch"] = {"host": host, "port": int(watch)}

@@ -86,6 +86,14 @@ class ReplayFrame(TypedDict):
     blocks: list[list[Any]]
 
 
+class ClockState(TypedDict):
+    mode: str  # "real" or "lockstep"
+    tick: int
+    speed: float | None  # a multiple of real time; None: unpaced
+    holds: list[str]
+    bots: int
+
+
 class OpSpec(NamedTuple):
     """One declared op: its arguments (wire name -> type; optional ones may be left out) and answer."""
 
@@ -94,6 +102,7 @@ class OpSpec(NamedTuple):
     optional: frozenset[str]
     result: str
     doc: str
+    waits: bool = False  # answers when something happens (no reply timeout)
 
 
 def read_declaration(path: Path = DECLARATION) -> tuple[dict[str, OpSpec], dict[str, dict[str, str]]]:
@@ -103,7 +112,7 @@ def read_declaration(path: Path = DECLARATION) -> tuple[dict[str, OpSpec], dict[
     for name, spec in data["ops"].items():
         args = {a: t.removesuffix("?") for a, t in spec["args"].items()}
         optional = frozenset(a for a, t in spec["args"].items() if t.endswith("?"))
-        ops[name] = OpSpec(name, args, optional, spec["result"], spec["doc"])
+        ops[name] = OpSpec(name, args, optional, spec["result"], spec["doc"], spec.get("waits", False))
     return ops, data["types"]
 
 
@@ -127,7 +136,8 @@ class Control(Protocol):
         spec = OPS.get(op)
         if spec is None or not args.keys() <= spec.args.keys():
             raise UndeclaredOp(f"{op}({', '.join(args)}) is not declared in {DECLARATION.name}")
-        return await self.request(op, **{k: v for k, v in args.items() if v is not None})
+        sent = {k: v for k, v in args.items() if v is not None}
+        return await (self.request(op, timeout=None, **sent) if spec.waits else self.request(op, **sent))
 
     async def ping(self) -> str:
         return await self.send("ping")
@@ -243,6 +253,18 @@ class Control(Protocol):
         return await self.send(
             "watch", center=center, title=title, episode=episode, t=t, length=length, scores=scores, sides=sides
         )
+
+    async def clock(self, speed: float | None = None, unpaced: bool | None = None) -> ClockState:
+        return await self.send("clock", speed=speed, unpaced=unpaced)
+
+    async def hold(self, who: str) -> int:
+        return await self.send("hold", who=who)
+
+    async def release(self, who: str) -> int:
+        return await self.send("release", who=who)
+
+    async def wait_tick(self, tick: int) -> int:
+        return await self.send("wait_tick", tick=tick)
 
     async def seed(self, seed: int) -> bool:
         return await self.send("seed", seed=seed)

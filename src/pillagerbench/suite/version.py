@@ -35,6 +35,7 @@ SCORE_FILES: tuple[str, ...] = (
     "teams/scripted.py",
     "js/bot/**/*",  # primitives (and their LLM documentation), the bot, the sandbox
     "js/server/**/*",  # plugins and tables
+    "js/clock/**/*",  # the game clock of the server and the bots (clock=lockstep)
     "js/package-lock.json",  # the pinned server and bot packages
     "match/scoring.py",
     "match/game.py",  # the clock, the game master's period, the whistle

@@ -1,6 +1,6 @@
 'use strict'
 // One player: a mineflayer bot driven by JSON lines on stdin, answering on stdout.
-//   usage: node --permission ... main.js '{"host": "127.0.0.1", "port": 25565, "username": "Ryn", "primitives": null}'
+//   usage: node --permission ... main.js '{"host": "127.0.0.1", "port": 25565, "username": "Ryn", "primitives": null, "clock": "real"}'
 // Lines out:
 //   {"hb": 1}                                heartbeat every 200 ms (the Python side's watchdog)
 //   {"spawned": {...}}                       logged in and the chunks around are loaded
@@ -10,13 +10,15 @@
 // Requests in: {"id", "op": "run", "code", "timeout"?} | {"id", "op": "stop"} | {"id", "op": "observe"} |
 //   {"id", "op": "lag", "reset"?} |
 //   {"id", "op": "clear"} | {"id", "op": "equip", "equipment"} | {"id", "op": "settle", "pos"?} | {"id", "op": "ping"}
+const settings = JSON.parse(process.argv[2] || '{}')
+const clock = require('../clock/game_clock')
+clock.install(settings.clock) // before anything reads the time (game_clock.js)
 const readline = require('readline')
 
-const settings = JSON.parse(process.argv[2] || '{}')
 const out = (obj) => process.stdout.write(JSON.stringify(obj) + '\n')
 const log = (...args) => process.stderr.write(args.join(' ') + '\n')
 
-const heartbeat = setInterval(() => out({ hb: 1 }), settings.heartbeatMs || 200)
+const heartbeat = clock.real.setInterval(() => out({ hb: 1 }), settings.heartbeatMs || 200)
 
 const mineflayer = require('mineflayer')
 const { pathfinder } = require('mineflayer-pathfinder')
@@ -48,6 +50,7 @@ const bot = mineflayer.createBot({
   hideErrors: true,
   logErrors: false
 })
+require('./lockstep').attach(bot) // clock=lockstep: this bot does the server's ticks
 bot.loadPlugin(pathfinder)
 // Upstream's bots had these too; agent code reaches them through the facade (sandbox.js).
 bot.loadPlugin(tool)
@@ -251,7 +254,8 @@ const OPS = {
 
 function startProtocol () {
   const rl = readline.createInterface({ input: process.stdin })
-  rl.on('line', async (line) => {
+  rl.on('line', (line) => clock.atBoundary(() => handle(line)))
+  async function handle (line) {
     let msg
     try { msg = JSON.parse(line) } catch (err) { return out({ id: null, ok: false, error: `bad request: ${err.message}` }) }
     if (msg.op === 'run') {
@@ -265,8 +269,8 @@ function startProtocol () {
     } catch (err) {
       out({ id: msg.id, ok: false, error: err && err.message ? err.message : String(err) })
     }
-  })
-  rl.on('close', () => { try { bot.quit() } catch (_) {} setTimeout(() => process.exit(0), 100) })
+  }
+  rl.on('close', () => { try { bot.quit() } catch (_) {} clock.real.setTimeout(() => process.exit(0), 100) })
 }
 
 bot.once('spawn', async () => {
@@ -312,5 +316,5 @@ process.on('uncaughtException', (err) => {
 })
 
 bot.on('kicked', (reason) => { out({ fatal: `kicked: ${typeof reason === 'string' ? reason : JSON.stringify(reason)}` }); process.exit(3) })
-bot.on('end', (reason) => { out({ fatal: `disconnected: ${reason}` }); clearInterval(heartbeat); process.exit(3) })
+bot.on('end', (reason) => { out({ fatal: `disconnected: ${reason}` }); clock.real.clearInterval(heartbeat); process.exit(3) })
 bot.on('error', (err) => log(`[bot] error: ${err && err.message ? err.message : err}`))

@@ -13,6 +13,7 @@ const { Vec3 } = require('vec3')
 const { ControlError, toPos, toBlockPos, stateIdOf, itemByName, blockByName } = require('./util')
 const { PICKUP } = require('./tables')
 const DECLARED = require('./control_ops.json').ops
+const clock = require('../clock/game_clock')
 
 function playerNamed (serv, name) {
   const p = serv.players.find(pl => pl.username === name)
@@ -154,6 +155,12 @@ const OPS = {
   replay_frame: async (serv, { start = false, stop = false }) => serv.pb.replay.frame({ start: start === true, stop: stop === true }),
   // The live view's scoreboard and centre (plugins/watch.js): {center, title, episode, t, length, scores, sides}.
   watch: async (serv, args) => serv.pb.watch.update(args),
+  // The game clock (plugins/lockstep.js): its mode and tick; `speed` paces it at that multiple of real
+  // time, `unpaced` lets it run as fast as the bots allow.
+  clock: async (serv, args) => serv.pb.clock.configure(args),
+  hold: async (serv, { who }) => serv.pb.clock.hold(who),
+  release: async (serv, { who }) => serv.pb.clock.release(who),
+  wait_tick: async (serv, { tick }) => serv.pb.clock.waitTick(tick),
   seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
   // The order in which the server visits its players (packets, block updates, anything that loops
   // over serv.players): the online players named in `names` first, in that order, then the rest as
@@ -218,7 +225,7 @@ function attach (serv, { input, write }) {
     while ((nl = buffer.indexOf('\n')) >= 0) {
       const line = buffer.slice(0, nl).trim()
       buffer = buffer.slice(nl + 1)
-      if (line) handle(line)
+      if (line) clock.atBoundary(() => handle(line)) // between two ticks (js/clock/game_clock.js)
     }
   })
   async function handle (line) {

@@ -2,18 +2,20 @@
 // The arena server: flying-squid on Minecraft 1.16.5 with our plugins, driven over the control
 // channel (see control.js): a socket the parent passes as an inherited file descriptor (settings.controlFd). stdout and stderr are
 // the server log (flying-squid also reads console commands from stdin; the parent gives it none).
-// Usage: node main.js '<json settings>'   e.g. {"port": 0, "host": "127.0.0.1"}
+// Usage: node main.js '<json settings>'   e.g. {"port": 0, "host": "127.0.0.1", "clock": "real"}
+const settings = JSON.parse(process.argv[2] || '{}')
+const clock = require('../clock/game_clock')
+clock.install(settings.clock) // before anything reads the time (game_clock.js)
 const path = require('path')
 const net = require('net')
 
 const log = (...args) => console.error(...args)
-const settings = JSON.parse(process.argv[2] || '{}')
 const channel = new net.Socket({ fd: settings.controlFd ?? 3, readable: true, writable: true })
 const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
 const PLUGINS = ['batching', 'guard', 'refusals', 'interact', 'player_list', 'teleport', 'movement', 'inventory', 'windows', 'blocks', 'crafting', 'furnace',
-  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'player_health', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch']
+  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'player_health', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch', 'lockstep']
 
 function main () {
   const mc = require('flying-squid')
@@ -77,7 +79,7 @@ function shutdown (serv) {
   stopping = true
   for (const p of serv.players) { try { p.kick('Server stopping') } catch (_) {} }
   serv.pb.watch?.stop()
-  Promise.race([serv.destroy?.(), new Promise(resolve => setTimeout(resolve, 1000))])
+  Promise.race([serv.destroy?.(), new Promise(resolve => clock.real.setTimeout(resolve, 1000))])
     .finally(() => process.exit(0))
 }
 

@@ -1,0 +1,77 @@
+'use strict'
+// The game clock of one Node process (the arena server or a bot).
+// clock=real: nothing changes; every timer and clock reading is the wall clock.
+// clock=lockstep: everything this process reads as time (setTimeout, setInterval, Date, performance.now,
+// hence mineflayer's physics, dig timing and pathfinder limits, flying-squid's tick loop, the checks that
+// read Date.now) becomes game time, which moves only when `advance(ms)` is called: by the server's
+// coordinator (js/server/lockstep.js) once every bot has done the tick, and in a bot when the server's
+// tick packet arrives (js/bot/lockstep.js). The mechanism is @sinonjs/fake-timers, installed before
+// anything else is loaded; its timers keep the async context of whoever set them (gate.js relies on it).
+// What must stay on the wall clock (heartbeats, the pacing of the clock itself, a busy loop's limit,
+// which vm enforces natively) uses `real`.
+const { AsyncResource } = require('async_hooks')
+const timers = require('timers')
+
+const TICK_MS = 50
+const real = {
+  setTimeout: globalThis.setTimeout,
+  clearTimeout: globalThis.clearTimeout,
+  setInterval: globalThis.setInterval,
+  clearInterval: globalThis.clearInterval,
+  setImmediate: globalThis.setImmediate,
+  now: performance.now.bind(performance)
+}
+
+let fake = null
+let advancing = false
+const deferred = [] // what came from outside during an advance, to be done at its end
+
+// Do `fn` between two ticks: now if game time stands still, else when the advance in progress ends.
+// Requests from outside the process (the control channel, a bot's stdin) come at any moment of the
+// wall clock, and fake-timers lets the event loop turn between the timers of one advance: this keeps
+// every outside input on a tick boundary.
+function atBoundary (fn) {
+  if (advancing) deferred.push(fn)
+  else fn()
+}
+
+function install (mode) {
+  if (mode !== 'lockstep' || fake) return
+  const FakeTimers = require('@sinonjs/fake-timers')
+  fake = FakeTimers.withGlobal(globalThis).install({
+    now: 0,
+    toFake: ['setTimeout', 'clearTimeout', 'setInterval', 'clearInterval', 'Date', 'performance'],
+    ignoreMissingTimers: true
+  })
+  for (const target of [globalThis, timers]) { // a timer's callback runs in the async context that set it
+    for (const name of ['setTimeout', 'setInterval']) {
+      const set = target[name]
+      if (typeof set !== 'function') continue
+      target[name] = function (fn, ms, ...args) {
+        return set.call(this, typeof fn === 'function' ? AsyncResource.bind(fn) : fn, ms, ...args)
+      }
+    }
+  }
+}
+
+// Move game time on by `ms`, running every timer due meanwhile (and the promises they settle).
+async function advance (ms = TICK_MS) {
+  if (!fake) return
+  advancing = true
+  try {
+    await fake.tickAsync(ms)
+  } finally {
+    advancing = false
+    for (const fn of deferred.splice(0)) fn()
+  }
+}
+
+module.exports = {
+  install,
+  advance,
+  atBoundary,
+  real,
+  TICK_MS,
+  get lockstep () { return fake !== null },
+  now: () => (fake ? fake.now : real.now())
+}

@@ -1,0 +1,117 @@
+'use strict'
+// The lockstep coordinator (clock=lockstep; js/clock/game_clock.js): game tick N+1 begins only when
+// every bot on the game clock has done tick N and nothing holds the clock (a player's LLM call in
+// flight: the `hold` and `release` ops). Beginning a tick advances the server's own game time by
+// 50 ms (flying-squid's tick loop, our plugins' timers), then sends each bot the tick.
+// Pacing: `speed` ticks at that multiple of real time; unpaced (null), as fast as the slowest bot.
+// Every PUSH_EVERY ticks the tick is pushed to the control channel (Python's game clock).
+// clock=real: the ops answer the server's tick and refuse to hold.
+const clock = require('../../clock/game_clock')
+const { CHANNELS, tickData, tickOf } = require('../../clock/channels')
+const { ControlError } = require('../util')
+
+const PUSH_EVERY = 4
+
+module.exports.server = function (serv) {
+  serv.pb = serv.pb || {}
+  const members = new Map() // a bot's connection -> the last tick it has done
+  const holds = new Map() // who -> count
+  const waiters = [] // [tick, resolve]
+  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false }
+
+  const ready = () => holds.size === 0 && [...members.values()].every(done => done >= state.tick)
+
+  function schedule (ms) {
+    if (state.scheduled) return
+    state.scheduled = true
+    const go = () => { state.scheduled = false; step() }
+    if (ms > 0) clock.real.setTimeout(go, ms)
+    else clock.real.setImmediate(go)
+  }
+
+  async function step () {
+    if (state.busy) return
+    if (!ready()) { state.anchor = null; return } // waiting: pace anew from the tick that frees it
+    if (state.speed !== null) {
+      const now = clock.real.now()
+      if (!state.anchor) state.anchor = { real: now, tick: state.tick }
+      const wait = state.anchor.real + (state.tick + 1 - state.anchor.tick) * clock.TICK_MS / state.speed - now
+      if (wait > 1) return schedule(wait)
+    }
+    state.busy = true
+    try {
+      state.tick++
+      await clock.advance(clock.TICK_MS)
+      for (const client of members.keys()) {
+        try { client.write('custom_payload', { channel: CHANNELS.TICK, data: tickData(state.tick) }) } catch (_) {}
+      }
+      if (state.tick % PUSH_EVERY === 0) serv.emit('control_event', { event: 'clock', tick: state.tick })
+      for (let i = waiters.length - 1; i >= 0; i--) {
+        if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1](state.tick)
+      }
+    } finally {
+      state.busy = false
+    }
+    schedule(0)
+  }
+
+  const describe = () => ({ mode: clock.lockstep ? 'lockstep' : 'real', tick: clock.lockstep ? state.tick : serv.tickCount, speed: state.speed, holds: [...holds.keys()], bots: members.size })
+  const lockstepOnly = (op) => { if (!clock.lockstep) throw new ControlError(`op ${op} needs clock=lockstep (this server runs on the real clock)`) }
+
+  serv.pb.clock = {
+    describe,
+    configure ({ speed, unpaced }) {
+      if (speed !== undefined) {
+        if (!(speed > 0)) throw new ControlError(`speed must be a multiple of real time above 0, got ${JSON.stringify(speed)}`)
+        state.speed = speed
+      }
+      if (unpaced === true) state.speed = null
+      state.anchor = null
+      if (clock.lockstep) schedule(0)
+      return describe()
+    },
+    hold (who) {
+      lockstepOnly('hold')
+      holds.set(who, (holds.get(who) || 0) + 1)
+      return state.tick
+    },
+    release (who) {
+      lockstepOnly('release')
+      const n = (holds.get(who) || 0) - 1
+      if (n > 0) holds.set(who, n)
+      else holds.delete(who)
+      schedule(0)
+      return state.tick
+    },
+    waitTick (tick) {
+      lockstepOnly('wait_tick')
+      if (tick <= state.tick) return Promise.resolve(state.tick)
+      return new Promise(resolve => waiters.push([tick, resolve]))
+    },
+    join (client) {
+      members.set(client, state.tick)
+      schedule(0)
+    },
+    done (client, tick) {
+      if (!members.has(client) || tick === null) return
+      members.set(client, Math.max(members.get(client), tick))
+      schedule(0)
+    },
+    leave (client) {
+      if (members.delete(client)) schedule(0)
+    }
+  }
+  if (clock.lockstep) {
+    serv._server.on('connection', (client) => listen(serv, client))
+    schedule(0)
+  }
+}
+
+// Each connection, from its first packet on (a bot joins as it logs in, before flying-squid has made it a player).
+function listen (serv, client) {
+  client.on('custom_payload', ({ channel, data }) => {
+    if (channel === CHANNELS.JOIN) serv.pb.clock.join(client)
+    else if (channel === CHANNELS.DONE) serv.pb.clock.done(client, tickOf(data))
+  })
+  client.on('end', () => serv.pb.clock.leave(client))
+}

@@ -1,0 +1,128 @@
+"""The lockstep clock (clock=lockstep) beside the real one, on the real server with real bots: the same
+waits and digs take the same ticks, a held clock does not move, and a busy loop is still stopped by
+wall time while the clock goes on."""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import time
+
+import pytest
+import pytest_asyncio
+
+from pillagerbench.players.events import chats_by, errors
+from pillagerbench.players.player import Player
+from pillagerbench.server import ArenaServer
+from tests.players.conftest import Area
+
+_names = itertools.count()
+DIGS: dict[str, int] = {}  # clock -> ticks of the dig (the real clock's module runs first)
+
+# Agent code that says how many physics ticks (the bot's 50 ms steps) the awaited call took.
+COUNTING = (
+    "let n = 0; const f = () => n++; bot.on('physicsTick', f);\n"
+    "%s\n"
+    "bot.removeListener('physicsTick', f); bot.chat('ticks ' + n)"
+)
+
+
+@pytest_asyncio.fixture(scope="module", loop_scope="session", params=["real", "lockstep"])
+async def world(request, tmp_path_factory):
+    """(server, player, area) on one clock; the lockstep one unpaced."""
+    server = ArenaServer(crop_growth_chance=0.0, clock=request.param)
+    await server.start()
+    logs = tmp_path_factory.mktemp("logs")
+    player = Player(f"ls{next(_names)}", server.port, server=server, log_dir=logs, clock=request.param)
+    await player.start()
+    area = Area(server)
+    await player.reset(position=area.at(0, 4, 0), inventory={})
+    if request.param == "lockstep":
+        await server.clock(unpaced=True)
+    yield server, player, area
+    await player.close()
+    await server.stop()
+
+
+async def ticks_of(player: Player, call: str) -> int:
+    events = await player.run(COUNTING % call, timeout=60)
+    said = [c for c in chats_by(events, player.name) if c.startswith("ticks ")]
+    assert said, f"no tick count in {events}"
+    return int(said[-1].split()[1])
+
+
+# Wait until the bot sees the dirt (the dig then looks at it at once: forceLook, no turn counted).
+SEEN_FACING_AWAY = (
+    "const at = new Vec3(%d, 4, 0); for (let i = 0; bot.blockAt(at)?.name !== 'dirt'; i++) await sleep(50);"
+    " await bot.lookAt(at.offset(0.5, 0.5, 0.5), true); await bot.waitForTicks(2)"
+)
+
+
+def near(clock: str, got: int, want: int) -> bool:
+    """Exactly under lockstep; within a tick or two of timer jitter on the real clock."""
+    return got == want if clock == "lockstep" else abs(got - want) <= 2
+
+
+@pytest.mark.parametrize("call", ["await bot.waitForTicks(100)", "await new Promise(r => setTimeout(r, 5000))"])
+async def test_waiting_100_ticks_or_5_seconds_takes_100_ticks(world, call):
+    server, player, _ = world
+    mode = (await server.clock())["mode"]
+    started = time.monotonic()
+    got = await ticks_of(player, call)
+    assert near(mode, got, 100), f"{mode}: {got} ticks"
+    if mode == "lockstep":  # unpaced: faster than the 5 s the wall clock would take
+        assert time.monotonic() - started < 5
+
+
+async def test_a_dig_takes_the_same_ticks(world):
+    server, player, area = world
+    mode = (await server.clock())["mode"]
+    await area.blocks((1, 4, 0, "dirt"))
+    await player.run(SEEN_FACING_AWAY % (area.x0 + 1))
+    got = await ticks_of(player, "await bot.dig(bot.blockAt(new Vec3(%d, 4, 0)), true)" % (area.x0 + 1))
+    # dirt by hand: hardness 0.5 -> 0.75 s, 15 ticks (mineflayer's dig time; the real clock's timers may
+    # land a tick early or late)
+    for _ in range(40):  # the server's answer may still be on its way (real clock)
+        if (await server.get_block(pos=area.at(1, 4, 0)))["name"] == "air":
+            break
+        await asyncio.sleep(0.05)
+    assert (await server.get_block(pos=area.at(1, 4, 0)))["name"] == "air", f"{mode}: the dig did not count"
+    assert near(mode, got, 15), f"{mode}: {got} ticks"
+    DIGS[mode] = got
+    if mode == "lockstep":
+        assert got == await _dig_again(server, player, area)  # to the tick, every time
+        if "real" in DIGS:
+            assert abs(DIGS["real"] - got) <= 1, DIGS
+
+
+async def _dig_again(server: ArenaServer, player: Player, area: Area) -> int:
+    await area.blocks((1, 4, 0, "dirt"))
+    await player.run(SEEN_FACING_AWAY % (area.x0 + 1))
+    return await ticks_of(player, "await bot.dig(bot.blockAt(new Vec3(%d, 4, 0)), true)" % (area.x0 + 1))
+
+
+async def test_a_held_clock_does_not_move(world):
+    server, _, _ = world
+    if (await server.clock())["mode"] == "real":
+        with pytest.raises(Exception, match="needs clock=lockstep"):
+            await server.hold("red")
+        return
+    before = await server.hold("red")
+    await server.hold("red")  # counted: two holds need two releases
+    await asyncio.sleep(1.0)
+    await server.release("red")
+    await asyncio.sleep(0.5)
+    assert (await server.clock())["tick"] == before and (await server.clock())["holds"] == ["red"]
+    await server.release("red")
+    assert await server.wait_tick(before + 20) >= before + 20
+
+
+async def test_a_busy_loop_is_stopped_by_wall_time_and_the_clock_goes_on(world):
+    server, player, _ = world
+    events = await player.run("while (true) {}", timeout=60)
+    assert any("an endless loop?" in e for e in errors(events)), errors(events)
+    tick = (await server.clock())["tick"]
+    assert await ticks_of(player, "await bot.waitForTicks(10)") in (
+        (10,) if (await server.clock())["mode"] == "lockstep" else range(8, 13)
+    )
+    assert (await server.clock())["tick"] > tick
