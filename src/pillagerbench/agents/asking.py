@@ -15,8 +15,8 @@ budget (so budgets and the ledger stay per team), with the model swapped in.
 and a retry note are appended to the conversation and the model is asked again, up to `attempts`
 calls. An LLMError ends the asking at once (the client has already retried what can be retried);
 `BudgetExceeded` is reported as such so a team can stop calling for the rest of the episode.
-With `deadline` (a time.monotonic() value) no call starts after it and a call still running then
-is abandoned.
+With `deadline` (the episode's `Whistle`: a TeamContext) no call starts after the whistle, and on the
+real clock a call still running then is abandoned (on the lockstep clock the world waits for it).
 """
 
 from __future__ import annotations
@@ -34,6 +34,14 @@ from pillagerbench.llm.client import Messages
 ROLE_KEYS = ("model", "temperature", "max_tokens")
 
 T = TypeVar("T")
+
+
+class Whistle(Protocol):
+    """When the game ends, as a team's calls see it (a TeamContext)."""
+
+    def time_left(self) -> float: ...  # game seconds to the whistle
+
+    def wall_limit(self) -> float | None: ...  # how long a call may take on the wall clock (None: the world waits)
 
 
 class Chat(Protocol):
@@ -74,6 +82,7 @@ class RoleLLM:
                 ledger=base.ledger,
                 cache=base.cache,
                 budget=base.budget,
+                thinking=base.thinking,
                 _sdk=base._sdk,
             )
         return self._clients[model]
@@ -122,7 +131,7 @@ async def ask(
     parse: Callable[[LLMResponse], T],
     attempts: int = 3,
     retry: Callable[[str], str] | None = None,
-    deadline: float | None = None,
+    deadline: Whistle | None = None,
 ) -> Asked[T]:
     """Call until `parse(answer)` returns a value (it raises ValueError with the problem otherwise)."""
     out: Asked[T] = Asked(messages=list(messages))
@@ -131,10 +140,10 @@ async def ask(
         return out
     msgs = list(messages)
     for n in range(max(1, attempts)):
-        left = None if deadline is None else deadline - time.monotonic()
-        if left is not None and left <= 0:
+        if deadline is not None and deadline.time_left() <= 0:
             out.error, out.out_of_time = out.error or "no time left for another call", True
             break
+        left = None if deadline is None else deadline.wall_limit()
         t0 = time.monotonic()
         try:
             call = llm.complete(msgs, role=role)

@@ -238,6 +238,10 @@ PAPER_SWITCHES = {"scoring": "upstream", "protocol": "upstream"}
 def _apply_paper(cfg: DictConfig, overrides: list[str]) -> None:
     if OmegaConf.select(cfg, "paper") is not True:
         return
+    if (clock := OmegaConf.select(cfg, "clock.mode")) not in (None, "real"):
+        raise ConfigError(
+            f"paper=true plays on the real clock (as the paper's episodes); drop clock={clock} or paper=true"
+        )
     for key, value in PAPER_SWITCHES.items():
         given = [v for k, sep, v in (o.partition("=") for o in overrides) if sep and k.lstrip("+~") == key]
         if given and given[-1] != value:

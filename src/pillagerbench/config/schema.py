@@ -84,6 +84,27 @@ class LLMConfig(_Strict):
 RETRIES = 2  # replays of a spoiled episode (rundir/schedule.py)
 
 
+class ClockConfig(_Strict):
+    """`clock=real|lockstep` (conf/clock/*.yaml): what game time is (docs/clock.md)."""
+
+    mode: Literal["real", "lockstep"] = "real"
+    speed: Literal["max"] | float = 1.0  # lockstep: a multiple of real time, or max (unpaced)
+    ticks_per_1k_tokens: float | None = Field(default=None, ge=0)  # lockstep: game time charged for thinking
+
+    @field_validator("speed", mode="before")
+    @classmethod
+    def _pace(cls, value: Any) -> Any:
+        try:
+            ok = value == "max" or (not isinstance(value, bool) and float(value) > 0)
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            raise PydanticCustomError(
+                "clock_speed", "a multiple of real time above 0 (e.g. 1, 4), or max (as fast as the bots allow)"
+            )
+        return value
+
+
 class ScenarioConfig(BaseModel):
     """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry in match/validate.py."""
 
@@ -181,6 +202,7 @@ class RunConfig(RunnerConfig):
     plan_width: float = Field(default=2.0, gt=0)
     plan_difference: float = Field(default=5.0, gt=0)
     scenario: ScenarioConfig
+    clock: ClockConfig = ClockConfig()
     red: TeamConfig
     blue: TeamConfig
     llm: dict[str, Any]  # the preset; checked per side that uses an LLM (match/validate.py, LLMConfig)
@@ -298,6 +320,17 @@ def watch_problems(cfg: Any) -> list[str]:
     host = str((data.get("server") or {}).get("host", "127.0.0.1"))
     if watch and not port_is_free(host, watch):
         return [f"watch={watch}: port {host}:{watch} is already in use (choose another, or watch=0 for a free port)"]
+    return []
+
+
+def clock_problems(cfg: Any) -> list[str]:
+    """What clock=lockstep cannot honour: a tick rate other than 20 (its game tick is 50 ms)."""
+    data = plain(cfg)
+    if (data.get("clock") or {}).get("mode") != "lockstep":
+        return []
+    tps = (data.get("server") or {}).get("tps", 20)
+    if tps != 20:
+        return [f"server.tps={tps}: clock=lockstep plays 20 ticks per game second (drop server.tps or clock=lockstep)"]
     return []
 
 

@@ -33,6 +33,7 @@ from .ledger import Ledger
 from .parsing import parse_json, strip_think
 from .prices import Price, price_of, price_problem
 from .settings import LLMSettings
+from .thinking import Thinking
 
 Messages = str | Sequence[Mapping[str, Any]]
 _UNSET: Any = object()
@@ -67,9 +68,11 @@ class LLMClient:
         cache: LLMCache | None = None,
         budget: Budget | None = None,
         price: Price | None = None,
+        thinking: Thinking | None = None,
         _sdk: openai.AsyncOpenAI | None = None,
     ):
         self.settings = settings
+        self.thinking = thinking if thinking is not None else Thinking()  # the game clock's hold (thinking.py)
         self.team = team
         self.price = price if price is not None else price_of(settings)  # llm/prices.py
         self.ledger = ledger
@@ -195,7 +198,16 @@ class LLMClient:
         self, messages: Messages, *, role: str, temperature: Any = _UNSET, max_tokens: Any = _UNSET, **params: Any
     ) -> LLMResponse:
         """One chat completion. `params` (stop, seed, top_p, response_format, ...) go into the body.
-        Raises an LLMError subclass; every call, failed or not, is one ledger record."""
+        Raises an LLMError subclass; every call, failed or not, is one ledger record. During a game on
+        the lockstep clock the world waits for it (`thinking`)."""
+        async with self.thinking.held():
+            answer = await self._complete(messages, role, temperature, max_tokens, params)
+        await self.thinking.charged(answer.output_tokens)
+        return answer
+
+    async def _complete(
+        self, messages: Messages, role: str, temperature: Any, max_tokens: Any, params: dict[str, Any]
+    ) -> LLMResponse:
         s = self.settings
         ctx: dict[str, Any] = {"role": role, "team": self.team, "model": s.model, "provider": s.provider}
         request = self.build_request(messages, temperature=temperature, max_tokens=max_tokens, **params)

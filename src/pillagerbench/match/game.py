@@ -18,12 +18,14 @@ async def play_game(
     game: Game, contexts: dict, rng: random.Random, parts: list[Part], scoring: str
 ) -> tuple[CleanScoring, UpstreamScoring | None]:
     """Play one game to the whistle (and, with scoring=upstream, on to upstream's last sample)."""
+    clock = game.clock
     gm = game.scenario.game_master(game.server, rng)
     await gm.start()
-    game.start = start = time.monotonic()
+    game.wall_start = time.monotonic()
+    game.start = start = clock.now()
     deadline = start + game.length
     for ctx in contexts.values():
-        ctx.deadline = deadline
+        ctx.deadline, ctx.clock = deadline, clock
         game.teams[ctx.side.key].iterations = []
     clean = CleanScoring()
     upstream = UpstreamScoring() if scoring == "upstream" else None
@@ -32,8 +34,7 @@ async def play_game(
 
     async def rules():
         while not over.is_set():
-            await asyncio.sleep(gm.period_s)
-            async with lock:
+            async with clock.at(clock.now() + gm.period_s, "game-master"), lock:  # lockstep: at that tick exactly
                 if not over.is_set():
                     await gm.step()
 
@@ -46,21 +47,17 @@ async def play_game(
     plays = [asyncio.create_task(game.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
     background = [
         asyncio.create_task(rules(), name="game-master"),
-        asyncio.create_task(clean.sample(gm, start, game.length, second), name="scores"),
+        asyncio.create_task(clean.sample(gm, clock, start, game.length, second), name="scores"),
     ]
     late = (
-        asyncio.create_task(upstream.sample(gm, start, game.length, game.rec.runs), name="upstream-scores")
+        asyncio.create_task(upstream.sample(gm, clock, start, game.length, game.rec.runs), name="upstream-scores")
         if upstream
         else None
     )
+    whistle = asyncio.create_task(clock.sleep_until(deadline), name="whistle")
     final: dict | None = None
     try:
-        done, _ = await asyncio.wait(
-            background + ([late] if late else []),
-            timeout=max(0.0, deadline - time.monotonic()),
-            return_when=asyncio.FIRST_EXCEPTION,
-        )
-        _raise_first(done)
+        await _until(whistle, background + ([late] if late else []))
         if late:  # upstream: the clean score at the whistle, then play on to upstream's sample
             async with lock:
                 await gm.step()
@@ -70,8 +67,9 @@ async def play_game(
     finally:
         # the whistle: stop every player's code, then nothing a player does counts any more
         over.set()
+        await clock.end()  # lockstep: no call holds the world any more (the stops need its ticks)
         await asyncio.gather(*(p.stop() for p in game.players.values()), return_exceptions=True)
-        tasks = plays + background + ([late] if late else [])
+        tasks = plays + background + [whistle] + ([late] if late else [])
         for task in tasks:
             task.cancel()
         await asyncio.wait(tasks, timeout=STOP_GRACE_S)
@@ -91,6 +89,14 @@ async def play_game(
         upstream.write(game.out)
     (game.out / "game_master.json").write_text(json.dumps(gm.log))
     return clean, upstream
+
+
+async def _until(whistle: asyncio.Task, tasks: list[asyncio.Task]) -> None:
+    """Wait for the whistle; a task that fails first raises its exception at once."""
+    waiting = set(tasks) | {whistle}
+    while not whistle.done():
+        done, waiting = await asyncio.wait(waiting, return_when=asyncio.FIRST_COMPLETED)
+        _raise_first(done)
 
 
 def _raise_first(done: set[asyncio.Task]) -> None:

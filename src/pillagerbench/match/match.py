@@ -13,11 +13,12 @@ import asyncio
 import json
 import random
 import time
-from collections.abc import Callable
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config.schema import default
+from pillagerbench.config.schema import ClockConfig, default
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay
@@ -27,6 +28,7 @@ from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.scenarios import Scenario, upstream
 from pillagerbench.scenarios.layout import episode_layout
+from pillagerbench.server.clock import GameClock, LockstepClock, RealClock
 from pillagerbench.server.seams import Server
 from pillagerbench.teams import Team, TeamContext
 from pillagerbench.teams.base import PlayerHandle
@@ -50,6 +52,7 @@ class Match:
         split: str | None = None,
         conditions: dict[str, Any] | None = None,
         entrants: dict[str, dict] | None = None,
+        clock: ClockConfig | None = None,
     ):
         SCORINGS.find(scoring)
         self.scoring, self.protocol = scoring, protocol
@@ -65,6 +68,8 @@ class Match:
         self.last_records: dict[str, LastEpisode] = {}
         self.layout, self.split = scenario.layout_key, split  # split: each episode on a layout of its own
         self.conditions = dict(conditions or {})  # the rules differing from the suite's (suite/conditions.py)
+        self.clock_config = clock or ClockConfig()  # config `clock`: what game time is
+        self.clock: GameClock = RealClock()  # lockstep: the server's, from setup() on
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -91,13 +96,20 @@ class Match:
                 server=self.server,
                 log_dir=log_dir,
                 primitives=list(self.scenario.primitives),
+                clock=self.clock_config.mode,
             )
             await player.start()
             self.players[spec.name] = player
+        await self.clock.end()
+        if self.clock_config.mode == "lockstep":
+            per_1k = self.clock_config.ticks_per_1k_tokens
+            self.clock = await LockstepClock(self.server, self.server.control, per_1k).start()
 
     async def close(self) -> None:
         await asyncio.gather(*(p.close() for p in self.players.values()), return_exceptions=True)
         self.players.clear()
+        if isinstance(self.clock, LockstepClock):
+            await self.clock.close()
 
     async def play_episodes(self, episodes, on_episode: Callable[[EpisodeRecord], None]) -> None:
         """Play the given episode indices in order; after each, `on_episode(record)`. An episode that
@@ -222,8 +234,9 @@ class Match:
 
         await asyncio.gather(*(timed_pre_game(k) for k in contexts))
 
-        game = Game(self.server, self.scenario, self.teams, self.players, rec, out, self.episode_length)
-        clean, late = await play_game(game, contexts, random.Random(rec.seed), parts, self.scoring)
+        game = Game(self.server, self.scenario, self.teams, self.players, rec, out, self.episode_length, self.clock)
+        async with self._game_time():
+            clean, late = await play_game(game, contexts, random.Random(rec.seed), parts, self.scoring)
         rec.scores = {"clean": {k: clean.timeline[-1][k] for k in ("red", "blue")}}
         if late:
             rec.scores["upstream"] = {k: late.timeline[-1][k] for k in ("red", "blue")}
@@ -231,6 +244,26 @@ class Match:
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
         await self._post_game(rec, contexts)
+
+    @asynccontextmanager
+    async def _game_time(self) -> AsyncIterator[None]:
+        """The game on its clock: lockstep at its speed (between games it keeps real time's pace, so
+        idle bots cost no CPU), each team's LLM calls holding the world while in flight."""
+        clock = self.clock
+        if isinstance(clock, LockstepClock):
+            speed = self.clock_config.speed
+            await self.server.clock(unpaced=True) if speed == "max" else await self.server.clock(speed=float(speed))
+            clock.begin()
+            for key, llm in self.llms.items():
+                llm.thinking.during_game(lambda k=key: clock.thinking(k), clock.charge)
+        try:
+            yield
+        finally:
+            for llm in self.llms.values():
+                llm.thinking.after_game()
+            if isinstance(clock, LockstepClock) and self.server.alive:
+                await clock.end()
+                await self.server.clock(speed=1.0)
 
     async def _post_game(self, rec: EpisodeRecord, contexts: dict) -> None:
         """Each team looks back on what it saw; what went wrong for a team goes in the record."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 import asyncio
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +19,7 @@ from pillagerbench.players import Player
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.rundir import EpisodeDir, EpisodeRecord
 from pillagerbench.scenarios import Scenario
+from pillagerbench.server.clock import GameClock, RealClock
 from pillagerbench.server.seams import Server
 from pillagerbench.teams import Team
 
@@ -34,7 +35,9 @@ class Game:
     rec: EpisodeRecord
     out: Path
     length: float
-    start: float = 0.0  # time.monotonic() when the clock started
+    clock: GameClock = field(default_factory=RealClock)  # game time (config `clock`; server/clock.py)
+    start: float = 0.0  # the clock's now() when the game started
+    wall_start: float = 0.0  # time.monotonic() then
 
 
 class Part:
@@ -196,10 +199,13 @@ class LagMeter(Part):
 
     async def stopped(self, game: Game) -> None:
         rec = game.rec
-        rec.game_s = round(time.monotonic() - game.start, 3)
+        rec.game_s = round(time.monotonic() - game.wall_start, 3)
         rec.server_tps = round(((await game.server.status())["tick"] - self.first_tick) / rec.game_s, 2)
         rec.bot_lag = await bot_lag(game.players)
-        rec.lagged, rec.lag_reason = lag_verdict(rec.server_tps, rec.bot_lag)
+        if game.clock.mode == "lockstep":  # every tick waited for every bot: lag cost no game time
+            rec.lagged, rec.lag_reason = False, "none possible: clock=lockstep (each tick waited for every bot)"
+        else:
+            rec.lagged, rec.lag_reason = lag_verdict(rec.server_tps, rec.bot_lag)
 
 
 class Progress(Part):

@@ -37,7 +37,9 @@ async def play_match(
     everything closed. `last`: what each side saw of its last episode (a resumed series)."""
     from pillagerbench.llm.presets import make_llms
 
-    server = ArenaServer.from_config(cfg.server, log_path=log_path or rundir.free_server_log(), watch=watch)
+    server = ArenaServer.from_config(
+        cfg.server, log_path=log_path or rundir.free_server_log(), watch=watch, clock=cfg.clock.mode
+    )
     await server.start()
     if server.watch_url:
         print(f"live view: {server.watch_url}", flush=True)
@@ -57,6 +59,7 @@ async def play_match(
         on_tick=on_tick,
         llms=llms,
         entrants={side: entrant_of(config, side) for side in teams},
+        clock=cfg.clock,
     )
     match.last_records.update(last or {})
     try:

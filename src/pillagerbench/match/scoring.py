@@ -11,15 +11,14 @@ sampling: when it reads the game master's score, what it keeps, and where it wri
 
 from __future__ import annotations
 
-import asyncio
 import json
-import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from pillagerbench.config.registry import Registry
 from pillagerbench.scenarios.upstream import UPSTREAM_WAIT_S
+from pillagerbench.server.clock import GameClock
 
 
 class CleanScoring:
@@ -31,10 +30,12 @@ class CleanScoring:
     def __init__(self) -> None:
         self.timeline: list[dict[str, Any]] = []
 
-    async def sample(self, gm, start: float, length: float, second: Callable[[int, dict], None]) -> None:
+    async def sample(
+        self, gm, clock: GameClock, start: float, length: float, second: Callable[[int, dict], None]
+    ) -> None:
         for t in range(int(length)):
-            await asyncio.sleep(max(0.0, start + t - time.monotonic()))
-            scores = await gm.scores()
+            async with clock.at(start + t, "scores"):  # lockstep: read at that tick exactly
+                scores = await gm.scores()
             self.timeline.append({"t": t, **scores})
             second(t, scores)
 
@@ -54,11 +55,12 @@ class UpstreamScoring:
     def __init__(self) -> None:
         self.timeline: list[dict[str, Any]] = []
 
-    async def sample(self, gm, start: float, length: float, runs: dict[str, int]) -> None:
+    async def sample(self, gm, clock: GameClock, start: float, length: float, runs: dict[str, int]) -> None:
         for line in range(int(length) + 1):
             t = UPSTREAM_WAIT_S + line + 1
-            await asyncio.sleep(max(0.0, start + t - time.monotonic()))
-            self.timeline.append({"t": t, "line": line, **await gm.upstream_scores(dict(runs))})
+            async with clock.at(start + t, "upstream-scores"):
+                scores = await gm.upstream_scores(dict(runs))
+            self.timeline.append({"t": t, "line": line, **scores})
 
     def write(self, out: Path) -> None:
         (out / self.file).write_text(json.dumps(self.timeline))

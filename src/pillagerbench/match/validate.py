@@ -18,6 +18,7 @@ from pillagerbench.config.schema import (
     LLMConfig,
     RunConfig,
     check,
+    clock_problems,
     plain,
     problems,
     top_level_problems,
@@ -115,5 +116,5 @@ def check_run_config(cfg: Composed, *, teams: bool = True) -> RunConfig:
     watch = [] if any(line.startswith("watch=") for line in top) else watch_problems(data)
     if not teams and data.get("watch") is not None:  # an experiment: many servers at once
         watch = [f"watch={data['watch']}: the live view shows one match; experiments play many series at once"]
-    check(top + watch + layout_problems(data) + (team_problems(data) if teams else []))
+    check(top + watch + clock_problems(data) + layout_problems(data) + (team_problems(data) if teams else []))
     return RunConfig.of(data)

@@ -43,9 +43,14 @@ class ArenaServerError(RuntimeError):
 class ArenaServer(Control):
     @classmethod
     def from_config(
-        cls, server_cfg: ServerConfig, log_path: str | Path | None = None, watch: int | None = None
+        cls,
+        server_cfg: ServerConfig,
+        log_path: str | Path | None = None,
+        watch: int | None = None,
+        clock: str = "real",
     ) -> ArenaServer:
-        """Build from the `server` section of the configuration (and the top-level `watch` port)."""
+        """Build from the `server` section of the configuration (and the top-level `watch` port and
+        `clock.mode`)."""
         log_dir = server_cfg.log_dir
         return cls(
             host=server_cfg.host,
@@ -56,6 +61,7 @@ class ArenaServer(Control):
             tps=int(server_cfg.tps),
             operators=list(server_cfg.operators),
             watch=watch,
+            clock=clock,
         )
 
     def __init__(

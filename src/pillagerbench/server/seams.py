@@ -263,8 +263,8 @@ class Control(Protocol):
     async def release(self, who: str) -> int:
         return await self.send("release", who=who)
 
-    async def wait_tick(self, tick: int) -> int:
-        return await self.send("wait_tick", tick=tick)
+    async def wait_tick(self, tick: int, hold: str | None = None) -> int:
+        return await self.send("wait_tick", tick=tick, hold=hold)
 
     async def seed(self, seed: int) -> bool:
         return await self.send("seed", seed=seed)

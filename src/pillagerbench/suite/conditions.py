@@ -46,6 +46,10 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("episode_length", RULE, "the seconds of play: every score is the score at the whistle"),
     Setting("scoring", RULE, "which score red_score/blue_score are: clean or upstream's quirks"),
     Setting("protocol", RULE, "the step loop: upstream's waits around every run (built-in opponents too)"),
+    Setting(
+        "clock.mode", RULE, "what game time is: the wall clock (load and LLM latency cost game time) or lockstep ticks"
+    ),
+    Setting("clock.ticks_per_1k_tokens", RULE, "lockstep: the game time a team's thinking costs"),
     # -- arena: recorded on every episode (layout, split); tables and references compare by split
     Setting("layout", ARENA, "where everything is in the arena (recorded per episode as layout)"),
     Setting("split", ARENA, "each episode on its own generated layout (recorded per episode as split)"),
@@ -69,6 +73,7 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("run_dir", NOT, "where the run is written"),
     Setting("display", NOT, "how the terminal shows the run"),
     Setting("watch", NOT, "the live view (bounded so it never holds the game up)"),
+    Setting("clock.speed", NOT, "lockstep: how fast game time passes on the wall, not what happens in it"),
     Setting("parallel", NOT, "matches at once: load is recorded per episode as lag"),
     Setting("launcher", NOT, "where series run: load is recorded per episode as lag"),
     Setting("ray_address", NOT, "where series run"),
@@ -107,6 +112,7 @@ def defaults_from(conf: Path) -> dict[str, dict[str, Any]]:
     import yaml  # type: ignore[import-untyped]
 
     top = yaml.safe_load((conf / "config.yaml").read_text()) or {}
+    top["clock"] = yaml.safe_load((conf / "clock" / f"{DEFAULT_CLOCK}.yaml").read_text()) or {}
     out = {ANY_SCENARIO: {key: _select(top, key) for key in RULES}}  # a scenario of no conf/scenario file
     for path in sorted((conf / "scenario").glob("*.yaml")):
         tree = {**top, "scenario": yaml.safe_load(path.read_text()) or {}}
@@ -115,6 +121,7 @@ def defaults_from(conf: Path) -> dict[str, dict[str, Any]]:
 
 
 ANY_SCENARIO = "*"
+DEFAULT_CLOCK = "real"  # conf/config.yaml's defaults list: clock: real
 
 
 @lru_cache(maxsize=1)

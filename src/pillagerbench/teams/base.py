@@ -7,8 +7,6 @@ cancelled at the whistle; all of its players' code is stopped then), `post_game`
 
 from __future__ import annotations
 
-import asyncio
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,6 +15,7 @@ from typing import Any, ClassVar, Protocol
 from pillagerbench.llm import LLMClient
 from pillagerbench.rundir import LastEpisode, TeamState
 from pillagerbench.scenarios import Scenario, Side
+from pillagerbench.server.clock import GameClock, RealClock
 from pillagerbench.teams.options import TeamOptions
 
 
@@ -42,20 +41,32 @@ class TeamContext:
     out_dir: Path  # this team's artefacts for this episode
     observations: dict[str, list] = field(default_factory=dict)  # events from the players' reset
     episode_length: float = 120.0
-    deadline: float | None = None  # time.monotonic() at the whistle (set when the game starts)
+    deadline: float | None = None  # the clock's now() at the whistle (set when the game starts)
     last_episode: LastEpisode = field(default_factory=lambda: LastEpisode())  # what the team saw of its last episode
     seed: int = 0
     llm: LLMClient | None = None  # an LLM client for LLM teams
     # the LLM teams' loop (config `protocol`): "pillagerbench" (ours: reruns, re-asks) or "upstream"
     # (the paper's: no rerun after the iteration cap or a failed answer, CoT's 10 steps, no re-asks)
     protocol: str = "pillagerbench"
+    # game time (config `clock`; server/clock.py): the wall clock, or the arena's lockstep ticks
+    clock: GameClock = field(default_factory=RealClock)
 
     @property
     def upstream_protocol(self) -> bool:
         return self.protocol == "upstream"
 
     def time_left(self) -> float:
-        return float("inf") if self.deadline is None else max(0.0, self.deadline - time.monotonic())
+        """Seconds of game time to the whistle."""
+        return float("inf") if self.deadline is None else max(0.0, self.deadline - self.clock.now())
+
+    def wall_limit(self) -> float | None:
+        """How long an LLM call may take on the wall clock: to the whistle on the real clock; on the
+        lockstep clock the world waits for the answer (None)."""
+        return self.time_left() if self.clock.mode == "real" else None
+
+    async def sleep(self, seconds: float) -> None:
+        """Wait `seconds` of game time, or to the whistle if that comes first."""
+        await self.clock.sleep(min(seconds, self.time_left()))
 
     @property
     def opponent(self) -> Side:
@@ -94,7 +105,7 @@ class Team:
 
     async def play(self, ctx: TeamContext) -> None:
         """Drive the players until the whistle (the match cancels this task then)."""
-        await asyncio.sleep(ctx.time_left())
+        await ctx.sleep(ctx.time_left())
 
     async def post_game(self, ctx: TeamContext) -> None:
         """Look back after the game (ctx.last_episode holds this episode's record)."""

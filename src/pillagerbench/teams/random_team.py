@@ -16,7 +16,6 @@ from __future__ import annotations
 import asyncio
 import json
 import random
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import ClassVar
@@ -383,21 +382,21 @@ class RandomTeam(Team):
         player = ctx.players[name]
         gen = self.generator(ctx, k)
         obs = ev.last_observation(ctx.observations.get(name) or [])
-        start = ctx.deadline - ctx.episode_length if ctx.deadline else time.monotonic()
+        start = ctx.deadline - ctx.episode_length if ctx.deadline else ctx.clock.now()
         for n in range(self.max_actions):
             if ctx.time_left() <= 0:
                 break
             if n and n % self.pause_every == 0:
-                await asyncio.sleep(min(self.pause_s, ctx.time_left()))
+                await ctx.sleep(self.pause_s)
             action = gen.next(obs)
             self.iterations[k] += 1
-            entry = {"t": round(time.monotonic() - start, 2), **action.to_dict(), "saw": compact(obs)}
+            entry = {"t": round(ctx.clock.now() - start, 2), **action.to_dict(), "saw": compact(obs)}
             self.actions[name].append(entry)
             try:
                 events = await player.run(action.code, timeout=min(self.action_timeout_s, max(0.1, ctx.time_left())))
             except Exception as exc:  # noqa: BLE001 - a bot that cannot run code now: note it, wait a little, go on
                 entry["error"] = f"{type(exc).__name__}: {exc}"
-                await asyncio.sleep(min(1.0, ctx.time_left()))
+                await ctx.sleep(1.0)
                 continue
             errors = ev.errors(events)
             if errors:

@@ -43,6 +43,7 @@ function install (mode) {
     toFake: ['setTimeout', 'clearTimeout', 'setInterval', 'clearInterval', 'Date', 'performance'],
     ignoreMissingTimers: true
   })
+  searchClock(fake)
   for (const target of [globalThis, timers]) { // a timer's callback runs in the async context that set it
     for (const name of ['setTimeout', 'setInterval']) {
       const set = target[name]
@@ -52,6 +53,28 @@ function install (mode) {
       }
     }
   }
+}
+
+// Within a tick game time stands still, so code that limits its own work by the time it has spent
+// (mineflayer-pathfinder's A*: `tickTimeout` ms of search per tick, `thinkTimeout` in all) would never
+// stop. So each reading of performance.now() within one tick moves it on by READ_COST_MS: a search is
+// then limited by how many steps it takes (two readings per node: 7 ms per tick = 700 nodes), the same
+// on every machine. The readings start again at the tick's own time each tick (never past it).
+const READ_COST_MS = 0.005
+const READ_CAP_MS = TICK_MS - 1
+
+function searchClock (clock) {
+  const perf = require('perf_hooks').performance
+  const fakeNow = perf.now
+  let base = -1
+  let spent = 0
+  const now = function () {
+    const t = fakeNow.call(this)
+    if (t !== base) { base = t; spent = 0 } else if (spent < READ_CAP_MS) spent += READ_COST_MS
+    return t + spent
+  }
+  perf.now = now
+  if (globalThis.performance && globalThis.performance !== perf) globalThis.performance.now = now
 }
 
 // Move game time on by `ms`, running every timer due meanwhile (and the promises they settle).

@@ -160,7 +160,7 @@ const OPS = {
   clock: async (serv, args) => serv.pb.clock.configure(args),
   hold: async (serv, { who }) => serv.pb.clock.hold(who),
   release: async (serv, { who }) => serv.pb.clock.release(who),
-  wait_tick: async (serv, { tick }) => serv.pb.clock.waitTick(tick),
+  wait_tick: async (serv, { tick, hold }) => serv.pb.clock.waitTick(tick, hold),
   seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
   // The order in which the server visits its players (packets, block updates, anything that loops
   // over serv.players): the online players named in `names` first, in that order, then the rest as

@@ -240,23 +240,23 @@ class ChainOfThought(Team):
     async def _keep_running(self, ctx: TeamContext, k: int, player) -> None:
         program = self.programs[k] if k < len(self.programs) else None
         if program is None:  # the fallback: this player does nothing this episode
-            await asyncio.sleep(ctx.time_left())
+            await ctx.sleep(ctx.time_left())
             return
         while ctx.time_left() > 0:
             if ctx.upstream_protocol and self.iterations[k] >= UPSTREAM_STEPS:
-                await asyncio.sleep(ctx.time_left())  # upstream: no 11th step
+                await ctx.sleep(ctx.time_left())  # upstream: no 11th step
                 return
             self.iterations[k] += 1
-            started = time.monotonic()
+            started = ctx.clock.now()
             try:
                 await player.run(program.exec_code)  # the match stops it at the whistle
             except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and try again
                 self.record.setdefault("run_errors", []).append(
                     f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}"
                 )
-            quick = time.monotonic() - started
+            quick = ctx.clock.now() - started
             if ctx.time_left() > 0 and quick < self.restart_pause_s:
-                await asyncio.sleep(min(self.restart_pause_s - quick, ctx.time_left()))
+                await ctx.sleep(self.restart_pause_s - quick)
 
     async def post_game(self, ctx: TeamContext) -> None:
         players = ctx.side.player_names

@@ -208,11 +208,11 @@ class RemoteTeam(Team):
         names = ctx.side.player_names
         self.iterations = [0] * len(names)
         outbox: dict[str, list] = {n: [] for n in names}
-        start = time.monotonic()
+        start = ctx.clock.now()
         runners = [asyncio.create_task(self._keep_running(ctx, k, n, outbox)) for k, n in enumerate(names)]
         try:
             while ctx.time_left() > 0:
-                await asyncio.sleep(min(self.events_every_s, ctx.time_left()))
+                await ctx.sleep(self.events_every_s)
                 batch = {n: evs for n, evs in outbox.items() if evs}
                 if not batch:
                     continue
@@ -220,11 +220,13 @@ class RemoteTeam(Team):
                     outbox[n] = []
                 message = P.EventsRequest(
                     episode=ctx.episode,
-                    t=round(time.monotonic() - start, 3),
+                    t=round(ctx.clock.now() - start, 3),
                     time_left_s=round(ctx.time_left(), 3),
                     events=_jsonable(batch),
                 )
-                for name in self._take(ctx, await self._call("/events", message, P.Programs, self.call_timeout_s)):
+                async with ctx.clock.thinking(ctx.side.key):  # lockstep: the world waits for the answer
+                    answer = await self._call("/events", message, P.Programs, self.call_timeout_s)
+                for name in self._take(ctx, answer):
                     await ctx.players[name].stop()  # its runner starts the new program
         finally:
             for task in runners:
@@ -236,18 +238,18 @@ class RemoteTeam(Team):
         while ctx.time_left() > 0:
             code = self.programs.get(name)
             if not code:  # no program (yet): idle until one arrives
-                await asyncio.sleep(min(0.2, ctx.time_left()))
+                await ctx.sleep(0.2)
                 continue
             version = self.versions.get(name)
             self.iterations[k] += 1
-            started = time.monotonic()
+            started = ctx.clock.now()
             try:
                 await player.run(code, on_event=lambda event: outbox[name].append(event))
             except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and go on
                 self.problems.append(f"{name}: {type(exc).__name__}: {exc}")
-            quick = time.monotonic() - started
+            quick = ctx.clock.now() - started
             if self.versions.get(name) == version and ctx.time_left() > 0 and quick < self.restart_pause_s:
-                await asyncio.sleep(min(self.restart_pause_s - quick, ctx.time_left()))
+                await ctx.sleep(self.restart_pause_s - quick)
 
     async def post_game(self, ctx: TeamContext) -> None:
         last = last_seen_json(ctx.last_episode) if ctx.last_episode else {}

@@ -22,7 +22,6 @@ from the critique, until the iteration cap or the whistle.
 
 from __future__ import annotations
 
-import asyncio
 import time
 from typing import Any, Protocol
 
@@ -228,7 +227,7 @@ class BaseAgent:
             role=ACTION,
             parse=lambda a: parse_code(a.text, ctx.scenario.primitives),
             attempts=UPSTREAM_ATTEMPTS if ctx.upstream_protocol else self.team.attempts,
-            deadline=ctx.deadline,
+            deadline=ctx,
             retry=lambda p: PROMPTS["code_retry"].render(problem=p),
         )
         self._note(ACTION, asked, started, ctx)
@@ -242,7 +241,7 @@ class BaseAgent:
             role=CRITIC,
             parse=lambda a: parse_critique(a.text),
             attempts=self.team.attempts,
-            deadline=ctx.deadline,
+            deadline=ctx,
             retry=lambda p: PROMPTS["json_retry"].render(problem=p),
         )
         self._note(CRITIC, asked, started, ctx)
@@ -290,7 +289,7 @@ class BaseAgent:
             program = await self.write_code(ctx)
             if program is None:
                 failures += 1
-                await asyncio.sleep(min(t.restart_pause_s, ctx.time_left()))
+                await ctx.sleep(t.restart_pause_s)
             return program, failures
         await self._idle_until_whistle(ctx)
         return None
@@ -316,7 +315,7 @@ class BaseAgent:
             or not self.can_call(ctx, CRITIC)
         ):
             if duration < t.restart_pause_s:
-                await asyncio.sleep(min(t.restart_pause_s - duration, ctx.time_left()))
+                await ctx.sleep(t.restart_pause_s - duration)
             return fallback, failures
         await self.criticize(ctx)
         it["success"], it["critique"] = self.success, self.critique
@@ -324,7 +323,7 @@ class BaseAgent:
         if new is not None:
             return new, failures
         if duration < t.restart_pause_s:
-            await asyncio.sleep(min(t.restart_pause_s - duration, max(0.0, ctx.time_left())))
+            await ctx.sleep(t.restart_pause_s - duration)
         return (None if upstream else fallback), failures + 1
 
     async def _run(self, ctx, player, program: Program) -> tuple[dict[str, Any], float, bool, bool]:
@@ -339,9 +338,9 @@ class BaseAgent:
             self.record["reruns"] = self.reruns
         new_code = program.source != self.last_source
         self.last_source = program.source
-        started = time.monotonic()
+        started = ctx.clock.now()
         events = await player.run(program.exec_code)
-        duration = time.monotonic() - started
+        duration = ctx.clock.now() - started
         deduped, stats = dedupe(events, t.agent_names)
         self.stats = self.stats.add(stats)
         self.events = deduped
@@ -369,7 +368,7 @@ class BaseAgent:
 
     async def _idle_until_whistle(self, ctx) -> None:
         self._idle(ctx)
-        await asyncio.sleep(ctx.time_left())
+        await ctx.sleep(ctx.time_left())
 
     def _idle(self, ctx) -> None:
         self.record["idle_from_s"] = round(ctx.episode_length - ctx.time_left(), 2)

@@ -23,7 +23,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from pillagerbench.agents.asking import Asked, Chat, ask
+from pillagerbench.agents.asking import Asked, Chat, Whistle, ask
 from pillagerbench.llm import LLMResponse
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import primitives as prim
@@ -186,7 +186,7 @@ def _retry(problem: str) -> str:
 
 
 async def initial(
-    llm: Chat | None, scenario: Scenario, *, attempts: int = 3, deadline: float | None = None
+    llm: Chat | None, scenario: Scenario, *, attempts: int = 3, deadline: Whistle | None = None
 ) -> tuple[CausalGraph | None, Asked[CausalGraph]]:
     """The first graph, from the primitives' documentation and the scenario (one-shot)."""
     modules = list(scenario.primitives)
@@ -232,7 +232,7 @@ async def update(
     evidence: str,
     *,
     attempts: int = 3,
-    deadline: float | None = None,
+    deadline: Whistle | None = None,
 ) -> tuple[list[Relation] | None, Asked[list[Relation]]]:
     """New relations from last episode's evidence (few-shot); the caller merges them."""
     modules = list(scenario.primitives)

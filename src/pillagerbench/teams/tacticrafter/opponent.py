@@ -5,7 +5,7 @@ uses the same `[tactics]` tags as the tactics module (at most `max_items` items)
 
 from __future__ import annotations
 
-from pillagerbench.agents.asking import Asked, Chat, ask
+from pillagerbench.agents.asking import Asked, Chat, Whistle, ask
 
 from .tactics import extract_tactics
 from .templates import PROMPTS
@@ -26,7 +26,7 @@ async def update(
     previous: str,
     attempts: int = 3,
     max_items: int = 3,
-    deadline: float | None = None,
+    deadline: Whistle | None = None,
 ) -> Asked[str]:
     messages = [
         {

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import re
 
-from pillagerbench.agents.asking import Asked, Chat, ask
+from pillagerbench.agents.asking import Asked, Chat, Whistle, ask
 
 from .templates import PROMPTS
 
@@ -75,7 +75,7 @@ async def initial(
     graph: str,
     attempts: int = 3,
     max_items: int = 6,
-    deadline: float | None = None,
+    deadline: Whistle | None = None,
 ) -> Asked[str]:
     messages = [
         {"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=False)},
@@ -107,7 +107,7 @@ async def update(
     opponent: str,
     attempts: int = 3,
     max_items: int = 6,
-    deadline: float | None = None,
+    deadline: Whistle | None = None,
 ) -> Asked[str]:
     messages = [
         {"role": "system", "content": system_prompt(team_name, objective, scenario, graph, update=True)},

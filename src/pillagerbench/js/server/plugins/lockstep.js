@@ -47,7 +47,7 @@ module.exports.server = function (serv) {
       }
       if (state.tick % PUSH_EVERY === 0) serv.emit('control_event', { event: 'clock', tick: state.tick })
       for (let i = waiters.length - 1; i >= 0; i--) {
-        if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1](state.tick)
+        if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
       }
     } finally {
       state.busy = false
@@ -83,10 +83,13 @@ module.exports.server = function (serv) {
       schedule(0)
       return state.tick
     },
-    waitTick (tick) {
+    // Answer at `tick` (at once if it has come); with `who`, hold the clock for it there (a step of the
+    // game master's or a score sample, done exactly at that tick; then `release`).
+    waitTick (tick, who) {
       lockstepOnly('wait_tick')
-      if (tick <= state.tick) return Promise.resolve(state.tick)
-      return new Promise(resolve => waiters.push([tick, resolve]))
+      const reached = () => { if (who) holds.set(who, (holds.get(who) || 0) + 1); return state.tick }
+      if (tick <= state.tick) return Promise.resolve(reached())
+      return new Promise(resolve => waiters.push([tick, () => resolve(reached())]))
     },
     join (client) {
       members.set(client, state.tick)

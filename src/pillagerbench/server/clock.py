@@ -1,0 +1,169 @@
+"""Game time as the match, the game master and the teams read it (config `clock`, docs/clock.md).
+
+`RealClock` is the wall clock. `LockstepClock` is the arena server's tick (js/server/plugins/lockstep.js):
+game time is tick x 50 ms; it moves only when every bot has done the last tick and nothing holds it.
+Both give `now()` (game seconds), `sleep_until(t)`, `sleep(s)`, and `thinking(who)` around a player's
+LLM call (or a remote team's HTTP call): on the lockstep clock the world waits for it, and `charge`
+then costs `ticks_per_1k_tokens` of game time for the tokens it generated, if set. `at(t, who)` runs a
+step of the game (the game master's, a score sample) at game time `t`: on the lockstep clock at that
+tick exactly, with the world held until the step is done. `end()` at the whistle releases what
+thinking still holds (stopping the players needs ticks); `begin()` before the next game.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import math
+import time
+from collections.abc import AsyncIterator
+from contextlib import AbstractAsyncContextManager, asynccontextmanager
+from typing import Protocol
+
+from pillagerbench.server.seams import Control, Events
+
+TICK_S = 0.05
+
+
+class GameClock(Protocol):
+    mode: str
+
+    def now(self) -> float: ...
+
+    async def sleep_until(self, t: float) -> None: ...
+
+    async def sleep(self, seconds: float) -> None: ...
+
+    def thinking(self, who: str) -> AbstractAsyncContextManager[None]: ...
+
+    def at(self, t: float, who: str) -> AbstractAsyncContextManager[None]: ...
+
+    async def charge(self, tokens: int) -> None: ...
+
+    async def end(self) -> None: ...
+
+
+async def _forever() -> None:
+    await asyncio.Event().wait()
+
+
+class RealClock:
+    """The wall clock (clock=real): what every episode played on before lockstep."""
+
+    mode = "real"
+
+    def now(self) -> float:
+        return time.monotonic()
+
+    async def sleep_until(self, t: float) -> None:
+        await self.sleep(t - time.monotonic())
+
+    async def sleep(self, seconds: float) -> None:
+        await (asyncio.sleep(max(0.0, seconds)) if math.isfinite(seconds) else _forever())
+
+    @asynccontextmanager
+    async def thinking(self, who: str) -> AsyncIterator[None]:
+        yield
+
+    @asynccontextmanager
+    async def at(self, t: float, who: str) -> AsyncIterator[None]:
+        await self.sleep_until(t)
+        yield
+
+    async def charge(self, tokens: int) -> None:
+        return None
+
+    async def end(self) -> None:
+        return None
+
+
+class LockstepClock:
+    """The arena server's lockstep tick (clock=lockstep). `start()` before use, `close()` after."""
+
+    mode = "lockstep"
+
+    def __init__(self, server: Control, events: Events | None, ticks_per_1k_tokens: float | None = None):
+        self.server = server
+        self.events = events
+        self.ticks_per_1k_tokens = ticks_per_1k_tokens
+        self.tick = 0
+        self.over = False  # after the whistle thinking holds the world no more
+        self._held: dict[str, int] = {}  # who -> holds of thinking() still on
+        self._queue: asyncio.Queue | None = None
+        self._follow: asyncio.Task | None = None
+
+    async def start(self) -> LockstepClock:
+        state = await self.server.clock()
+        if state["mode"] != "lockstep":
+            raise RuntimeError(f"the arena server runs on the {state['mode']} clock, not lockstep")
+        self._seen(state["tick"])
+        if self.events is not None:
+            self._queue = self.events.subscribe()
+            self._follow = asyncio.create_task(self._read(self._queue), name="lockstep-clock")
+        return self
+
+    async def _read(self, queue: asyncio.Queue) -> None:
+        while True:
+            ev = await queue.get()
+            if ev.get("event") == "clock":
+                self._seen(int(ev["tick"]))
+
+    def _seen(self, tick: int) -> None:
+        self.tick = max(self.tick, tick)
+
+    async def close(self) -> None:
+        if self._follow is not None:
+            self._follow.cancel()
+        if self._queue is not None and self.events is not None:
+            self.events.unsubscribe(self._queue)
+
+    def now(self) -> float:
+        return self.tick * TICK_S
+
+    @staticmethod
+    def tick_of(t: float) -> int:
+        """The first tick at or after game time `t`."""
+        return math.ceil(round(t / TICK_S, 6))
+
+    async def sleep_until(self, t: float) -> None:
+        if not math.isfinite(t):
+            await _forever()
+        self._seen(await self.server.wait_tick(self.tick_of(t)))
+
+    async def sleep(self, seconds: float) -> None:
+        await self.sleep_until(self.now() + max(0.0, seconds))
+
+    @asynccontextmanager
+    async def thinking(self, who: str) -> AsyncIterator[None]:
+        if self.over:
+            yield
+            return
+        self._held[who] = self._held.get(who, 0) + 1
+        self._seen(await self.server.hold(who))
+        try:
+            yield
+        finally:
+            if self._held.get(who, 0) > 0:  # not released by end() meanwhile
+                self._held[who] -= 1
+                await asyncio.shield(self.server.release(who))
+
+    @asynccontextmanager
+    async def at(self, t: float, who: str) -> AsyncIterator[None]:
+        self._seen(await self.server.wait_tick(self.tick_of(t), hold=who))
+        try:
+            yield
+        finally:
+            await asyncio.shield(self.server.release(who))
+
+    async def charge(self, tokens: int) -> None:
+        if self.ticks_per_1k_tokens and tokens > 0 and not self.over:
+            await self.sleep(tokens / 1000 * self.ticks_per_1k_tokens * TICK_S)
+
+    async def end(self) -> None:
+        self.over = True
+        for who, n in list(self._held.items()):
+            for _ in range(n):
+                await self.server.release(who)
+        self._held.clear()
+
+    def begin(self) -> None:
+        self.over = False
