@@ -32,6 +32,8 @@ OTHER = {
     "episode_length": 30,
     "scoring": "upstream",
     "protocol": "upstream",
+    "clock.mode": "lockstep",
+    "clock.ticks_per_1k_tokens": 5,
 }
 
 
@@ -93,11 +95,10 @@ def package(tmp_path: Path) -> Path:
 def test_each_rules_default_changed_in_conf_moves_the_suite_hash(package, key):
     before = suite.suite_hash(package)
     parent, _, leaf = key.rpartition(".")
-    files = (
-        [package / "conf" / "scenario" / f"{s}.yaml" for s in SCENARIOS]
-        if parent == "scenario"
-        else [package / "conf" / "config.yaml"]
-    )
+    files = {
+        "scenario": [package / "conf" / "scenario" / f"{s}.yaml" for s in SCENARIOS],
+        "clock": [package / "conf" / "clock" / f"{conditions.DEFAULT_CLOCK}.yaml"],
+    }.get(parent, [package / "conf" / "config.yaml"])
     for path in files:
         text = path.read_text()
         line = next(ln for ln in text.splitlines() if ln.strip().startswith(f"{leaf}:"))

@@ -22,7 +22,14 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "pillagerbench"
 FIXTURE = Path(__file__).parent / "experiments" / "fixtures" / "run_6198d49"
 # the edge: where the command line and conf/ are composed, checked and typed (and help reads conf/)
 EDGE = {"config/compose.py", "config/schema.py", "match/validate.py", "cli/help.py"}
-GROUPS = {"scenario", "red", "blue", "llm", "experiment"}  # config groups: their defaults are their YAML files'
+GROUPS = {
+    "scenario",
+    "red",
+    "blue",
+    "llm",
+    "experiment",
+    "clock",
+}  # config groups: their defaults are their YAML files'
 
 
 def _defaults(model: type[BaseModel], prefix: str = "") -> dict[str, object]:
@@ -52,6 +59,13 @@ def test_each_default_of_conf_config_yaml_is_the_schemas():
     differ = {key: (value, _select(conf, key)) for key, value in found.items() if value != _select(conf, key)}
     assert not differ, f"schema default vs conf/config.yaml: {differ}"
     assert default("scoring") == "clean" and default("retries") == RETRIES
+
+
+def test_the_default_clock_is_the_schemas():
+    from pillagerbench.config.schema import ClockConfig
+
+    conf = yaml.safe_load((SRC / "conf" / "clock" / "real.yaml").read_text())
+    assert ClockConfig(**conf) == ClockConfig() == RunConfig.model_fields["clock"].default
 
 
 def test_every_top_level_key_of_the_configuration_is_typed():

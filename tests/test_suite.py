@@ -26,7 +26,11 @@ def copy(tmp_path: Path) -> tuple[Path, Path]:
     """The package's score files (and one file that moves no score) copied, with a versions file
     recording their hash as 'suite 1.0'."""
     root = tmp_path / "pillagerbench"
-    conf = [suite.PACKAGE / "conf" / "config.yaml", *sorted((suite.PACKAGE / "conf" / "scenario").glob("*.yaml"))]
+    conf = [
+        suite.PACKAGE / "conf" / "config.yaml",
+        *sorted((suite.PACKAGE / "conf" / "scenario").glob("*.yaml")),
+        *sorted((suite.PACKAGE / "conf" / "clock").glob("*.yaml")),
+    ]
     for path in suite.score_files() + [suite.PACKAGE / "teams" / "cot" / "team.py", *conf]:
         target = root / path.relative_to(suite.PACKAGE)
         target.parent.mkdir(parents=True, exist_ok=True)

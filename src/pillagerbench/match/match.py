@@ -200,7 +200,12 @@ class Match:
             team_dir.mkdir(exist_ok=True)
             handles: dict[str, PlayerHandle] = {
                 n: RecordedPlayer(
-                    self.players[n], sink, rec.runs, step_wait_s=self.step_wait_s, on_program=replay.program
+                    self.players[n],
+                    sink,
+                    rec.runs,
+                    step_wait_s=self.step_wait_s,
+                    on_program=replay.program,
+                    clock=self.clock,
                 )
                 for n in side.player_names
             }

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import asyncio
 from collections.abc import Callable
 from typing import Any
 
 from pillagerbench.players import Player
+from pillagerbench.server.clock import GameClock, RealClock
 
 
 class RecordedPlayer:
@@ -22,8 +22,10 @@ class RecordedPlayer:
         *,
         step_wait_s: float = 0.0,
         on_program: Callable[[str, str, str | None], None] | None = None,
+        clock: GameClock | None = None,
     ):
         self._player, self._sink = player, sink
+        self._clock = clock or RealClock()  # the step waits are game time
         self._runs = {} if runs is None else runs  # code runs started per player this episode
         self._wait, self._on_program = step_wait_s, on_program
 
@@ -43,7 +45,7 @@ class RecordedPlayer:
                 on_event(event)
 
         if self._wait:
-            await asyncio.sleep(self._wait)  # upstream's step: the wait before the code (cancelled at the whistle)
+            await self._clock.sleep(self._wait)  # upstream's step: the wait before the code (cancelled at the whistle)
         self._runs[self._player.name] = self._runs.get(self._player.name, 0) + 1
         self._program("start")
         try:
@@ -51,5 +53,5 @@ class RecordedPlayer:
         finally:
             self._program("end")
         if self._wait:
-            await asyncio.sleep(self._wait)  # and the wait after it, before the step returns
+            await self._clock.sleep(self._wait)  # and the wait after it, before the step returns
         return events
