@@ -8,6 +8,7 @@ import pytest_asyncio
 
 from pillagerbench.players import Player
 from pillagerbench.server import ArenaServer
+from tests.support.llm import fake_llm  # noqa: F401 - a fixture (test_lockstep_thinking.py)
 
 _area_ids = itertools.count(1)
 _names = itertools.count(1)

@@ -10,7 +10,7 @@ import pytest_asyncio
 from pillagerbench.llm.fake_server import Rule
 from pillagerbench.server import ArenaServer
 from pillagerbench.server.clock import LockstepClock, RealClock
-from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
+from tests.support.llm import llm_client_fixture
 
 llm_client = llm_client_fixture()
 
