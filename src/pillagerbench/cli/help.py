@@ -27,7 +27,7 @@ class CommandHelp:
     usage: tuple[str, ...]
     examples: tuple[str, ...]
     keys: tuple[str, ...] = ()  # keys of conf/config.yaml (a section such as `server` stands for its keys)
-    groups: tuple[str, ...] = ()  # config groups shown as keys: scenario, red, blue, llm, experiment
+    groups: tuple[str, ...] = ()  # config groups shown as keys: scenario, red, blue, llm, experiment, clock
     llm_keys: bool = False  # the keys of an LLM preset (conf/llm/base.yaml), as llm.KEY
     choices: tuple[str, ...] = ()  # lists to show: scenarios, teams, llm, experiments
     doc: bool = False  # the command's docstring (its own arguments)
@@ -45,7 +45,7 @@ HELP: dict[str, CommandHelp] = {
             "pillagerbench run experiment=NAME [experiment.KEY=VALUE ...] [key=value ...]",
         ),
         keys=(ALL,),
-        groups=("scenario", "red", "blue", "llm", "experiment"),
+        groups=("scenario", "red", "blue", "llm", "experiment", "clock"),
         llm_keys=True,
         choices=("scenarios", "teams", "llm", "experiments"),
         examples=(
@@ -189,6 +189,7 @@ GROUPS = {
         "experiment",
         "many series from the paper's experiment designs (see experiments); keys experiment.KEY",
     ),
+    "clock": ("clock", "what game time is: real (the wall clock) or lockstep (docs/clock.md); keys clock.KEY"),
 }
 
 
@@ -295,6 +296,12 @@ def key_lines(spec: CommandHelp) -> list[str]:
         lines.append(_key_line(group, chosen.get(hydra_name, "null"), what, []))
         if group == "scenario":
             lines += scenario_key_lines()
+        if group == "clock":
+            lines += [
+                _key_line(key, default, comment, [])
+                for key, default, comment in yaml_keys(_conf("clock", "lockstep.yaml"), "clock")
+                if key != "clock.mode"
+            ]
     for key, default, comment in yaml_keys(_conf("config.yaml")):
         if ALL in spec.keys or key in spec.keys or key.split(".")[0] in spec.keys:
             lines.append(_key_line(key, default, comment, schema_choices(RunConfig, key.split("."))))

@@ -83,7 +83,7 @@ class Replay(Part):
             },
             "extra_players": [p.name for p in sc.extra_players],
         }
-        self.recorder = Recorder(game.server, game.out / RECORDING, header, box=sc.arena.box)
+        self.recorder = Recorder(game.server, game.out / RECORDING, header, box=sc.arena.box, clock=game.clock)
         await self.recorder.start()
 
     def second(self, game: Game, t: int, scores: dict[str, float]) -> None:

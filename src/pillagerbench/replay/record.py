@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.rundir.names import REPLAY
+from pillagerbench.server.clock import GameClock, RealClock
 
 RECORDING = REPLAY  # the recording in an episode directory (rundir/names.py)
 FORMAT = "pillagerbench-replay"
@@ -32,8 +33,11 @@ GROUND_Y = 3  # the flat world's grass layer: the lowest layer a top-down map ne
 
 
 class Recorder:
-    def __init__(self, server, path: Path, header: dict[str, Any], box: tuple | None = None):
+    def __init__(
+        self, server, path: Path, header: dict[str, Any], box: tuple | None = None, clock: GameClock | None = None
+    ):
         self.server, self.path, self.box = server, Path(path), box
+        self.clock = clock or RealClock()  # frames and their times in game time (config `clock`)
         self.header = {"type": "header", "format": FORMAT, "version": VERSION, "frame_hz": FRAME_HZ, **header}
         self._file: gzip.GzipFile | None = None
         self._task: asyncio.Task | None = None
@@ -59,7 +63,7 @@ class Recorder:
             self._last_flush = now
 
     def now(self) -> float:
-        return round(time.monotonic() - self._start, 2)
+        return round(self.clock.now() - self._start, 2)
 
     # ---- life cycle ----
     async def start(self) -> None:
@@ -75,8 +79,8 @@ class Recorder:
                 {"type": "blocks", "box": [[x0, GROUND_Y, z0], [x1, y1, z1]], "palette": list(palette), "blocks": rows}
             )
         self._events = self.server.control.subscribe()
-        self._start = time.monotonic()
-        self._last_flush = self._start
+        self._start = self.clock.now()
+        self._last_flush = time.monotonic()
         await self._frame(start=True)
         self._task = asyncio.create_task(self._loop(), name="replay-recorder")
 
@@ -88,9 +92,9 @@ class Recorder:
         try:
             while not self._stopping:
                 due = self._start + k * period
-                await asyncio.sleep(max(0.0, due - time.monotonic()))
+                await self.clock.sleep_until(due)
                 await self._frame()
-                k = max(k + 1, int((time.monotonic() - self._start) / period) + 1)  # late: skip, never bunch up
+                k = max(k + 1, int((self.clock.now() - self._start) / period) + 1)  # late: skip, never bunch up
         except asyncio.CancelledError:
             raise
         except Exception as exc:  # noqa: BLE001 - the recording ends; the episode goes on
