@@ -160,10 +160,8 @@ class LockstepClock:
 
     async def end(self) -> None:
         self.over = True
-        for who, n in list(self._held.items()):
-            for _ in range(n):
-                await self.server.release(who)
         self._held.clear()
+        await self.server.clock(drop_holds=True)  # a step cancelled at the whistle may still be due a hold
 
     def begin(self) -> None:
         self.over = False

@@ -254,8 +254,10 @@ class Control(Protocol):
             "watch", center=center, title=title, episode=episode, t=t, length=length, scores=scores, sides=sides
         )
 
-    async def clock(self, speed: float | None = None, unpaced: bool | None = None) -> ClockState:
-        return await self.send("clock", speed=speed, unpaced=unpaced)
+    async def clock(
+        self, speed: float | None = None, unpaced: bool | None = None, drop_holds: bool | None = None
+    ) -> ClockState:
+        return await self.send("clock", speed=speed, unpaced=unpaced, drop_holds=drop_holds)
 
     async def hold(self, who: str) -> int:
         return await self.send("hold", who=who)

@@ -156,7 +156,8 @@ const OPS = {
   // The live view's scoreboard and centre (plugins/watch.js): {center, title, episode, t, length, scores, sides}.
   watch: async (serv, args) => serv.pb.watch.update(args),
   // The game clock (plugins/lockstep.js): its mode and tick; `speed` paces it at that multiple of real
-  // time, `unpaced` lets it run as fast as the bots allow.
+  // time, `unpaced` lets it run as fast as the bots allow; `drop_holds` ends every hold, and every hold
+  // a wait_tick still to come would take (the whistle).
   clock: async (serv, args) => serv.pb.clock.configure(args),
   hold: async (serv, { who }) => serv.pb.clock.hold(who),
   release: async (serv, { who }) => serv.pb.clock.release(who),

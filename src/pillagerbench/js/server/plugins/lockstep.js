@@ -60,7 +60,11 @@ module.exports.server = function (serv) {
 
   serv.pb.clock = {
     describe,
-    configure ({ speed, unpaced }) {
+    configure ({ speed, unpaced, drop_holds: dropHolds }) {
+      if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
+        holds.clear()
+        for (const w of waiters) w[2] = null
+      }
       if (speed !== undefined) {
         if (!(speed > 0)) throw new ControlError(`speed must be a multiple of real time above 0, got ${JSON.stringify(speed)}`)
         state.speed = speed
@@ -87,9 +91,9 @@ module.exports.server = function (serv) {
     // game master's or a score sample, done exactly at that tick; then `release`).
     waitTick (tick, who) {
       lockstepOnly('wait_tick')
-      const reached = () => { if (who) holds.set(who, (holds.get(who) || 0) + 1); return state.tick }
-      if (tick <= state.tick) return Promise.resolve(reached())
-      return new Promise(resolve => waiters.push([tick, () => resolve(reached())]))
+      const reached = (holder) => { if (holder) holds.set(holder, (holds.get(holder) || 0) + 1); return state.tick }
+      if (tick <= state.tick) return Promise.resolve(reached(who))
+      return new Promise(resolve => { const w = [tick, () => resolve(reached(w[2])), who || null]; waiters.push(w) })
     },
     join (client) {
       members.set(client, state.tick)
