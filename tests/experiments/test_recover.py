@@ -54,4 +54,4 @@ def test_a_plain_run_directory_resumes_as_one_series(tmp_path):
     assert title == "run" and len(specs) == 1
     spec = specs[0]
     assert (spec.red, spec.blue, spec.episodes, spec.seed) == ("passive", "balanced", 3, 4)
-    assert dirs[spec.id] == tmp_path and "resume" not in spec.config
+    assert dirs[spec.id] == tmp_path and "resume" not in spec.config.stored()

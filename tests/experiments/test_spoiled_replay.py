@@ -17,7 +17,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pillagerbench.config.compose import load_config, to_dict
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.series import run_series
 from pillagerbench.host import machine
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
@@ -58,7 +59,7 @@ def spec_of(fake: FakeLLMServer, episodes: int, retries: int, *extra: str) -> Se
         ]
     )
     return SeriesSpec(
-        "run", 0, "run", "mushroom_war", "cot", "do_nothing", "cot", "do_nothing", episodes, 0, to_dict(cfg)
+        "run", 0, "run", "mushroom_war", "cot", "do_nothing", "cot", "do_nothing", episodes, 0, RunConfig.of(cfg)
     )
 
 

@@ -209,6 +209,10 @@ class RunConfig(RunnerConfig):
         """The configuration as composed or stored (what records write: manifest.json, experiment.json)."""
         return copy.deepcopy(self._stored)
 
+    def without(self, keys: tuple[str, ...]) -> RunConfig:
+        """This configuration without the top-level `keys` (a series' config: the runner's keys left out)."""
+        return RunConfig.of({k: v for k, v in self._stored.items() if k not in keys})
+
     def select(self, key: str) -> Any:
         """A dotted key's value as stored (None if absent): conditions.conditions_of reads rules so."""
         node: Any = self._stored

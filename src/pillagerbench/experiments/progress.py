@@ -19,7 +19,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from rich.table import Table
 
 from pillagerbench.config.schema import default
-from pillagerbench.rundir import EpisodeRecord, RunDir, progress, retries_of, spoiled
+from pillagerbench.rundir import EpisodeRecord, RunDir, progress, spoiled
 
 
 def fmt_duration(seconds: float | None) -> str:
@@ -85,7 +85,7 @@ class ExperimentProgress:
         running = []
         for spec in self.specs:
             fin = self.finished(spec)
-            settled = progress(fin, spec.episodes, retries_of(spec.config))  # a spoiled episode is played again
+            settled = progress(fin, spec.episodes, spec.config.retries)  # a spoiled episode is played again
             done += settled.used + settled.given_up
             failed += sum(not r.ok for r in fin.values())
             status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else {}

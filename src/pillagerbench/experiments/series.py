@@ -60,7 +60,7 @@ async def run_series(
 
     rundir = RunDir(series_dir)
     rundir.path.mkdir(parents=True, exist_ok=True)
-    cfg = RunConfig.of(spec.config)
+    cfg = spec.config
     if not rundir.series_path.exists() and run_dir is not None and Path(run_dir) != rundir.path:
         write_series(rundir, spec)
     finished, discarded = rundir.recover()

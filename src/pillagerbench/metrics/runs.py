@@ -45,7 +45,6 @@ from pillagerbench.rundir import (
     faults,
     progress,
     read_series,
-    retries_of,
     spoiled,
 )
 from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
@@ -155,7 +154,7 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
                 root=run,
                 dir=series_dir,
                 version=manifest.scenario_version if manifest else "?",
-                episode_length=float(spec.config.get("episode_length", 120)),
+                episode_length=spec.config.episode_length,
                 manifest=manifest,
                 entrants=series_entrants(spec.config),
             )
@@ -199,13 +198,13 @@ def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, EpisodeRecord]
             skipped.append(
                 (str(d), f"half-written: no line in {EPISODES} (killed mid-episode; resume=RUN_DIR plays it again)")
             )
-    done = progress(finished, s.episodes, retries_of(s.config))
+    done = progress(finished, s.episodes, s.config.retries)
     if done.given_up:
         skipped.append(
             (
                 where,
                 f"{done.given_up} of {s.episodes} planned episode(s) given up: every try spoiled on our side "
-                f"(retries={retries_of(s.config)}); {done.used} of {s.episodes} used",
+                f"(retries={s.config.retries}); {done.used} of {s.episodes} used",
             )
         )
     if not done.complete:

@@ -25,7 +25,6 @@ import pandas as pd
 
 from pillagerbench.metrics.calibration import opponent_groups
 from pillagerbench.metrics.columns import Col
-from pillagerbench.metrics.entrants import series_entrants
 from pillagerbench.metrics.formulas import Estimate, iterations, llm_metrics, mean_ci, over_opponents, pairing
 
 METRICS = ("P", "S", "D", "W")
@@ -108,7 +107,7 @@ def planned(series: list, *frames: pd.DataFrame) -> dict[tuple[str, str], int]:
     out: dict[tuple[str, str], int] = {}
     for s in series:
         if s.group is None or s.group == "training":
-            red = named.get((str(s.run), s.id)) or series_entrants(s.config)["red"]["label"]
+            red = named.get((str(s.run), s.id)) or s.entrants["red"]["label"]
             out[(red, s.scenario)] = out.get((red, s.scenario), 0) + int(s.episodes)
     return out
 

@@ -18,7 +18,7 @@ from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, ExperimentFile, read_experiment, write_experiment_file
 from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
 from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
-from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress, retries_of
+from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
 from pillagerbench.rundir.team_state import TeamState, has_team_state, team_state_path
 
@@ -49,7 +49,6 @@ __all__ = [
     "progress",
     "read_experiment",
     "read_series",
-    "retries_of",
     "spoiled",
     "team_state_path",
     "write_experiment_file",
