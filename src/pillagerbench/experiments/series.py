@@ -21,6 +21,7 @@ from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec
 from pillagerbench.rundir import (
     EpisodeRecord,
+    Live,
     RunDir,
     episodes_to_play,
     has_team_state,
@@ -124,7 +125,7 @@ async def _play(
     last = {side: rundir.last_seen(finished[ok[-1]]) for side in teams} if ok else {}
 
     def tick(status: dict) -> None:
-        rundir.write_live(status)
+        rundir.write_live(Live.of(status))
         if on_tick:
             on_tick(status)
 

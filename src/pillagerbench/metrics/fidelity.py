@@ -127,8 +127,8 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     if len(table) and table["suite_reference"].notna().any():
         figures = reference_figures()
         notes.append(
-            f"fidelity: vs_suite compares with {figures['suite']}'s own reference (suite/reference_figures.json; "
-            f"{figures['status'].split(':')[0]})"
+            f"fidelity: vs_suite compares with {figures.suite}'s own reference (suite/reference_figures.json; "
+            f"{figures.status.split(':')[0]})"
         )
     unknown = sorted(set(table["scenario"]) - set(REFERENCE_SCORES)) if len(table) else []
     if unknown:
@@ -170,12 +170,12 @@ NO_SUITE_FIGURE = {"suite_reference": math.nan, "suite_reference_ci": math.nan, 
 def beside_suite(scenario: str, team: str, scoring: str, e) -> dict:
     """The suite's own figure for this opponent and scoring, and ✓ when the run's mean agrees with
     it within the two intervals combined (– without a figure or an interval)."""
-    ref = reference_figures()["scenarios"].get(scenario, {}).get(team, {}).get(scoring)
+    ref = reference_figures().of(scenario, team, scoring)
     if ref is None:
         return NO_SUITE_FIGURE
-    spread = math.hypot(e.ci, ref["ci"])
-    mark = "–" if math.isnan(spread) else "✓" if abs(e.mean - ref["mean"]) <= spread else "✗"
-    return {"suite_reference": ref["mean"], "suite_reference_ci": ref["ci"], "vs_suite": mark}
+    spread = math.hypot(e.ci, ref.ci)
+    mark = "–" if math.isnan(spread) else "✓" if abs(e.mean - ref.mean) <= spread else "✗"
+    return {"suite_reference": ref.mean, "suite_reference_ci": ref.ci, "vs_suite": mark}
 
 
 # -- the paper's Benchmark Analysis claims ------------------------------------------------------------

@@ -32,7 +32,7 @@ import pandas as pd
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
-from pillagerbench.metrics.faults import name_entrants
+from pillagerbench.metrics.faults import FaultRow, name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import (
     EPISODES,
@@ -81,7 +81,7 @@ class Runs:
     calibration_files: list[Path] = field(default_factory=list)
     runs: list[Path] = field(default_factory=list)  # every run's name (a bundle's: the paths exported)
     roots: dict[Path, Path] = field(default_factory=dict)  # a run's name -> its directory on disk
-    faults: list[dict] = field(default_factory=list)  # every finished episode's faults (metrics/faults.py)
+    faults: list[FaultRow] = field(default_factory=list)  # every finished episode's faults (metrics/faults.py)
     suites: list[str] = field(default_factory=list)  # the suite versions of the episodes used
     bundles: list[Path] = field(default_factory=list)  # results bundles among the inputs
     unverified: list[Path] = field(default_factory=list)  # bundles read without their checks (--no-verify)
@@ -168,7 +168,7 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list, spoilt: 
     used = 0
     for i in sorted(finished):
         rec = finished[i]
-        found += [{"run": str(s.run), "series": s.id, "episode": i, **f} for f in faults(rec)]
+        found += [FaultRow.at(str(s.run), s.id, i, f) for f in faults(rec)]
         ep = RunDir(s.dir).files(i)
         timeline = _timeline(s, rec, ep, skipped)
         if timeline is None:
@@ -344,7 +344,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     rows: list[Any] = []
     ledger: list[Any] = []
     cals: list[Any] = []
-    found: list[Any] = []
+    found: list[FaultRow] = []
     spoilt: list[Any] = []
     inputs = [Path(p) for p in paths]
     roots = {name: run for run, name in _inputs(inputs)}

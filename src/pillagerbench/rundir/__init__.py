@@ -16,7 +16,8 @@ from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_ind
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, TimelinePoint, last_seen_json, winner_of
 from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, ExperimentFile, read_experiment, write_experiment_file
-from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
+from pillagerbench.rundir.faults import HARNESS, TEAM, Fault, faults, spoiled
+from pillagerbench.rundir.live import Live
 from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
 from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
@@ -32,7 +33,9 @@ __all__ = [
     "EpisodeDir",
     "EpisodeRecord",
     "ExperimentFile",
+    "Fault",
     "LastEpisode",
+    "Live",
     "Manifest",
     "Progress",
     "RunDir",
