@@ -35,8 +35,8 @@ def main() -> None:
     fixed_pairs = fixed_test(0.5, bounds.p1 - bounds.p0, bounds.alpha, bounds.beta)
     rng = random.Random(a.seed)
     rows = []
-    for scenario, teams in reference_figures()["scenarios"].items():
-        model = {t: (v["clean"]["mean"], sd_of(v["clean"]["ci"], v["clean"]["n"])) for t, v in teams.items()}
+    for scenario, teams in reference_figures().scenarios.items():
+        model = {t: (v["clean"].mean, sd_of(v["clean"].ci, v["clean"].n)) for t, v in teams.items()}
         for x, y in itertools.combinations(model, 2):
             better, worse = (x, y) if model[x][0] >= model[y][0] else (y, x)
             (mb, sb), (mw, sw) = model[better], model[worse]

@@ -68,6 +68,23 @@ def test_the_default_clock_is_the_schemas():
     assert ClockConfig(**conf) == ClockConfig() == RunConfig.model_fields["clock"].default
 
 
+def test_the_schema_writes_no_default_of_its_own():
+    """Every default of the top-level keys, llm_cache and llm_ledger is conf/config.yaml's (`written`)."""
+    tree = ast.parse((SRC / "config" / "schema.py").read_text(encoding="utf-8"))
+    models = {"RunnerConfig", "RunConfig", "LLMCacheConfig", "LLMLedgerConfig"}
+    own = []
+    for cls in (n for n in tree.body if isinstance(n, ast.ClassDef) and n.name in models):
+        for field in (n for n in cls.body if isinstance(n, ast.AnnAssign) and n.value is not None):
+            value = field.value
+            if isinstance(value, ast.Call) and getattr(value.func, "id", "") == "Field":
+                value = next(
+                    (k.value for k in value.keywords if k.arg == "default"), value.args[0] if value.args else None
+                )
+            if isinstance(value, ast.Constant) and ast.unparse(field.target) not in GROUPS:  # a group's: its YAML's
+                own.append(f"{cls.name}.{ast.unparse(field.target)} = {value.value!r}")
+    assert not own, "take these defaults from conf/config.yaml (written(KEY)): " + ", ".join(own)
+
+
 def test_every_top_level_key_of_the_configuration_is_typed():
     composed = to_dict(load_config(["experiment=calibration"]))
     assert set(composed) <= set(RunConfig.model_fields)

@@ -26,7 +26,7 @@ def test_every_series_of_an_experiment_plays_with_the_papers_settings():
     argv = ["experiment=main_benchmark", "experiment.team=passive", "paper=true"]
     specs = build_series(RunConfig.of(load_config(argv)), argv)
     assert len(specs) == 30
-    assert {(s.config["scoring"], s.config["protocol"]) for s in specs} == {("upstream", "upstream")}
+    assert {(s.config.scoring, s.config.protocol) for s in specs} == {("upstream", "upstream")}
 
 
 @pytest.mark.parametrize("contradiction", ["scoring=clean", "protocol=pillagerbench"])

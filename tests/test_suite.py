@@ -83,12 +83,12 @@ def test_docs_suite_versions_has_a_section_per_version_and_the_shipped_reference
     for name in suite.recorded():
         assert f"\n### {name} (" in doc, f"docs/suite-versions.md has no section for {name}"
     figures = reference_figures()
-    section = doc.split(f"\n### {figures['suite']} (")[1].split("\n### ")[0]
+    section = doc.split(f"\n### {figures.suite} (")[1].split("\n### ")[0]
     titles = {"mushroom_war": "Mushroom War", "dash_and_dine": "Dash & Dine"}
-    for scenario, teams in figures["scenarios"].items():
+    for scenario, teams in figures.scenarios.items():
         for team, by in teams.items():
             row = f"| {titles[scenario]} | {team} | " + " | ".join(
-                f"{by[s]['mean']:.2f} ± {by[s]['ci']:.2f}" for s in ("clean", "upstream")
+                f"{by[s].mean:.2f} ± {by[s].ci:.2f}" for s in ("clean", "upstream")
             )
             assert row + " |" in section, row
 

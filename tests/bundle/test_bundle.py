@@ -102,10 +102,10 @@ def test_harness_failures_are_counted_apart_from_the_teams_own(run, tmp_path, ca
 )
 def test_a_failed_episode_is_put_on_whoever_its_error_names(error, whose, kind):
     from pillagerbench.metrics.faults import faults
-    from pillagerbench.rundir import EpisodeRecord
+    from pillagerbench.rundir import EpisodeRecord, Fault
 
     assert faults(EpisodeRecord.from_dict({"episode": 0, "status": "failed", "error": error})) == [
-        {"whose": whose, "kind": kind, "side": "", "what": error}
+        Fault(whose, kind, "", error)
     ]
 
 

@@ -24,10 +24,10 @@ def test_every_opponent_both_sides_on_the_papers_and_on_test_layouts():
     for s in series:
         side = "red" if s.red == "random" else "blue"
         opponent = s.blue if side == "red" else s.red
-        arena = s.config["split"]
+        arena = s.config.split
         seen.add((s.scenario, opponent, side, arena))
-        assert s.config["layout"] == "paper" and s.episodes == {"paper": 1, "test": 2}[arena]
-        assert s.id.endswith(f"_{arena}") and s.variant == "random" and s.config[side]["name"] == "random"
+        assert s.config.layout == "paper" and s.episodes == {"paper": 1, "test": 2}[arena]
+        assert s.id.endswith(f"_{arena}") and s.variant == "random" and s.config.side(side).name == "random"
     expected = {
         (sc, opponent, side, arena)
         for sc in ("mushroom_war", "dash_and_dine")
@@ -75,7 +75,7 @@ def test_bad_input_is_one_line(extra, expected):
 
 def test_dev_layouts_are_asked_for_by_their_key():
     series = build(*SMALL, "experiment.arenas.dev=1")
-    dev = [s for s in series if s.config["split"] == "dev"]
+    dev = [s for s in series if s.config.split == "dev"]
     assert len(dev) == 20 and all(s.episodes == 1 and s.id.endswith("_dev") for s in dev)
 
 

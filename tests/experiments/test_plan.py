@@ -8,6 +8,7 @@ import pytest
 from pillagerbench.cli import commands as cli
 from pillagerbench.experiments import plan as P
 from pillagerbench.experiments.spec import SeriesSpec
+from tests.support.configs import run_config
 
 
 @pytest.fixture
@@ -84,7 +85,7 @@ def test_tacticrafter_calls_per_episode():
 def test_schedule_follows_parallel_and_dependencies():
     def spec(i: int, after: str | None = None) -> SeriesSpec:
         ckpt = {"red": {"series": after, "episode": 0}} if after else {}
-        return SeriesSpec(f"s{i}", i, "x", "mushroom_war", "a", "b", "a", "b", 1, 0, {}, checkpoint=ckpt)
+        return SeriesSpec(f"s{i}", i, "x", "mushroom_war", "a", "b", "a", "b", 1, 0, run_config(), checkpoint=ckpt)
 
     specs = [spec(0), spec(1), spec(2, after="s0")]
     durations = {"s0": 30.0, "s1": 10.0, "s2": 10.0}

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 from pillagerbench.rundir import RunDir
+from tests.support.configs import run_config
 
 
 def test_recover_keeps_finished_and_discards_the_rest(tmp_path):
@@ -38,6 +39,7 @@ def test_a_plain_run_directory_resumes_as_one_series(tmp_path):
     from pillagerbench.experiments.runner import load_experiment
 
     config = {
+        **run_config().stored(),  # a real run's manifest holds every key
         "scenario": {"name": "mushroom_war", "crop_growth_chance": 0.0},
         "red": {"name": "passive"},
         "blue": {"name": "balanced"},
@@ -54,4 +56,4 @@ def test_a_plain_run_directory_resumes_as_one_series(tmp_path):
     assert title == "run" and len(specs) == 1
     spec = specs[0]
     assert (spec.red, spec.blue, spec.episodes, spec.seed) == ("passive", "balanced", 3, 4)
-    assert dirs[spec.id] == tmp_path and "resume" not in spec.config
+    assert dirs[spec.id] == tmp_path and "resume" not in spec.config.stored()

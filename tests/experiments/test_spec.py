@@ -30,7 +30,7 @@ def test_round_robin_is_every_pairing_with_20_episodes():
     assert {(s.red, s.blue) for s in series} == {
         (r, b) for r in builtin_teams("dash_and_dine") for b in builtin_teams("dash_and_dine")
     }
-    assert all(s.config["scenario"]["name"] == "dash_and_dine" for s in series)
+    assert all(s.config.scenario.name == "dash_and_dine" for s in series)
     assert len({s.id for s in series}) == 25 and len({s.seed for s in series}) == 25
 
 
@@ -38,21 +38,21 @@ def test_main_benchmark_is_150_episodes_in_series_of_5():
     series = build("experiment=main_benchmark", "experiment.team=do_nothing", "episode_length=60")
     assert len(series) == 30 and sum(s.episodes for s in series) == 150
     assert {s.repetition for s in series} == {0, 1, 2}
-    assert all(s.config["red"]["name"] == "do_nothing" and s.config["episode_length"] == 60 for s in series)
+    assert all(s.config.red.name == "do_nothing" and s.config.episode_length == 60 for s in series)
     assert series[0].keeps_checkpoint(4) and not series[0].keeps_checkpoint(3)
 
 
 def test_variants_set_team_options_and_models():
     series = build("experiment=ablation_models", "experiment.team=do_nothing", "experiment.repetitions=1")
-    models = {s.red: s.config["llm"]["model"] for s in series}
+    models = {s.red: s.config.llm["model"] for s in series}
     assert models == {
         "gpt-4o": "gpt-4o-2024-08-06",
         "gemini-2.0-flash": "google/gemini-2.0-flash-001",
         "o3-mini": "openai/o3-mini",
     }
-    assert {s.config["llm"]["provider"] for s in series if s.red == "o3-mini"} == {"openrouter"}
+    assert {s.config.llm["provider"] for s in series if s.red == "o3-mini"} == {"openrouter"}
     series = build("experiment=ablation_modules", "experiment.team=do_nothing", "experiment.repetitions=1")
-    opts = {s.red: s.config["red"].get("enable_causal") for s in series}
+    opts = {s.red: s.config.red.options.get("enable_causal") for s in series}
     assert opts == {"tacticrafter": None, "tacticrafter_no_causal": False, "tacticrafter_no_opponent": None}
 
 

@@ -17,7 +17,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pillagerbench.config.compose import load_config, to_dict
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.series import run_series
 from pillagerbench.host import machine
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
@@ -58,12 +59,12 @@ def spec_of(fake: FakeLLMServer, episodes: int, retries: int, *extra: str) -> Se
         ]
     )
     return SeriesSpec(
-        "run", 0, "run", "mushroom_war", "cot", "do_nothing", "cot", "do_nothing", episodes, 0, to_dict(cfg)
+        "run", 0, "run", "mushroom_war", "cot", "do_nothing", "cot", "do_nothing", episodes, 0, RunConfig.of(cfg)
     )
 
 
 def by_provider(rec: dict) -> bool:
-    return any(f["whose"] == "harness" and f["kind"] == PROVIDER for f in faults(rec))
+    return any(f.whose == "harness" and f.kind == PROVIDER for f in faults(rec))
 
 
 async def play(tmp_path: Path, fake: FakeLLMServer, spec: SeriesSpec, outage_for: int | None) -> dict[int, dict]:
@@ -93,7 +94,7 @@ async def test_an_episode_without_the_provider_is_kept_listed_out_of_every_score
     runs = load_runs([tmp_path / "run"])
     assert 0 not in set(runs.episodes["episode"]) and len(runs.episodes) == 2
     assert 0 in set(runs.spoiled["episode"])
-    assert any(f["episode"] == 0 and f["kind"] == PROVIDER and f["whose"] == "harness" for f in runs.faults)
+    assert any(f.episode == 0 and f.kind == PROVIDER and f.whose == "harness" for f in runs.faults)
 
     out = build_report([tmp_path / "run"], tmp_path / "report", with_replays=False)
     summary = pd.read_csv(tmp_path / "report" / "summary.csv")
@@ -124,8 +125,8 @@ async def test_a_teams_own_budget_spent_is_scored_and_not_played_again(tmp_path)
     with FakeLLMServer() as fake:
         spec = spec_of(fake, 1, 2, "llm.budget.max_calls=0")  # every call refused by the team's own budget
         records = await play(tmp_path, fake, spec, outage_for=0)
-    own = [f for f in faults(records[0]) if f["kind"] == "the team's budget spent"]
-    assert own and own[0]["whose"] == "team" and "BudgetExceeded" in own[0]["what"]
+    own = [f for f in faults(records[0]) if f.kind == "the team's budget spent"]
+    assert own and own[0].whose == "team" and "BudgetExceeded" in own[0].what
     assert not any(by_provider(r) for r in records.values())
     assert sorted(records) == [0] and not spoiled(records[0])  # not played again
     runs = load_runs([tmp_path / "run"])

@@ -10,8 +10,8 @@ from pathlib import Path
 from pillagerbench.llm import read_ledger, summarize
 from pillagerbench.llm.prices import format_cost
 from pillagerbench.llm.spend import spend_lines
+from pillagerbench.metrics import estimates as tables
 from pillagerbench.metrics.verified import load_runs
-from pillagerbench.report import tables
 from pillagerbench.rundir import RunDir, spoiled
 from tests.support.cli import run_cli
 

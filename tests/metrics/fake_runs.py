@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 from pillagerbench.scenarios.layout import split_of
+from tests.support.configs import run_config
 
 
 def write_run(
@@ -37,8 +38,10 @@ def write_run(
     the step protocol every record names (none: a record from before protocols); `seeds[i]`: episode i's
     seed (none: 0, as a record from before seeds were recorded)."""
     run.mkdir(parents=True)
+    base = run_config().stored()  # a real run's config: every key composed
     config = {
-        "scenario": {"name": scenario},
+        **base,
+        "scenario": {**base["scenario"], "name": scenario},
         "red": {"name": red},
         "blue": {"name": blue},
         "episodes": len(scores),

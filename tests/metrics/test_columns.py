@@ -13,9 +13,10 @@ from tests.metrics.fake_runs import write_run
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
 # the readers of the table of episodes and the names they give it (or a part of it)
 READERS = {
-    "report/tables.py": {"df", "sd", "rd", "g", "gd", "sub", "frame"},
-    "report/build.py": {"main", "same", "g"},
-    "report/generalization.py": {"df", "paper", "unseen"},
+    "metrics/estimates.py": {"df", "sd", "rd", "g", "gd", "sub", "frame"},
+    "metrics/generalization.py": {"df", "paper", "unseen"},
+    "report/build.py": {"df", "main", "same", "g"},
+    "report/generalization.py": {"df"},
     "report/provenance.py": {"df"},
     "metrics/calibration.py": {"df", "ref", "g"},
     "metrics/symmetry.py": {"df", "one", "other", "team_red", "team_blue"},

@@ -31,18 +31,18 @@ def test_each_opponent_beside_its_reference_with_ratio_and_verdict(tmp_path):
     write_run(tmp_path / "b", "dash_and_dine", "do_nothing", "berries", [(0, 340), (0, 360)] * 5, **AS_REFERENCES)
     table, notes = fidelity_table(load_runs([tmp_path / x for x in "psb"]).episodes)
     assert len(notes) == 1 and notes[0].startswith(
-        f"fidelity: vs_suite compares with {reference_figures()['suite']}'s own reference"
+        f"fidelity: vs_suite compares with {reference_figures().suite}'s own reference"
     )
     rows = {r.opponent: r for r in table.itertuples()}
     # the suite's own reference (suite/reference_figures.json): passive 27.40 ± 4.04 agrees with
     # 25.0 ± 0.75, slimy 23.80 ± 2.84 does not with 11 ± 0
-    mine = reference_figures()["scenarios"]["mushroom_war"]
+    mine = reference_figures().scenarios["mushroom_war"]
     passive, slimy = mine["passive"]["clean"], mine["slimy"]["clean"]
-    assert abs(passive["mean"] - 25) < passive["ci"] and slimy["mean"] - slimy["ci"] > 11  # the premise
-    assert (rows["passive"].suite_reference, rows["passive"].vs_suite) == (passive["mean"], "✓")
+    assert abs(passive.mean - 25) < passive.ci and slimy.mean - slimy.ci > 11  # the premise
+    assert (rows["passive"].suite_reference, rows["passive"].vs_suite) == (passive.mean, "✓")
     assert (rows["slimy"].suite_reference, rows["slimy"].suite_reference_ci, rows["slimy"].vs_suite) == (
-        slimy["mean"],
-        slimy["ci"],
+        slimy.mean,
+        slimy.ci,
         "✗",
     )
     assert rows["passive"].ratio == pytest.approx(25 / 25.23) and rows["passive"].within_25pct == "✓"

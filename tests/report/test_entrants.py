@@ -9,10 +9,10 @@ import json
 from pathlib import Path
 
 from pillagerbench.metrics.calibration import calibration_from_runs
+from pillagerbench.metrics.generalization import unseen_arenas
 from pillagerbench.metrics.symmetry import side_symmetry
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
-from pillagerbench.report.generalization import unseen_arenas
 from pillagerbench.teams.entrant import entrant_of
 from tests.metrics.fake_runs import write_run
 from tests.report.test_says_what_it_is import with_manifest

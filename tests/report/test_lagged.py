@@ -13,6 +13,7 @@ from pillagerbench.experiments.spec import SeriesSpec
 from pillagerbench.report.build import main as report_main
 from tests.metrics.fake_runs import write_run
 from tests.support.cli import run_cli
+from tests.support.configs import run_config
 
 WHY = "server at 12.5 TPS (< 19)"
 
@@ -44,7 +45,17 @@ def test_a_calm_run_reports_no_lag(tmp_path, capsys):
 
 def spec(sid: str, episodes: int) -> SeriesSpec:
     return SeriesSpec(
-        sid, 0, "round_robin", "mushroom_war", "passive", "do_nothing", "passive", "do_nothing", episodes, 0, {}
+        sid,
+        0,
+        "round_robin",
+        "mushroom_war",
+        "passive",
+        "do_nothing",
+        "passive",
+        "do_nothing",
+        episodes,
+        0,
+        run_config(),
     )
 
 

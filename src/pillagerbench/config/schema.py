@@ -1,5 +1,6 @@
 """The configuration's schema, and the configuration typed: `RunConfig` (every top-level key, the
-groups `scenario`, `red`/`blue` and `llm`, each default written once) is what the command's edge
+groups `scenario`, `red`/`blue` and `llm`, each default written once, in conf/config.yaml, and taken
+from there: `written(key)`) is what the command's edge
 (cli, validate.check_run_config) makes of the command line and conf/, and what every layer below
 takes, whole or in part (RunnerConfig, TeamConfig, ServerConfig, LLMCacheConfig, LLMLedgerConfig).
 `problems(model, data)` gives one line per problem, naming the key, the bad value and what is valid.
@@ -10,6 +11,7 @@ from __future__ import annotations
 
 import copy
 import socket
+from importlib import resources
 from typing import Any, Literal
 
 from omegaconf import OmegaConf
@@ -19,6 +21,17 @@ from pydantic_core import PydanticCustomError
 from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
 
 SECRET = "secret"  # the error type of a value that must not be echoed (problems() names the key only)
+# conf/config.yaml: every default of a key is written there, once (with the comment `run --help` shows;
+# the suite's hash reads the rules' defaults there too); the models below take their defaults from it
+CONF: dict[str, Any] = to_dict(OmegaConf.create((resources.files("pillagerbench.conf") / "config.yaml").read_text()))
+
+
+def written(key: str) -> Any:
+    """conf/config.yaml's default of a dotted key (`scoring`, `llm_cache.mode`)."""
+    node: Any = CONF
+    for part in key.split("."):
+        node = node[part]
+    return node
 
 
 class _Strict(BaseModel):
@@ -36,12 +49,12 @@ class ServerConfig(_Strict):
 
 
 class LLMCacheConfig(_Strict):
-    mode: Literal["off", "read", "write", "readwrite", "replay"] = "off"
-    dir: str | None = None
+    mode: Literal["off", "read", "write", "readwrite", "replay"] = written("llm_cache.mode")
+    dir: str | None = written("llm_cache.dir")
 
 
 class LLMLedgerConfig(_Strict):
-    content: Literal["full", "hash"] = "hash"
+    content: Literal["full", "hash"] = written("llm_ledger.content")
 
 
 class LLMConfig(_Strict):
@@ -81,7 +94,7 @@ class LLMConfig(_Strict):
         )
 
 
-RETRIES = 2  # replays of a spoiled episode (rundir/schedule.py)
+RETRIES: int = written("retries")  # replays of a spoiled episode (rundir/schedule.py)
 
 
 class ClockConfig(_Strict):
@@ -169,38 +182,38 @@ class RunnerConfig(BaseModel):
 
     model_config = ConfigDict(extra="ignore")
 
-    parallel: int | None = Field(None, ge=1)
-    launcher: Literal["local", "ray"] = "local"
-    ray_address: str | None = None
-    display: Literal["auto", "live", "plain"] = "auto"
+    parallel: int | None = Field(written("parallel"), ge=1)
+    launcher: Literal["local", "ray"] = written("launcher")
+    ray_address: str | None = written("ray_address")
+    display: Literal["auto", "live", "plain"] = written("display")
 
 
 class RunConfig(RunnerConfig):
     """The whole configuration, typed: the command line and conf/*.yaml composed (config.load_config),
-    or a run's stored config (a manifest's, a series'). Every default is written here once; a stored
-    config from before a key reads with it (and conf/config.yaml's value of every key equals it:
-    tests/test_config_schema.py). `RunConfig.of(data)` builds it and keeps `data` as given
+    or a run's stored config (a manifest's, a series'). Every default is conf/config.yaml's (`written`:
+    the schema writes none of its own, tests/test_config_schema.py); a stored config from before a key
+    reads with it. `RunConfig.of(data)` builds it and keeps `data` as given
     (`stored()`): the records write that, numbers as they were composed."""
 
     server: ServerConfig
     llm_cache: LLMCacheConfig
     llm_ledger: LLMLedgerConfig
-    episodes: int = Field(1, ge=1)
-    episode_length: float = Field(120.0, gt=0)  # seconds of game per episode
-    seed: int = 0
-    run_dir: str | None = None
-    scoring: Literal["clean", "upstream"] = "clean"
-    protocol: Literal["pillagerbench", "upstream"] = "pillagerbench"
-    paper: bool = False  # sets scoring and protocol to upstream's (config.compose.PAPER_SWITCHES)
-    watch: int | None = Field(None, ge=0, le=65535)
+    episodes: int = Field(written("episodes"), ge=1)
+    episode_length: float = Field(float(written("episode_length")), gt=0)  # seconds of game per episode
+    seed: int = written("seed")
+    run_dir: str | None = written("run_dir")
+    scoring: Literal["clean", "upstream"] = written("scoring")
+    protocol: Literal["pillagerbench", "upstream"] = written("protocol")
+    paper: bool = written("paper")  # sets scoring and protocol to upstream's (config.compose.PAPER_SWITCHES)
+    watch: int | None = Field(written("watch"), ge=0, le=65535)
     retries: int = Field(RETRIES, ge=0)
-    layout: int | str = "paper"  # checked in full by validate.layout_problems
-    split: str | None = None
-    resume: str | None = None
-    calibration: str | None = None
-    plan: bool = False
-    plan_width: float = Field(default=2.0, gt=0)
-    plan_difference: float = Field(default=5.0, gt=0)
+    layout: int | str = written("layout")  # checked in full by validate.layout_problems
+    split: str | None = written("split")
+    resume: str | None = written("resume")
+    calibration: str | None = written("calibration")
+    plan: bool = written("plan")
+    plan_width: float = Field(default=written("plan_width"), gt=0)
+    plan_difference: float = Field(default=written("plan_difference"), gt=0)
     scenario: ScenarioConfig
     clock: ClockConfig = ClockConfig()
     red: TeamConfig
@@ -230,6 +243,10 @@ class RunConfig(RunnerConfig):
     def stored(self) -> dict[str, Any]:
         """The configuration as composed or stored (what records write: manifest.json, experiment.json)."""
         return copy.deepcopy(self._stored)
+
+    def without(self, keys: tuple[str, ...]) -> RunConfig:
+        """This configuration without the top-level `keys` (a series' config: the runner's keys left out)."""
+        return RunConfig.of({k: v for k, v in self._stored.items() if k not in keys})
 
     def select(self, key: str) -> Any:
         """A dotted key's value as stored (None if absent): conditions.conditions_of reads rules so."""

@@ -115,7 +115,7 @@ def specs(c: Comparison, cfgs: dict[str, RunConfig]) -> list[SeriesSpec]:
             blue_team=blue,
             episodes=c.cap,
             seed=cfg.seed,
-            config=cfg.stored(),
+            config=cfg,
         )
         for i, ((sid, (red, blue)), cfg) in enumerate(zip(c.series().items(), cfgs.values(), strict=True))
     ]

@@ -38,8 +38,7 @@ def make_run_dir(cfg: RunConfig) -> Path:
 def run_match(cfg: RunConfig) -> int:
     """A new plain run from the command's config."""
     run_dir = make_run_dir(cfg)
-    config = {k: v for k, v in cfg.stored().items() if k not in RUNNER_KEYS}
-    return play_run(plain_series(config, run_dir.name), run_dir, cfg)
+    return play_run(plain_series(cfg.without(RUNNER_KEYS), run_dir.name), run_dir, cfg)
 
 
 def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
@@ -59,7 +58,7 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
     failed = sum(r.status != "ok" for r in records)
     problems, all_without_model = summarize_problems(records)
     print(f"{len(records)} episode(s), {failed} failed")
-    retries = RunConfig.of(spec.config).retries
+    retries = spec.config.retries
     done = progress(RunDir(run_dir).finished(), spec.episodes, retries)
     if done.spoiled:
         print(
@@ -71,14 +70,14 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
         print(line)
     for line in summarize_lag(records):
         print(line)
-    for line in spend_lines([(RunDir(run_dir).ledger_path, labels_of(spec.config))]):
+    for line in spend_lines([(RunDir(run_dir).ledger_path, labels_of(spec.config.stored()))]):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if (failed and failed == len(records)) or all_without_model else 0
 
 
 async def _play(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> None:
-    scenario = scenario_from_config(RunConfig.of(spec.config))
+    scenario = scenario_from_config(spec.config)
     title = f"{scenario.title}: red {spec.red} vs blue {spec.blue}"
     with MatchDisplay(title, cfg.display) as display:
         await run_series(spec, run_dir, on_episode=display.episode_done, on_tick=display.tick, watch=cfg.watch)

@@ -219,12 +219,11 @@ def team_calls(team: str, options: dict, llm: Any, scenario: str, episodes: rang
 # --- the plan -----------------------------------------------------------------------------------
 
 
-def _sides(config: dict) -> list[tuple[str, str, dict, Any]]:
+def _sides(cfg: RunConfig) -> list[tuple[str, str, dict, Any]]:
     """(side, team, options with defaults, LLMSettings or None) of a series config."""
     from pillagerbench.llm.settings import LLMSettings
     from pillagerbench.teams import declared_options, find_team
 
-    cfg = RunConfig.of(config)
     out = []
     for side in ("red", "blue"):
         name = cfg.side(side).name
@@ -267,7 +266,7 @@ def _specs(cfg: RunConfig, argv: list[str]) -> tuple[str, list[SeriesSpec], dict
     if cfg.experiment is not None:
         return str(cfg.experiment["name"]), build_series(cfg, argv), {}
     red, blue, scenario = cfg.red.name, cfg.blue.name, cfg.scenario.name
-    spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, cfg.episodes, cfg.seed, cfg.stored())
+    spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, cfg.episodes, cfg.seed, cfg)
     return f"run {scenario}: red {red} vs blue {blue}", [spec], {}
 
 
@@ -294,12 +293,12 @@ def build_plan(cfg: RunConfig, argv: list[str], *, cpus: int | None = None, load
     length = cfg.episode_length
     for s in specs:
         todo = range(finished.get(s.id, 0), s.episodes)
-        series = RunConfig.of(s.config)
+        series = s.config
         upstream = series.protocol == "upstream"
         chain_low = chain_high = 0.0
         teams = {}
         for side, name, options, llm in _sides(s.config):
-            teams[side] = entrant_of(s.config, side)["label"]  # the entrant, as its records will name it
+            teams[side] = entrant_of(s.config.stored(), side)["label"]  # the entrant, as its records will name it
             if llm is None:
                 continue
             calls = team_calls(name, options, llm, s.scenario, todo, upstream)
@@ -407,7 +406,7 @@ def main_plan(cfg: RunConfig, argv: list[str]) -> int:
 
         seen: dict[str, None] = {}
         for s in build_series(cfg, argv):
-            for line in team_problems(s.config):
+            for line in team_problems(s.config.stored()):
                 seen.setdefault(line, None)
         check(list(seen))
     for line in lines(build_plan(cfg, argv)):

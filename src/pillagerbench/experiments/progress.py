@@ -19,7 +19,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from rich.table import Table
 
 from pillagerbench.config.schema import default
-from pillagerbench.rundir import EpisodeRecord, RunDir, progress, retries_of, spoiled
+from pillagerbench.rundir import EpisodeRecord, RunDir, progress, spoiled
 
 
 def fmt_duration(seconds: float | None) -> str:
@@ -85,11 +85,11 @@ class ExperimentProgress:
         running = []
         for spec in self.specs:
             fin = self.finished(spec)
-            settled = progress(fin, spec.episodes, retries_of(spec.config))  # a spoiled episode is played again
+            settled = progress(fin, spec.episodes, spec.config.retries)  # a spoiled episode is played again
             done += settled.used + settled.given_up
             failed += sum(not r.ok for r in fin.values())
-            status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else {}
-            if status:
+            status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else None
+            if status is not None:
                 running.append((spec, status))
         if self.start_done is None:
             self.start_done = done
@@ -117,10 +117,10 @@ class ExperimentProgress:
         for spec, live in snap["running"]:
             table.add_row(
                 f"{spec.red} vs {spec.blue} ({spec.scenario})",
-                f"{live.get('episode', 0) + 1}/{spec.episodes}",
-                f"{live.get('t', 0):.0f}/{live.get('length', 0):.0f} s",
-                f"{live.get('red', 0):g}",
-                f"{live.get('blue', 0):g}",
+                f"{live.episode + 1}/{spec.episodes}",
+                f"{live.t:.0f}/{live.length:.0f} s",
+                f"{live.red:g}",
+                f"{live.blue:g}",
             )
         return table
 
@@ -142,9 +142,7 @@ class ExperimentProgress:
         if force or now - self._last_plain >= self.plain_every:
             self._last_plain = now
             playing = "; ".join(
-                f"{s.red} vs {s.blue} ep {lv.get('episode')} t={lv.get('t', 0):.0f}s "
-                f"{lv.get('red', 0):g}-{lv.get('blue', 0):g}"
-                for s, lv in snap["running"]
+                f"{s.red} vs {s.blue} ep {lv.episode} t={lv.t:.0f}s {lv.red:g}-{lv.blue:g}" for s, lv in snap["running"]
             )
             print(
                 f"{self.title}: {snap['done']}/{snap['total']} episodes ({snap['failed']} failed), "

@@ -38,7 +38,6 @@ from pillagerbench.rundir import (
     RunDir,
     progress,
     read_series,
-    retries_of,
     write_experiment_file,
 )
 from pillagerbench.teams.entrant import labels_of
@@ -103,7 +102,7 @@ def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Pat
 
 def series_progress(spec: SeriesSpec, series_dir: Path):
     """A series' episodes so far against its plan (rundir/schedule.py: spoiled ones replayed)."""
-    return progress(RunDir(series_dir).finished(), spec.episodes, retries_of(spec.config))
+    return progress(RunDir(series_dir).finished(), spec.episodes, spec.config.retries)
 
 
 def _comparable(spec: SeriesSpec) -> dict:
@@ -215,7 +214,7 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
         launch, closer = ray_launcher.launch_factory(run_dir), ray_launcher.close
     else:
         raise ConfigError(f"launcher={launcher!r}: valid launchers are local, ray")
-    length = RunConfig.of(specs[0].config).episode_length if specs else float(default("episode_length"))
+    length = specs[0].config.episode_length if specs else float(default("episode_length"))
     print(
         f"{title}: {len(specs)} series, {sum(s.episodes for s in specs)} episodes, {parallel} at once ({launcher})",
         flush=True,
@@ -245,10 +244,10 @@ def check_series(specs: list[SeriesSpec]) -> None:
 
     seen: dict[str, None] = {}
     for s in specs:
-        for line in team_problems(s.config):
+        for line in team_problems(s.config.stored()):
             seen.setdefault(line, None)
     check(list(seen))
-    preflight.check([side for s in specs for side in preflight.sides_of(RunConfig.of(s.config))])
+    preflight.check([side for s in specs for side in preflight.sides_of(s.config)])
 
 
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
@@ -318,7 +317,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         print(line)
     for line in lag_lines(specs, dirs):
         print(line)
-    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config)) for s in specs):
+    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config.stored())) for s in specs):
         print(line)
     print(f"run directory: {run_dir}")
     return 1 if errors else 0

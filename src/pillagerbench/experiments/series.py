@@ -21,6 +21,7 @@ from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec
 from pillagerbench.rundir import (
     EpisodeRecord,
+    Live,
     RunDir,
     episodes_to_play,
     has_team_state,
@@ -60,7 +61,7 @@ async def run_series(
 
     rundir = RunDir(series_dir)
     rundir.path.mkdir(parents=True, exist_ok=True)
-    cfg = RunConfig.of(spec.config)
+    cfg = spec.config
     if not rundir.series_path.exists() and run_dir is not None and Path(run_dir) != rundir.path:
         write_series(rundir, spec)
     finished, discarded = rundir.recover()
@@ -124,7 +125,7 @@ async def _play(
     last = {side: rundir.last_seen(finished[ok[-1]]) for side in teams} if ok else {}
 
     def tick(status: dict) -> None:
-        rundir.write_live(status)
+        rundir.write_live(Live.of(status))
         if on_tick:
             on_tick(status)
 

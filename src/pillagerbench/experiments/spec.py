@@ -220,7 +220,7 @@ class _Builder:
             blue_team=blue_team,
             episodes=int(episodes),
             seed=seed,
-            config=cfg.stored(),
+            config=cfg,
             **extra,
         )
         self.series.append(spec)

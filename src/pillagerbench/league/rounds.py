@@ -85,7 +85,7 @@ def write_round(
                     blue_team=blue.team,
                     episodes=episodes,
                     seed=cfg.seed,
-                    config=cfg.stored(),
+                    config=cfg,
                 )
             )
     involved = {n for p in pairings for n in (p.red, p.blue)}

@@ -13,15 +13,14 @@ from __future__ import annotations
 
 from typing import Any
 
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.teams.entrant import entrant_of
 
 
-def series_entrants(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
+def series_entrants(config: RunConfig) -> dict[str, dict[str, Any]]:
     """Each side's entrant under a series' resolved config (for records from before entrants)."""
-    if not config.get("red") or not config.get("blue"):
-        return {}
-    return {side: entrant_of(config, side) for side in SIDES}
+    return {side: entrant_of(config.stored(), side) for side in SIDES}
 
 
 def columns(recorded: dict[str, dict | None], derived: dict[str, dict], names: dict[str, str]) -> dict[str, Any]:

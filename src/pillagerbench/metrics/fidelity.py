@@ -29,7 +29,7 @@ import pandas as pd
 
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.match import SCORINGS
-from pillagerbench.metrics.calibration import against_do_nothing, opponent_groups
+from pillagerbench.metrics.calibration import FROM_RUNS, against_do_nothing, opponent_groups
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import Estimate, mean_ci, over_opponents, welch_half_width
 from pillagerbench.metrics.reference import (
@@ -38,6 +38,7 @@ from pillagerbench.metrics.reference import (
     REFERENCE_SCORES,
     REFERENCE_SPLIT,
 )
+from pillagerbench.metrics.runs import Runs
 from pillagerbench.suite.conditions import describe, suite_defaults
 from pillagerbench.suite.figures import reference_figures
 
@@ -127,8 +128,8 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     if len(table) and table["suite_reference"].notna().any():
         figures = reference_figures()
         notes.append(
-            f"fidelity: vs_suite compares with {figures['suite']}'s own reference (suite/reference_figures.json; "
-            f"{figures['status'].split(':')[0]})"
+            f"fidelity: vs_suite compares with {figures.suite}'s own reference (suite/reference_figures.json; "
+            f"{figures.status.split(':')[0]})"
         )
     unknown = sorted(set(table["scenario"]) - set(REFERENCE_SCORES)) if len(table) else []
     if unknown:
@@ -170,12 +171,12 @@ NO_SUITE_FIGURE = {"suite_reference": math.nan, "suite_reference_ci": math.nan, 
 def beside_suite(scenario: str, team: str, scoring: str, e) -> dict:
     """The suite's own figure for this opponent and scoring, and ✓ when the run's mean agrees with
     it within the two intervals combined (– without a figure or an interval)."""
-    ref = reference_figures()["scenarios"].get(scenario, {}).get(team, {}).get(scoring)
+    ref = reference_figures().of(scenario, team, scoring)
     if ref is None:
         return NO_SUITE_FIGURE
-    spread = math.hypot(e.ci, ref["ci"])
-    mark = "–" if math.isnan(spread) else "✓" if abs(e.mean - ref["mean"]) <= spread else "✗"
-    return {"suite_reference": ref["mean"], "suite_reference_ci": ref["ci"], "vs_suite": mark}
+    spread = math.hypot(e.ci, ref.ci)
+    mark = "–" if math.isnan(spread) else "✓" if abs(e.mean - ref.mean) <= spread else "✗"
+    return {"suite_reference": ref.mean, "suite_reference_ci": ref.ci, "vs_suite": mark}
 
 
 # -- the paper's Benchmark Analysis claims ------------------------------------------------------------
@@ -411,3 +412,23 @@ def claims_table(df: pd.DataFrame, sigma: dict) -> tuple[pd.DataFrame, list[str]
             f"claims: none for {', '.join(stats)} (the paper's claims are about {', '.join(sorted({c.scenario for c in CLAIMS}))})"
         )
     return pd.DataFrame(rows, columns=CLAIM_COLUMNS), notes
+
+
+SIGMA_FROM_RUNS_NOTE = (
+    "claims: σ_blue comes from do_nothing-red episodes among these runs, which makes do_nothing's sabotage 0 "
+    "(exactly, when they are the round robin's own); --calibration reference uses upstream's reference "
+    "scores, as its analysis did"
+)
+
+
+def fidelity_sections(
+    runs: Runs, sigma: dict, origin: dict | None = None
+) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
+    """The fidelity table, the claims table and one note per thing that could not be checked or that
+    a reader needs to weigh them (`origin`: where each σ came from, as calibration.resolve fills it)."""
+    table, notes = fidelity_table(runs.episodes)
+    claims, more = claims_table(runs.episodes, sigma)
+    notes += more
+    if len(claims) and any(where == FROM_RUNS and team != "do_nothing" for (_, team), where in (origin or {}).items()):
+        notes.append(SIGMA_FROM_RUNS_NOTE)
+    return table, claims, notes

@@ -32,7 +32,7 @@ import pandas as pd
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.columns import SIDES, Col
 from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
-from pillagerbench.metrics.faults import name_entrants
+from pillagerbench.metrics.faults import FaultRow, name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
 from pillagerbench.rundir import (
     EPISODES,
@@ -45,7 +45,6 @@ from pillagerbench.rundir import (
     faults,
     progress,
     read_series,
-    retries_of,
     spoiled,
 )
 from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
@@ -82,7 +81,7 @@ class Runs:
     calibration_files: list[Path] = field(default_factory=list)
     runs: list[Path] = field(default_factory=list)  # every run's name (a bundle's: the paths exported)
     roots: dict[Path, Path] = field(default_factory=dict)  # a run's name -> its directory on disk
-    faults: list[dict] = field(default_factory=list)  # every finished episode's faults (metrics/faults.py)
+    faults: list[FaultRow] = field(default_factory=list)  # every finished episode's faults (metrics/faults.py)
     suites: list[str] = field(default_factory=list)  # the suite versions of the episodes used
     bundles: list[Path] = field(default_factory=list)  # results bundles among the inputs
     unverified: list[Path] = field(default_factory=list)  # bundles read without their checks (--no-verify)
@@ -155,7 +154,7 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
                 root=run,
                 dir=series_dir,
                 version=manifest.scenario_version if manifest else "?",
-                episode_length=float(spec.config.get("episode_length", 120)),
+                episode_length=spec.config.episode_length,
                 manifest=manifest,
                 entrants=series_entrants(spec.config),
             )
@@ -169,7 +168,7 @@ def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list, spoilt: 
     used = 0
     for i in sorted(finished):
         rec = finished[i]
-        found += [{"run": str(s.run), "series": s.id, "episode": i, **f} for f in faults(rec)]
+        found += [FaultRow.at(str(s.run), s.id, i, f) for f in faults(rec)]
         ep = RunDir(s.dir).files(i)
         timeline = _timeline(s, rec, ep, skipped)
         if timeline is None:
@@ -199,13 +198,13 @@ def _finished_episodes(s: SeriesInfo, skipped: list) -> dict[int, EpisodeRecord]
             skipped.append(
                 (str(d), f"half-written: no line in {EPISODES} (killed mid-episode; resume=RUN_DIR plays it again)")
             )
-    done = progress(finished, s.episodes, retries_of(s.config))
+    done = progress(finished, s.episodes, s.config.retries)
     if done.given_up:
         skipped.append(
             (
                 where,
                 f"{done.given_up} of {s.episodes} planned episode(s) given up: every try spoiled on our side "
-                f"(retries={retries_of(s.config)}); {done.used} of {s.episodes} used",
+                f"(retries={s.config.retries}); {done.used} of {s.episodes} used",
             )
         )
     if not done.complete:
@@ -345,7 +344,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     rows: list[Any] = []
     ledger: list[Any] = []
     cals: list[Any] = []
-    found: list[Any] = []
+    found: list[FaultRow] = []
     spoilt: list[Any] = []
     inputs = [Path(p) for p in paths]
     roots = {name: run for run, name in _inputs(inputs)}

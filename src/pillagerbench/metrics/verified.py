@@ -32,7 +32,7 @@ def summary(runs: Runs) -> dict:
     return {
         "suites": runs.suites,
         "episodes_used": len(runs.episodes),
-        "faults": {**tally(runs.faults), "rows": runs.faults},
+        "faults": {**tally(runs.faults), "rows": [f.row() for f in runs.faults]},
     }
 
 

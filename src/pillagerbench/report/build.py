@@ -23,16 +23,12 @@ from typing import Any
 import pandas as pd
 
 from pillagerbench.config.args import Parser
-from pillagerbench.metrics import calibration as calib
 from pillagerbench.metrics.columns import Col
-from pillagerbench.metrics.faults import fault_note, faults_table
-from pillagerbench.metrics.paired import by_entrant, differences
-from pillagerbench.metrics.runs import ReportError, Runs, beside, mixed_notes, mixed_title, reader_switches
-from pillagerbench.metrics.symmetry import side_symmetry
-from pillagerbench.metrics.verified import load_runs
+from pillagerbench.metrics.estimates import ALL, scenario_order
+from pillagerbench.metrics.findings import Findings, find
+from pillagerbench.metrics.runs import ReportError, beside, reader_switches
 from pillagerbench.report import generalization as unseen
 from pillagerbench.report import html, plots, replays, tables
-from pillagerbench.report.fidelity import fidelity_sections
 from pillagerbench.report.provenance import provenance
 
 
@@ -76,62 +72,43 @@ def build_report(
     mix_suites: bool = False,
     verify: bool = True,
 ) -> dict:
-    runs = load_runs(run_dirs, mix_suites, verify)
-    origin: dict = {}
-    sigma, notes = calib.resolve(runs, calibration, origin, fallback=True)
+    found = find(run_dirs, calibration, mix_suites, verify)  # metrics computes; the rest only formats
     out.mkdir(parents=True, exist_ok=True)
-    df = runs.episodes
-    main = tables.main_episodes(df)
-    symmetry, one_order = side_symmetry(main)
-    fidelity, claims, fidelity_notes = fidelity_sections(runs, sigma, origin)
-    pairs, per_team = tables.pairings(main, sigma), tables.per_team(main, sigma)
-    grouped, curve, lag = tables.groups(df, sigma), tables.learning_curve(main), tables.lagged(runs.spoiled)
-    plan = tables.planned(runs.series, runs.episodes, runs.spoiled)
-    diffs = differences(by_entrant(main))
-    arenas = unseen.unseen_arenas(main, sigma)
     sections = [  # the report's one list of sections: its files, its contents and its page
-        table("provenance", "Provenance: what each run is, from its manifests", provenance(runs)),
-        table(
-            "summary",
-            "Summary per red entrant (all scenarios and opponents)",
-            tables.summary(main, sigma, runs.ledger, plan=plan),
-        ),
-        table(
-            "per_scenario",
-            "Per red entrant and scenario",
-            tables.summary(main, sigma, runs.ledger, by_scenario=True, plan=plan),
-        ),
-        table("per_team", "Per entrant, whichever side it played (own points vs the opponent's)", per_team),
-        table("pairings", "Per pairing (heatmap values)", pairs),
-        table("groups", "Groups (adaptation: same/different opponent; self-play: after k episodes)", grouped),
-        table(*DIFFERENCES, diffs),  # two entrants against one opponent (paired where the worlds match)
+        table("provenance", "Provenance: what each run is, from its manifests", provenance(found.runs)),
+        table("summary", "Summary per red entrant (all scenarios and opponents)", found.summary),
+        table("per_scenario", "Per red entrant and scenario", found.per_scenario),
+        table("per_team", "Per entrant, whichever side it played (own points vs the opponent's)", found.per_team),
+        table("pairings", "Per pairing (heatmap values)", found.pairs),
+        table("groups", "Groups (adaptation: same/different opponent; self-play: after k episodes)", found.grouped),
+        table(*DIFFERENCES, found.differences),  # two entrants against one opponent (paired where the worlds match)
         table(
             "side_symmetry",
             "Side symmetry: each team's points as red and as blue (✓: no side effect at 95 %)",
-            symmetry,
+            found.symmetry,
         ),
         table(
             "fidelity",
             "Fidelity: built-in opponents against do_nothing beside upstream's reference (✓: within ±25 %) "
             "and the suite's own (vs_suite)",
-            fidelity,
+            found.fidelity,
         ),
-        table("claims", "Fidelity: the paper's Benchmark Analysis claims on this round robin", claims),
-        *([table(unseen.NAME, unseen.TITLE, arenas)] if len(arenas) else []),  # runs on generated layouts only
-        *scenario_figures(df, main, pairs, per_team, out),
-        *series_figures(df, main, grouped, curve, out),
-        table("learning_curve", "Points difference per episode index", curve),
-        table("calibration", "σ_blue used for the sabotage metric", tables.calibration(sigma)),
-        table("lagged", "Played under lag (spoiled: in no score; see docs/performance.md)", lag),
-        table("faults", "Failures: ours (the harness) apart from the teams' own", faults_table(runs.faults)),
-        table("skipped", "Skipped", tables.skipped(runs.skipped)),
+        table("claims", "Fidelity: the paper's Benchmark Analysis claims on this round robin", found.claims),
+        *([table(unseen.NAME, unseen.TITLE, found.arenas)] if len(found.arenas) else []),  # generated layouts only
+        *scenario_figures(found, out),
+        *series_figures(found, out),
+        table("learning_curve", "Points difference per episode index", found.curve),
+        table("calibration", "σ_blue used for the sabotage metric", found.calibration),
+        table("lagged", "Played under lag (spoiled: in no score; see docs/performance.md)", found.lag),
+        table("faults", "Failures: ours (the harness) apart from the teams' own", found.faults),
+        table("skipped", "Skipped", found.skipped),
     ]
     for s in sections:  # mixed suite versions, a bundle not verified: every table says so (its .md file too)
-        s.title += mixed_title(runs)
-    notes = report_notes(runs, main, notes, sigma, pairs, fidelity_notes, lag, one_order)
+        s.title += found.title
+    notes = report_notes(found)
     files: list[Path] = []
     if with_replays:
-        replay_rows, files = replays.write_all(runs.series, out)
+        replay_rows, files = replays.write_all(found.runs.series, out)
         recorded = sum(1 for r in replay_rows if r["replay"])
         notes.append(f"replays: {recorded} of {len(replay_rows)} episode(s) have a replay page (linked below)")
         html_rows = replays.table_html(replay_rows)
@@ -141,50 +118,49 @@ def build_report(
     files += [f for s in sections for f in s.files(out)]
     shown = [(s.title, s.kind, s.content) for s in sections if not s.empty]
     page = out / "report.html"
-    page.write_text(html.page("PillagerBench report", runs.runs, notes, shown, toc=True))
+    page.write_text(html.page("PillagerBench report", found.runs.runs, notes, shown, toc=True))
     files.append(page)
+    lag = found.lag
     lagged = [(str(r[Col.SERIES]), int(r[Col.EPISODE]), str(r[Col.LAG_REASON])) for _, r in lag.iterrows()]
-    return {"files": files, "notes": notes, "skipped": runs.skipped, "lagged": lagged, "episodes": len(df), "out": out}
+    runs = found.runs
+    return {
+        "files": files,
+        "notes": notes,
+        "skipped": runs.skipped,
+        "lagged": lagged,
+        "episodes": len(runs.episodes),
+        "out": out,
+    }
 
 
-def report_notes(
-    runs: Runs,
-    main: pd.DataFrame,
-    calibration_notes: list[str],
-    sigma: dict,
-    pairs: pd.DataFrame,
-    fidelity_notes: list[str],
-    lag: pd.DataFrame,
-    one_order: list[str],
-) -> list[str]:
+def report_notes(found: Findings) -> list[str]:
     """The notes above the report's tables, in their order."""
+    runs = found.runs
     return [
-        *mixed_notes(runs),
+        *found.mixed_notes,
         f"{len(runs.episodes)} episode(s) used (a team row's `episodes`, beside its `planned`), {len(runs.spoiled)} spoiled "
         f"on our side and in no score (the Failures table lists them), {len(runs.skipped)} item(s) skipped; Dash & Dine points ×0.1; "
         "± is the 95 % confidence interval",
-        *calibration_notes,
-        *more_notes(runs, sigma, pairs, fidelity_notes),
-        *fault_note(runs.faults),
+        *found.calibration_notes,
+        *more_notes(found),
+        *found.fault_notes,
         *[
             f"read from the results bundle {b}{'' if b in runs.unverified else ', its checks passed'}"
             for b in runs.bundles
         ],
-        *lag_notes(lag, one_order),
-        *unseen.unseen_notes(main),
+        *lag_notes(found.lag, found.one_order),
+        *unseen.unseen_notes(found.main),
     ]
 
 
-def scenario_figures(
-    df: pd.DataFrame, main: pd.DataFrame, pairs: pd.DataFrame, per_team: pd.DataFrame, out: Path
-) -> list[Section]:
+def scenario_figures(found: Findings, out: Path) -> list[Section]:
     """Per scenario: heatmaps, every team from its own side, points over time; each caption says
     what it shows and how many episodes stand behind it."""
-    view = tables.team_view(main)
+    main, pairs, per_team, view = found.main, found.pairs, found.per_team, found.view
     sections = []
-    for sc in tables.scenario_order(df):
+    for sc in scenario_order(found.runs.episodes):
         n = int((main[Col.SCENARIO] == sc).sum())
-        n_pairs = int(((pairs["scenario"] == sc) & (pairs["blue"] != tables.ALL)).sum())
+        n_pairs = int(((pairs["scenario"] == sc) & (pairs["blue"] != ALL)).sum())
         title = plots._title(sc)
         sections += [
             figure(
@@ -212,11 +188,10 @@ def scenario_figures(
     return sections
 
 
-def series_figures(
-    df: pd.DataFrame, main: pd.DataFrame, grouped: pd.DataFrame, curve: pd.DataFrame, out: Path
-) -> list[Section]:
+def series_figures(found: Findings, out: Path) -> list[Section]:
     """The figures over the episodes of a series: D per episode index, per group, self-play."""
-    n_groups = int(grouped.loc[grouped["scenario"] != tables.ALL, "episodes"].sum()) if len(grouped) else 0
+    df, main, grouped, curve = found.runs.episodes, found.main, found.grouped, found.curve
+    n_groups = int(grouped.loc[grouped["scenario"] != ALL, "episodes"].sum()) if len(grouped) else 0
     same = df[(df[Col.RED] == df[Col.BLUE]) & (df[Col.RED_TEAM] != "do_nothing")] if len(df) else df
     return [
         figure(
@@ -240,17 +215,17 @@ def series_figures(
     ]
 
 
-def more_notes(runs: Runs, sigma: dict, pairs: pd.DataFrame, fidelity_notes: list[str]) -> list[str]:
+def more_notes(found: Findings) -> list[str]:
     """Notes a reader needs to weigh the numbers: S without σ, n = 1, teams with problems, the
     fidelity checks, each run's scoring and protocol."""
-    df, notes = runs.episodes, []
+    df, sigma, pairs, notes = found.runs.episodes, found.sigma, found.pairs, []
     bare = sorted(set(df[Col.SCENARIO]) - {sc for sc, _ in sigma}) if len(df) else []
     if bare:
         notes.append(f"no σ_blue for {', '.join(bare)} (pillagerbench calibrate): S is left empty there")
-    one = pairs[(pairs["blue"] != tables.ALL) & (pairs["episodes"] == 1)]
+    one = pairs[(pairs["blue"] != ALL) & (pairs["episodes"] == 1)]
     if len(one):
         notes.append(
-            f"n = 1: {len(one)} of {int((pairs['blue'] != tables.ALL).sum())} pairing(s) rest on a single episode; "
+            f"n = 1: {len(one)} of {int((pairs['blue'] != ALL).sum())} pairing(s) rest on a single episode; "
             "their values have no confidence interval (marked “n = 1”)"
         )
     problems = [(r, side) for r in df.itertuples() for side in (r.problems or {})] if Col.PROBLEMS in df else []
@@ -260,7 +235,7 @@ def more_notes(runs: Runs, sigma: dict, pairs: pd.DataFrame, fidelity_notes: lis
             f"{len(problems)} team-episode(s) with problems (model or team server not answering ...), e.g. "
             f"{r.series} episode {r.episode} ({side} {getattr(r, side)}): {r.problems[side][-1]}"
         )
-    return notes + fidelity_notes + modes(df)
+    return notes + found.fidelity_notes + modes(df)
 
 
 def lag_notes(lag: pd.DataFrame, one_order: list[str]) -> list[str]:

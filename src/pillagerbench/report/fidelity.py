@@ -11,31 +11,10 @@ import pandas as pd
 
 from pillagerbench.config.args import Parser
 from pillagerbench.metrics import calibration as calib
-from pillagerbench.metrics.fidelity import claims_table, fidelity_table
-from pillagerbench.metrics.runs import ReportError, Runs, mixed_notes, mixed_title, reader_switches
+from pillagerbench.metrics.fidelity import fidelity_sections
+from pillagerbench.metrics.runs import ReportError, mixed_notes, mixed_title, reader_switches
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.tables import to_markdown
-
-SIGMA_FROM_RUNS_NOTE = (
-    "claims: σ_blue comes from do_nothing-red episodes among these runs, which makes do_nothing's sabotage 0 "
-    "(exactly, when they are the round robin's own); --calibration reference uses upstream's reference "
-    "scores, as its analysis did"
-)
-
-
-def fidelity_sections(
-    runs: Runs, sigma: dict, origin: dict | None = None
-) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
-    """The fidelity table, the claims table and one note per thing that could not be checked or that
-    a reader needs to weigh them (`origin`: where each σ came from, as calibration.resolve fills it)."""
-    table, notes = fidelity_table(runs.episodes)
-    claims, more = claims_table(runs.episodes, sigma)
-    notes += more
-    if len(claims) and any(
-        where == calib.FROM_RUNS and team != "do_nothing" for (_, team), where in (origin or {}).items()
-    ):
-        notes.append(SIGMA_FROM_RUNS_NOTE)
-    return table, claims, notes
 
 
 def tally(frame: pd.DataFrame, column: str) -> str:

@@ -22,8 +22,8 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.metrics.columns import Col
+from pillagerbench.metrics.estimates import ALL, opponent_order, red_order
 from pillagerbench.metrics.formulas import t_critical
-from pillagerbench.report.tables import ALL, opponent_order, red_order
 
 TITLES = {
     "P": "Points (red team)",

@@ -46,12 +46,12 @@ def models(s: SeriesInfo) -> list[str]:
     registry does not know is not imported to find out), with TactiCrafter's per-role models."""
     out = []
     for side, label in (("red", s.red), ("blue", s.blue)):
-        team = s.config.get(side) or {}
-        cls = TEAMS.get(str(team.get("name")))
+        team = s.config.side(side)
+        cls = TEAMS.get(team.name)
         if cls is None or not cls.uses_llm:
             continue
-        llm = {**(s.config.get("llm") or {}), **(team.get("llm") or {})}
-        roles = {r: o["model"] for r, o in (team.get("roles") or {}).items() if (o or {}).get("model")}
+        llm = s.config.llm_of(side)
+        roles = {r: o["model"] for r, o in (team.options.get("roles") or {}).items() if (o or {}).get("model")}
         extra = f" ({', '.join(f'{r}: {m}' for r, m in roles.items())})" if roles else ""
         out.append(f"{label}: {llm.get('provider', '?')} {llm.get('model', '?')}{extra}")
     return out
@@ -85,13 +85,13 @@ def provenance(runs: Runs) -> pd.DataFrame:
                 ),
                 "suite": _distinct(df.loc[df[Col.RUN] == str(run), Col.SUITE]) if len(df) else "–",  # its episodes'
                 "scenarios": _distinct(f"{s.scenario} v{s.version}" for s in series),
-                "seeds": seed_range([int(s.config["seed"]) for s in series if s.config.get("seed") is not None]),
+                "seeds": seed_range([s.config.seed for s in series]),
                 "episode_length": _distinct(f"{s.episode_length:g} s" for s in series),
                 "episodes": f"{used} of {sum(s.episodes for s in series)}",
                 "models": _distinct((m for s in series for m in models(s)), "no LLM team"),
                 "entrants": _distinct(entrants(df[df[Col.RUN] == str(run)]) if len(df) else []),
-                "scoring": _distinct(s.config.get("scoring", "clean") for s in series),
-                "protocol": _distinct(s.config.get("protocol", "pillagerbench") for s in series),
+                "scoring": _distinct(s.config.scoring for s in series),
+                "protocol": _distinct(s.config.protocol for s in series),
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)

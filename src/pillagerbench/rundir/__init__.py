@@ -16,9 +16,10 @@ from pillagerbench.rundir.directory import EPISODES, LEDGER, RunDir, episode_ind
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, TimelinePoint, last_seen_json, winner_of
 from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, ExperimentFile, read_experiment, write_experiment_file
-from pillagerbench.rundir.faults import HARNESS, TEAM, faults, spoiled
+from pillagerbench.rundir.faults import HARNESS, TEAM, Fault, faults, spoiled
+from pillagerbench.rundir.live import Live
 from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
-from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress, retries_of
+from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
 from pillagerbench.rundir.team_state import TeamState, has_team_state, team_state_path
 
@@ -32,7 +33,9 @@ __all__ = [
     "EpisodeDir",
     "EpisodeRecord",
     "ExperimentFile",
+    "Fault",
     "LastEpisode",
+    "Live",
     "Manifest",
     "Progress",
     "RunDir",
@@ -49,7 +52,6 @@ __all__ = [
     "progress",
     "read_experiment",
     "read_series",
-    "retries_of",
     "spoiled",
     "team_state_path",
     "write_experiment_file",

@@ -21,12 +21,14 @@ import json
 import os
 import shutil
 import time
+from dataclasses import asdict, replace
 from pathlib import Path
 from typing import Any
 
 from pillagerbench.rundir import names as N
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
 from pillagerbench.rundir.episode_dir import EpisodeDir
+from pillagerbench.rundir.live import Live
 from pillagerbench.rundir.manifest_file import Manifest
 
 EPISODES = N.EPISODES
@@ -255,14 +257,15 @@ class RunDir:
                 + "\n"
             )
 
-    def write_live(self, status: dict[str, Any]) -> None:
-        _write_json_atomic(self.live_path, {**status, "ts": time.time()})
+    def write_live(self, status: Live) -> None:
+        _write_json_atomic(self.live_path, asdict(replace(status, ts=time.time())))
 
-    def read_live(self) -> dict[str, Any]:
+    def read_live(self) -> Live | None:
+        """The episode being played (None when none is, or live.json is being replaced)."""
         try:
-            return json.loads(self.live_path.read_text())
-        except (OSError, ValueError):
-            return {}
+            return Live.of(json.loads(self.live_path.read_text()))
+        except (OSError, ValueError, TypeError):
+            return None
 
     # --- repair ------------------------------------------------------------------------------------
 

@@ -12,6 +12,8 @@ when it starts with one of `HARNESS_PROBLEMS`; every other is the team's.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from pillagerbench.rundir.episode import EpisodeRecord
 
 HARNESS = "harness"
@@ -33,6 +35,16 @@ FAILED: dict[str, tuple[str, str]] = {
 }
 
 
+@dataclass(frozen=True)
+class Fault:
+    """One fault of an episode's record."""
+
+    whose: str  # HARNESS | TEAM
+    kind: str  # e.g. "failed: the server", "lagged", "the team's own"
+    side: str  # "red", "blue", or "" for the whole episode
+    what: str  # the error, the lag's reason or the side's problem as recorded
+
+
 def _problem(problem: str) -> tuple[str, str]:
     """(whose, kind) of one side's recorded problem."""
     own = next((kind for part, kind in TEAM_PROBLEMS.items() if part in problem), None)
@@ -42,22 +54,19 @@ def _problem(problem: str) -> tuple[str, str]:
     return (HARNESS, ours) if ours else (TEAM, "the team's own")
 
 
-def faults(rec: EpisodeRecord) -> list[dict[str, str]]:
-    """One row per fault of an episode's record: whose (harness | team), kind, side ('' for both), what."""
+def faults(rec: EpisodeRecord) -> list[Fault]:
+    """Every fault of an episode's record: its failure, its lag, each side's problems."""
     out = []
     if not rec.ok:  # a line may hold no more than its status (a killed run's)
         what = str(rec.error or rec.status)
-        whose, kind = FAILED.get(what.partition(":")[0], (HARNESS, "failed (cause not named)"))
-        out.append({"whose": whose, "kind": kind, "side": "", "what": what})
+        out.append(Fault(*FAILED.get(what.partition(":")[0], (HARNESS, "failed (cause not named)")), "", what))
     if rec.lagged:
-        out.append({"whose": HARNESS, "kind": "lagged", "side": "", "what": str(rec.lag_reason)})
+        out.append(Fault(HARNESS, "lagged", "", str(rec.lag_reason)))
     for side, problems in rec.problems.items():
-        for problem in problems:
-            whose, kind = _problem(problem)
-            out.append({"whose": whose, "kind": kind, "side": side, "what": problem})
+        out += [Fault(*_problem(problem), side, problem) for problem in problems]
     return out
 
 
 def spoiled(rec: EpisodeRecord) -> str | None:
     """The kind of our first fault in an episode's record (it is spoiled: not a result), or None."""
-    return next((f["kind"] for f in faults(rec) if f["whose"] == HARNESS), None)
+    return next((f.kind for f in faults(rec) if f.whose == HARNESS), None)

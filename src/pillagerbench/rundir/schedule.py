@@ -56,9 +56,3 @@ def episodes_to_play(rundir: RunDir, planned: int, retries: int = RETRIES) -> It
     """The episode indices still to play, each decided after the one before it was recorded."""
     while (index := progress(rundir.finished(), planned, retries).next) is not None:
         yield index
-
-
-def retries_of(config) -> int:
-    """A config's `retries` (a dict or an OmegaConf node; runs from before the key: the default)."""
-    value = config.get("retries")
-    return RETRIES if value is None else int(value)

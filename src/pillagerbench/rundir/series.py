@@ -3,11 +3,13 @@ series of any run directory, an experiment's or a plain `pillagerbench run`'s.""
 
 from __future__ import annotations
 
+import copy
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.rundir.directory import RunDir
 from pillagerbench.rundir.experiment import read_experiment
 
@@ -26,7 +28,7 @@ class SeriesSpec:
     blue_team: str
     episodes: int
     seed: int
-    config: dict[str, Any]  # full resolved config for this match
+    config: RunConfig  # the match's full resolved config, typed (its records store `config.stored()`)
     checkpoint: dict[str, Any] = field(default_factory=dict)  # side -> {"series": id, "episode": k} | {"path": p}
     checkpoint_every: int | None = None  # keep checkpoints after episodes every, 2·every, ... (1-based count)
     checkpoint_at: list[int] = field(default_factory=list)  # keep checkpoints after these episode indices
@@ -46,11 +48,15 @@ class SeriesSpec:
         return episode in self.checkpoint_at or bool(every and (episode + 1) % every == 0)
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        """The spec as experiment.json records it: every field, the config as stored."""
+        own = {f.name: copy.deepcopy(getattr(self, f.name)) for f in fields(self) if f.name != "config"}
+        return {**own, "config": self.config.stored()}
 
     @classmethod
     def from_dict(cls, d: dict) -> SeriesSpec:
-        return cls(**{k: v for k, v in d.items() if k in cls.__dataclass_fields__})
+        """The spec of a recorded dict (experiment.json's series; the config typed here, once)."""
+        known = {k: v for k, v in d.items() if k in cls.__dataclass_fields__ and k != "config"}
+        return cls(**known, config=RunConfig.of(d["config"]))
 
 
 def write_series(rundir: RunDir, spec: SeriesSpec) -> None:
@@ -71,24 +77,24 @@ def read_series(
     manifest = rundir.manifest()
     if manifest is None:
         return None
-    config = {k: v for k, v in manifest.config.items() if k not in runner_keys}
+    config = RunConfig.of(manifest.config).without(runner_keys)
     return "run", [(plain_series(config, rundir.path.name), rundir.path)]
 
 
-def plain_series(config: dict[str, Any], name: str) -> SeriesSpec:
+def plain_series(config: RunConfig, name: str) -> SeriesSpec:
     """The one series of a plain run (design "run", named as its directory) from its match config:
     the same whether the run is started or resumed."""
-    red, blue = config["red"]["name"], config["blue"]["name"]
+    red, blue = config.red.name, config.blue.name
     return SeriesSpec(
         id=name,
         index=0,
         design="run",
-        scenario=config["scenario"]["name"],
+        scenario=config.scenario.name,
         red=red,
         blue=blue,
         red_team=red,
         blue_team=blue,
-        episodes=int(config.get("episodes", 1)),
-        seed=int(config.get("seed", 0)),
+        episodes=config.episodes,
+        seed=config.seed,
         config=config,
     )

@@ -5,7 +5,7 @@ implementation; `server/process.py`).
 The control channel's ops are declared once, in `js/server/control_ops.json` (each op's arguments with
 their types, and its answer's type), which `js/server/control.js` dispatches from. `Control` has one
 typed method per op, named as the op, each argument named as on the wire (`from_` for `from`);
-`tests/arena/test_control_ops.py` checks both sides against the declaration.
+`tests/server/test_control_ops.py` checks both sides against the declaration.
 """
 
 from __future__ import annotations

@@ -5,25 +5,44 @@ under the suite version they name (docs/suite-versions.md). Read by the fidelity
 
 from __future__ import annotations
 
-import json
 from functools import lru_cache
 from pathlib import Path
+
+from pydantic import BaseModel
 
 from pillagerbench.stats.sample_size import sd_of
 
 FIGURES = Path(__file__).resolve().parent / "reference_figures.json"
 
 
+class Figure(BaseModel):
+    """One opponent's points under one scoring: mean, 95 % interval (half-width), episodes."""
+
+    mean: float
+    ci: float
+    n: int
+
+
+class ReferenceFigures(BaseModel):
+    about: str = ""
+    suite: str  # the suite version they were measured under ("suite 1.1")
+    status: str
+    source: str
+    scenarios: dict[str, dict[str, dict[str, Figure]]]  # scenario -> team -> scoring -> its figure
+
+    def of(self, scenario: str, team: str, scoring: str) -> Figure | None:
+        return self.scenarios.get(scenario, {}).get(team, {}).get(scoring)
+
+
 @lru_cache(maxsize=1)
-def reference_figures() -> dict:
-    """{"suite", "status", "source", "scenarios": {scenario: {team: {scoring: {"mean", "ci", "n"}}}}}
-    (Dash & Dine ×0.1, as reported)."""
-    return json.loads(FIGURES.read_text())
+def reference_figures() -> ReferenceFigures:
+    """The figures (Dash & Dine ×0.1, as reported)."""
+    return ReferenceFigures.model_validate_json(FIGURES.read_text())
 
 
 def widest_spread(scenario: str, scoring: str = "clean") -> float | None:
     """The largest standard deviation of one episode's points among the scenario's built-in opponents
     (the spread behind each reported interval), or None for a scenario without figures."""
-    teams = reference_figures()["scenarios"].get(scenario, {})
-    spreads = [sd_of(v[scoring]["ci"], v[scoring]["n"]) for v in teams.values() if scoring in v]
+    teams = reference_figures().scenarios.get(scenario, {})
+    spreads = [sd_of(v[scoring].ci, v[scoring].n) for v in teams.values() if scoring in v]
     return max(spreads) if spreads else None

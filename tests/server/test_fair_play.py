@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from contextlib import asynccontextmanager
 
-from tests.arena.conftest import count
+from tests.server.conftest import count
 from tests.support.server_clock import caught_up, chat_code
 
 

@@ -1,4 +1,4 @@
-"""One arena server and two real mineflayer bots (alice, bob) for the whole arena test module set.
+"""One arena server and two real mineflayer bots (alice, bob) for the whole set of tests/server modules.
 
 Each test gets its own area of the world and resets the bots' inventories through the control
 channel, so tests stay independent while paying for one server start and two logins.

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import asyncio
 
-from tests.arena.conftest import count, equals, on_ground, wait_until
+from tests.server.conftest import count, equals, on_ground, wait_until
 
 
 async def test_toss_gives_whole_stack_to_the_other_player_and_remembers_thrower(arena, bots, area):

@@ -3,7 +3,7 @@ regeneration, immunity right after a hit, and sweet berry bushes that hurt a pla
 
 from __future__ import annotations
 
-from tests.arena.conftest import wait_until
+from tests.server.conftest import wait_until
 from tests.support.server_clock import tick, wait_ticks
 
 HIT = "bot._client.write('use_entity', {target: bot.players.%s.entity.id, mouse: 1, sneaking: false})"

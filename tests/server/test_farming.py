@@ -5,7 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 
-from tests.arena.conftest import count, held_or_on_ground
+from tests.server.conftest import count, held_or_on_ground
 
 DIG = """
 const b = bot.blockAt(new Vec3(%d, %d, %d))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import asyncio
 
-from tests.arena.conftest import count
+from tests.server.conftest import count
 from tests.support.server_clock import tick, wait_ticks
 
 ATTACK = """

@@ -8,7 +8,7 @@ import asyncio
 
 import pytest
 
-from tests.arena.conftest import count, equals, on_ground, wait_until
+from tests.server.conftest import count, equals, on_ground, wait_until
 from tests.support.node_script import run_node_script
 
 BOX_SCRIPT = r"""

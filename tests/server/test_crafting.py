@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from tests.arena.conftest import count
+from tests.server.conftest import count
 
 CRAFT = """
 let table = null
