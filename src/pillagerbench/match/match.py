@@ -10,6 +10,7 @@ episode is written to the run directory (`pillagerbench.rundir`). The scorings: 
 from __future__ import annotations
 
 import asyncio
+import functools
 import json
 import random
 import time
@@ -260,7 +261,7 @@ class Match:
             await self.server.clock(unpaced=True) if speed == "max" else await self.server.clock(speed=float(speed))
             clock.begin()
             for key, llm in self.llms.items():
-                llm.thinking.during_game(lambda k=key: clock.thinking(k), clock.charge)
+                llm.thinking.during_game(functools.partial(clock.thinking, key), clock.charge)
         try:
             yield
         finally:

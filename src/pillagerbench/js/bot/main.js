@@ -59,7 +59,7 @@ bot.loadPlugin(pvp)
 gate(bot, () => current) // a stopped run's leftovers cannot act (gate.js)
 // The bots' writes are not batched (batch.js): a dig's finish and the next packet would then reach the
 // server in one read, and flying-squid's asynchronous dig handler lets the next packet (a place against
-// the block just dug) see the block before the dig has changed it (tests/arena/test_fair_play.py).
+// the block just dug) see the block before the dig has changed it (tests/server/test_fair_play.py).
 if (process.env.PB_TRACE) { // packets received by name: count and bytes, logged at exit
   const got = {}
   bot._client.on('packet', (data, meta, buffer) => {

@@ -8,7 +8,7 @@
 // The ops are declared once, in control_ops.json (each op's arguments and answer, read by Python too:
 // pillagerbench/server/seams.py). A request is dispatched from that declaration: an undeclared op or
 // argument, a missing one or a scalar of another type, is refused before its handler runs; the handlers below are the
-// declared ops exactly (checked when this module loads; tests/arena/test_control_ops.py).
+// declared ops exactly (checked when this module loads; tests/server/test_control_ops.py).
 const { Vec3 } = require('vec3')
 const { ControlError, toPos, toBlockPos, stateIdOf, itemByName, blockByName } = require('./util')
 const { PICKUP } = require('./tables')
