@@ -33,10 +33,12 @@ async def play_game(
     over = asyncio.Event()  # the whistle, besides cancel(): Python 3.11's wait_for can swallow a cancel
 
     async def rules():
+        due = clock.now() + gm.period_s
         while not over.is_set():
-            async with clock.at(clock.now() + gm.period_s, "game-master"), lock:  # lockstep: at that tick exactly
+            async with clock.at(due, "game-master"), lock:  # lockstep: at that tick exactly, the world held
                 if not over.is_set():
                     await gm.step()
+                due = clock.now() + gm.period_s  # a period after this step (its tick, on the lockstep clock)
 
     def second(t: int, scores: dict) -> None:
         for part in parts:

@@ -259,9 +259,12 @@ class Match:
         if isinstance(clock, LockstepClock):
             speed = self.clock_config.speed
             await self.server.clock(unpaced=True) if speed == "max" else await self.server.clock(speed=float(speed))
-            clock.begin()
+            await clock.begin()
             for key, llm in self.llms.items():
-                llm.thinking.during_game(functools.partial(clock.thinking, key), clock.charge)
+                names = [s.player_names for s in self.scenario.sides if s.key == key][0]
+                llm.thinking.during_game(
+                    functools.partial(clock.thinking, key), functools.partial(_charged, clock, names)
+                )
         try:
             yield
         finally:
@@ -283,3 +286,9 @@ class Match:
         for key, team in self.teams.items():
             if team.problems:
                 rec.problems.setdefault(key, []).extend(team.problems)
+
+
+async def _charged(clock: LockstepClock, players: list[str], tokens: int) -> None:
+    """Thinking charged in game time: the team's players wait it out (their idle bots let the world go)."""
+    await clock.resume(players)
+    await clock.charge(tokens)

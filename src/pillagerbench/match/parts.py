@@ -19,7 +19,7 @@ from pillagerbench.players import Player
 from pillagerbench.replay.record import RECORDING, Recorder
 from pillagerbench.rundir import EpisodeDir, EpisodeRecord
 from pillagerbench.scenarios import Scenario
-from pillagerbench.server.clock import GameClock, RealClock
+from pillagerbench.server.clock import CLOCK_EVENT, GameClock, RealClock
 from pillagerbench.server.seams import Server
 from pillagerbench.teams import Team
 
@@ -162,7 +162,7 @@ class WorldLog(Part):
             return
         if game.server.control is not None:
             game.server.control.unsubscribe(queue)
-        events = [queue.get_nowait() for _ in range(queue.qsize())]
+        events = [e for e in (queue.get_nowait() for _ in range(queue.qsize())) if e.get("event") != CLOCK_EVENT]
         files = EpisodeDir(game.out)
         files.write_world_events(events)
         lines = [

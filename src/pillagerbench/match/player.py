@@ -32,6 +32,10 @@ class RecordedPlayer:
     def __getattr__(self, name: str) -> Any:
         return getattr(self._player, name)
 
+    async def _pause(self) -> None:
+        await self._clock.resume([self._player.name])  # lockstep: the bot idle since its last run holds the world
+        await self._clock.sleep(self._wait)
+
     def _program(self, what: str, message: str | None = None) -> None:
         if self._on_program is not None:
             self._on_program(self._player.name, what, message)
@@ -45,13 +49,14 @@ class RecordedPlayer:
                 on_event(event)
 
         if self._wait:
-            await self._clock.sleep(self._wait)  # upstream's step: the wait before the code (cancelled at the whistle)
+            await self._pause()  # upstream's step: the wait before the code (cancelled at the whistle)
         self._runs[self._player.name] = self._runs.get(self._player.name, 0) + 1
         self._program("start")
         try:
             events = await self._player.run(code, timeout=timeout, on_event=both)
         finally:
             self._program("end")
+        self._clock.saw(getattr(self._player, "last_tick", None))  # lockstep: now() is the tick the run ended
         if self._wait:
-            await self._clock.sleep(self._wait)  # and the wait after it, before the step returns
+            await self._pause()  # and the wait after it, before the step returns
         return events

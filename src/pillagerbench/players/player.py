@@ -67,6 +67,7 @@ class Player:
     ):
         self.name = name
         self.clock = clock  # "real" or "lockstep": the bot's timers on the wall clock or the server's ticks
+        self.last_tick: int | None = None  # lockstep: the server's tick when the last run ended
         self.server_port = server_port
         self.host = host
         self.log_dir = Path(log_dir) if log_dir else None
@@ -275,7 +276,9 @@ class Player:
                 except PlayerError as exc:
                     state.add(["onError", {"onError": str(exc)}])
                     return state.events
-                await state.done
+                answer = await state.done
+                tick = (answer.get("result") or {}).get("tick") if isinstance(answer, dict) else None
+                self.last_tick = tick if isinstance(tick, int) else None
                 if self._recover_lock.locked():  # recovery finishing: its events are already in
                     async with self._recover_lock:
                         pass

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.rundir.names import REPLAY
-from pillagerbench.server.clock import GameClock, RealClock
+from pillagerbench.server.clock import CLOCK_EVENT, GameClock, RealClock
 
 RECORDING = REPLAY  # the recording in an episode directory (rundir/names.py)
 FORMAT = "pillagerbench-replay"
@@ -92,8 +92,8 @@ class Recorder:
         try:
             while not self._stopping:
                 due = self._start + k * period
-                await self.clock.sleep_until(due)
-                await self._frame()
+                async with self.clock.at(due, "replay"):  # lockstep: that tick exactly, the world held
+                    await self._frame()
                 k = max(k + 1, int((self.clock.now() - self._start) / period) + 1)  # late: skip, never bunch up
         except asyncio.CancelledError:
             raise
@@ -104,6 +104,8 @@ class Recorder:
         q = self._events
         while q is not None and not q.empty():
             e = q.get_nowait()
+            if e.get("event") == CLOCK_EVENT:  # the lockstep clock's tick, not the world's
+                continue
             if e.get("event") == "item_picked_up" and e.get("entity") is not None:
                 self._picked[e["entity"]] = e.get("player")
             self._write({"type": "event", "t": t, "event": e})

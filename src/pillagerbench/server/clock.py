@@ -6,8 +6,10 @@ Both give `now()` (game seconds), `sleep_until(t)`, `sleep(s)`, and `thinking(wh
 LLM call (or a remote team's HTTP call): on the lockstep clock the world waits for it, and `charge`
 then costs `ticks_per_1k_tokens` of game time for the tokens it generated, if set. `at(t, who)` runs a
 step of the game (the game master's, a score sample) at game time `t`: on the lockstep clock at that
-tick exactly, with the world held until the step is done. `end()` at the whistle releases what
-thinking still holds (stopping the players needs ticks); `begin()` before the next game.
+tick exactly, with the world held until the step is done. During a game a bot whose run has ended
+holds the world (`idle:NAME`) until its next run begins or its team `resume`s it (a wait), so the
+next program starts at the tick the last one ended. `end()` at the whistle drops every hold
+(stopping the players needs ticks); `begin()` before the next game.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from typing import Protocol
 from pillagerbench.server.seams import Control, Events
 
 TICK_S = 0.05
+CLOCK_EVENT = "clock"  # the event the server pushes with its tick (not a world event)
 
 
 class GameClock(Protocol):
@@ -40,6 +43,10 @@ class GameClock(Protocol):
     async def charge(self, tokens: int) -> None: ...
 
     async def end(self) -> None: ...
+
+    async def resume(self, players: list[str]) -> None: ...
+
+    def saw(self, tick: int | None) -> None: ...
 
 
 async def _forever() -> None:
@@ -75,6 +82,12 @@ class RealClock:
     async def end(self) -> None:
         return None
 
+    async def resume(self, players: list[str]) -> None:
+        return None
+
+    def saw(self, tick: int | None) -> None:
+        return None
+
 
 class LockstepClock:
     """The arena server's lockstep tick (clock=lockstep). `start()` before use, `close()` after."""
@@ -104,11 +117,16 @@ class LockstepClock:
     async def _read(self, queue: asyncio.Queue) -> None:
         while True:
             ev = await queue.get()
-            if ev.get("event") == "clock":
+            if ev.get("event") == CLOCK_EVENT:
                 self._seen(int(ev["tick"]))
 
     def _seen(self, tick: int) -> None:
         self.tick = max(self.tick, tick)
+
+    def saw(self, tick: int | None) -> None:
+        """A tick the world was at (a run's end, told by its bot)."""
+        if tick is not None:
+            self._seen(tick)
 
     async def close(self) -> None:
         if self._follow is not None:
@@ -161,7 +179,15 @@ class LockstepClock:
     async def end(self) -> None:
         self.over = True
         self._held.clear()
-        await self.server.clock(drop_holds=True)  # a step cancelled at the whistle may still be due a hold
+        await self.server.clock(drop_holds=True, game=False)  # a step cancelled at the whistle may still be due a hold
 
-    def begin(self) -> None:
+    async def resume(self, players: list[str]) -> None:
+        """These players' bots, idle since their last run, hold the world no more (their team has
+        said what next: a wait, a charge for thinking)."""
+        for name in players:
+            await self.server.release(f"idle:{name}")
+
+    async def begin(self) -> None:
+        """A new game: thinking holds the world again, and so does a bot whose run has ended."""
         self.over = False
+        self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held

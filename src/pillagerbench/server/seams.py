@@ -255,9 +255,13 @@ class Control(Protocol):
         )
 
     async def clock(
-        self, speed: float | None = None, unpaced: bool | None = None, drop_holds: bool | None = None
+        self,
+        speed: float | None = None,
+        unpaced: bool | None = None,
+        drop_holds: bool | None = None,
+        game: bool | None = None,
     ) -> ClockState:
-        return await self.send("clock", speed=speed, unpaced=unpaced, drop_holds=drop_holds)
+        return await self.send("clock", speed=speed, unpaced=unpaced, drop_holds=drop_holds, game=game)
 
     async def hold(self, who: str) -> int:
         return await self.send("hold", who=who)

@@ -64,8 +64,12 @@ class TeamContext:
         lockstep clock the world waits for the answer (None)."""
         return self.time_left() if self.clock.mode == "real" else None
 
-    async def sleep(self, seconds: float) -> None:
-        """Wait `seconds` of game time, or to the whistle if that comes first."""
+    async def sleep(self, seconds: float, player: str | None = None) -> None:
+        """Wait `seconds` of game time, or to the whistle if that comes first. `player`: the player
+        whose loop waits (on the lockstep clock its bot, idle since its last run, holds the world until
+        its team says what next: this is what next)."""
+        if player is not None:
+            await self.clock.resume([player])
         await self.clock.sleep(min(seconds, self.time_left()))
 
     @property
@@ -105,6 +109,7 @@ class Team:
 
     async def play(self, ctx: TeamContext) -> None:
         """Drive the players until the whistle (the match cancels this task then)."""
+        await ctx.clock.resume(list(ctx.side.player_names))  # lockstep: its idle bots hold the world no more
         await ctx.sleep(ctx.time_left())
 
     async def post_game(self, ctx: TeamContext) -> None:

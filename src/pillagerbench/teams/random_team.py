@@ -387,7 +387,7 @@ class RandomTeam(Team):
             if ctx.time_left() <= 0:
                 break
             if n and n % self.pause_every == 0:
-                await ctx.sleep(self.pause_s)
+                await ctx.sleep(self.pause_s, name)
             action = gen.next(obs)
             self.iterations[k] += 1
             entry = {"t": round(ctx.clock.now() - start, 2), **action.to_dict(), "saw": compact(obs)}
@@ -396,7 +396,7 @@ class RandomTeam(Team):
                 events = await player.run(action.code, timeout=min(self.action_timeout_s, max(0.1, ctx.time_left())))
             except Exception as exc:  # noqa: BLE001 - a bot that cannot run code now: note it, wait a little, go on
                 entry["error"] = f"{type(exc).__name__}: {exc}"
-                await ctx.sleep(1.0)
+                await ctx.sleep(1.0, name)
                 continue
             errors = ev.errors(events)
             if errors:

@@ -48,5 +48,5 @@ class ScriptedTeam(Team):
             runs += 1
             events = await player.run(code)  # the match stops it at the whistle
             if ctx.time_left() > 0 and ev.errors(events):
-                await ctx.sleep(0.5)
+                await ctx.sleep(0.5, player.name)
         self.iterations.append(runs)

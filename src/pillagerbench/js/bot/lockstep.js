@@ -8,6 +8,7 @@ const clock = require('../clock/game_clock')
 const { CHANNELS, tickData, tickOf } = require('../clock/channels')
 
 const FREE_MS = 10
+const state = { tick: null } // the server's last tick this bot has begun (null: not on the clock)
 
 function attach (bot) {
   if (!clock.lockstep) return
@@ -16,8 +17,9 @@ function attach (bot) {
   let free = clock.real.setInterval(() => { chain = chain.then(() => clock.advance(FREE_MS)) }, FREE_MS)
   client.on('custom_payload', ({ channel, data }) => {
     if (channel !== CHANNELS.TICK) return
-    if (free) { clock.real.clearInterval(free); free = null }
+    if (free) { clock.real.clearInterval(free); free = null; onBoundaries(client) }
     const tick = tickOf(data)
+    state.tick = tick
     chain = chain
       .then(() => clock.advance(clock.TICK_MS))
       .catch(() => {}) // a timer that threw was reported by its own handler; the tick is still done
@@ -27,4 +29,21 @@ function attach (bot) {
   client.once('login', () => client.write('custom_payload', { channel: CHANNELS.JOIN, data: Buffer.alloc(0) }))
 }
 
-module.exports = { attach }
+// What the server sends reaches the bot's handlers between two ticks, never within one: the server
+// writes what another bot did during tick N (a block dug) while this bot may be doing tick N, and would
+// land at any moment of it. The server sends tick N+1 after all of them, so they all land before it.
+function onBoundaries (client) {
+  const emit = client.emit
+  client.emit = function (...args) {
+    clock.atBoundary(() => emit.apply(this, args))
+    return true
+  }
+}
+
+// A run has begun (BUSY) or ended (IDLE): during a game an ended run holds the clock until the next
+// (js/server/plugins/lockstep.js).
+function said (bot, channel) {
+  if (clock.lockstep) bot._client.write('custom_payload', { channel, data: Buffer.alloc(0) })
+}
+
+module.exports = { attach, tick: () => state.tick, busy: (bot) => said(bot, CHANNELS.BUSY), idle: (bot) => said(bot, CHANNELS.IDLE) }

@@ -50,7 +50,8 @@ const bot = mineflayer.createBot({
   hideErrors: true,
   logErrors: false
 })
-require('./lockstep').attach(bot) // clock=lockstep: this bot does the server's ticks
+const lockstep = require('./lockstep')
+lockstep.attach(bot) // clock=lockstep: this bot does the server's ticks
 bot.loadPlugin(pathfinder)
 // Upstream's bots had these too; agent code reaches them through the facade (sandbox.js).
 bot.loadPlugin(tool)
@@ -141,6 +142,7 @@ async function doRun (msg) {
   clearLeftovers(bot) // no dig of an earlier run is left for this one to cancel (gate.js)
   const code = typeof msg.code === 'string' ? msg.code : ''
   const run = new Run(msg.id, { startTick: observer.ticks })
+  lockstep.busy(bot)
   run.code = code
   observer.runStartTick = observer.ticks
   current = run
@@ -187,8 +189,9 @@ async function doRun (msg) {
   if (process.env.PB_TRACE) log(`[trace] echoes ${Date.now() % 100000}`)
   emit('observe')
   current = null
+  lockstep.idle(bot) // before the answer: the team's next step starts at this tick
   if (process.env.PB_TRACE) log(`[trace] run reply ${Date.now() % 100000}`)
-  out({ id: msg.id, ok: true, result: { stopped: stopped && !run.timedOut } })
+  out({ id: msg.id, ok: true, result: { stopped: stopped && !run.timedOut, tick: lockstep.tick() } })
 }
 
 // ---- requests --------------------------------------------------------------------------------

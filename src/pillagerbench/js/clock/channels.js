@@ -5,7 +5,15 @@
 //   JOIN  bot -> server  this bot runs on the game clock: wait for it from the next tick on
 //   TICK  server -> bot  tick N has begun: advance 50 ms of game time (data: N, uint32)
 //   DONE  bot -> server  tick N is done: physics, agent code, packets sent (data: N, uint32)
-const CHANNELS = { JOIN: 'pillagerbench:join', TICK: 'pillagerbench:tick', DONE: 'pillagerbench:done' }
+//   IDLE  bot -> server  its run has ended: during a game, hold the clock until its team says what next
+//   BUSY  bot -> server  a run has begun: release that hold
+const CHANNELS = {
+  JOIN: 'pillagerbench:join',
+  TICK: 'pillagerbench:tick',
+  DONE: 'pillagerbench:done',
+  IDLE: 'pillagerbench:idle',
+  BUSY: 'pillagerbench:busy'
+}
 
 function tickData (n) {
   const b = Buffer.alloc(4)

@@ -157,7 +157,8 @@ const OPS = {
   watch: async (serv, args) => serv.pb.watch.update(args),
   // The game clock (plugins/lockstep.js): its mode and tick; `speed` paces it at that multiple of real
   // time, `unpaced` lets it run as fast as the bots allow; `drop_holds` ends every hold, and every hold
-  // a wait_tick still to come would take (the whistle).
+  // a wait_tick still to come would take (the whistle); `game` says whether a game is on (a bot whose
+  // run ended then holds the clock until its next run: plugins/lockstep.js).
   clock: async (serv, args) => serv.pb.clock.configure(args),
   hold: async (serv, { who }) => serv.pb.clock.hold(who),
   release: async (serv, { who }) => serv.pb.clock.release(who),

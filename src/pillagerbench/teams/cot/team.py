@@ -240,11 +240,11 @@ class ChainOfThought(Team):
     async def _keep_running(self, ctx: TeamContext, k: int, player) -> None:
         program = self.programs[k] if k < len(self.programs) else None
         if program is None:  # the fallback: this player does nothing this episode
-            await ctx.sleep(ctx.time_left())
+            await ctx.sleep(ctx.time_left(), player.name)
             return
         while ctx.time_left() > 0:
             if ctx.upstream_protocol and self.iterations[k] >= UPSTREAM_STEPS:
-                await ctx.sleep(ctx.time_left())  # upstream: no 11th step
+                await ctx.sleep(ctx.time_left(), player.name)  # upstream: no 11th step
                 return
             self.iterations[k] += 1
             started = ctx.clock.now()
@@ -256,7 +256,7 @@ class ChainOfThought(Team):
                 )
             quick = ctx.clock.now() - started
             if ctx.time_left() > 0 and quick < self.restart_pause_s:
-                await ctx.sleep(self.restart_pause_s - quick)
+                await ctx.sleep(self.restart_pause_s - quick, player.name)
 
     async def post_game(self, ctx: TeamContext) -> None:
         players = ctx.side.player_names

@@ -238,7 +238,7 @@ class RemoteTeam(Team):
         while ctx.time_left() > 0:
             code = self.programs.get(name)
             if not code:  # no program (yet): idle until one arrives
-                await ctx.sleep(0.2)
+                await ctx.sleep(0.2, name)
                 continue
             version = self.versions.get(name)
             self.iterations[k] += 1
@@ -249,7 +249,7 @@ class RemoteTeam(Team):
                 self.problems.append(f"{name}: {type(exc).__name__}: {exc}")
             quick = ctx.clock.now() - started
             if self.versions.get(name) == version and ctx.time_left() > 0 and quick < self.restart_pause_s:
-                await ctx.sleep(self.restart_pause_s - quick)
+                await ctx.sleep(self.restart_pause_s - quick, name)
 
     async def post_game(self, ctx: TeamContext) -> None:
         last = last_seen_json(ctx.last_episode) if ctx.last_episode else {}

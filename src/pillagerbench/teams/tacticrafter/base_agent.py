@@ -289,7 +289,7 @@ class BaseAgent:
             program = await self.write_code(ctx)
             if program is None:
                 failures += 1
-                await ctx.sleep(t.restart_pause_s)
+                await ctx.sleep(t.restart_pause_s, self.name)
             return program, failures
         await self._idle_until_whistle(ctx)
         return None
@@ -315,7 +315,7 @@ class BaseAgent:
             or not self.can_call(ctx, CRITIC)
         ):
             if duration < t.restart_pause_s:
-                await ctx.sleep(t.restart_pause_s - duration)
+                await ctx.sleep(t.restart_pause_s - duration, self.name)
             return fallback, failures
         await self.criticize(ctx)
         it["success"], it["critique"] = self.success, self.critique
@@ -323,7 +323,7 @@ class BaseAgent:
         if new is not None:
             return new, failures
         if duration < t.restart_pause_s:
-            await ctx.sleep(t.restart_pause_s - duration)
+            await ctx.sleep(t.restart_pause_s - duration, self.name)
         return (None if upstream else fallback), failures + 1
 
     async def _run(self, ctx, player, program: Program) -> tuple[dict[str, Any], float, bool, bool]:
@@ -368,7 +368,7 @@ class BaseAgent:
 
     async def _idle_until_whistle(self, ctx) -> None:
         self._idle(ctx)
-        await ctx.sleep(ctx.time_left())
+        await ctx.sleep(ctx.time_left(), self.name)
 
     def _idle(self, ctx) -> None:
         self.record["idle_from_s"] = round(ctx.episode_length - ctx.time_left(), 2)

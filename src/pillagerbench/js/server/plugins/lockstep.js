@@ -5,19 +5,25 @@
 // 50 ms (flying-squid's tick loop, our plugins' timers), then sends each bot the tick.
 // Pacing: `speed` ticks at that multiple of real time; unpaced (null), as fast as the slowest bot.
 // Every PUSH_EVERY ticks the tick is pushed to the control channel (Python's game clock).
+// During a game (`clock` op, `game: true`) a bot whose run has ended holds the clock (`idle:NAME`) until
+// its next run begins or its team releases it (Python, TeamContext.sleep): a team's next program then
+// starts at the tick its last one ended, however long Python took; held for IDLE_LIMIT_MS of wall time
+// at most (a team that waits some other way), it lets go. A game begins with every bot idle.
 // clock=real: the ops answer the server's tick and refuse to hold.
 const clock = require('../../clock/game_clock')
 const { CHANNELS, tickData, tickOf } = require('../../clock/channels')
 const { ControlError } = require('../util')
 
 const PUSH_EVERY = 4
+const IDLE_LIMIT_MS = 5000
 
 module.exports.server = function (serv) {
   serv.pb = serv.pb || {}
   const members = new Map() // a bot's connection -> the last tick it has done
   const holds = new Map() // who -> count
   const waiters = [] // [tick, resolve]
-  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false }
+  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false }
+  const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
 
   const ready = () => holds.size === 0 && [...members.values()].every(done => done >= state.tick)
 
@@ -60,11 +66,15 @@ module.exports.server = function (serv) {
 
   serv.pb.clock = {
     describe,
-    configure ({ speed, unpaced, drop_holds: dropHolds }) {
+    configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
         holds.clear()
         for (const w of waiters) w[2] = null
+        for (const t of idleTimers.values()) clock.real.clearTimeout(t)
+        idleTimers.clear()
       }
+      if (game !== undefined) state.game = game === true
+      if (game === true) for (const client of members.keys()) this.idle(client) // until its first run
       if (speed !== undefined) {
         if (!(speed > 0)) throw new ControlError(`speed must be a multiple of real time above 0, got ${JSON.stringify(speed)}`)
         state.speed = speed
@@ -95,6 +105,23 @@ module.exports.server = function (serv) {
       if (tick <= state.tick) return Promise.resolve(reached(who))
       return new Promise(resolve => { const w = [tick, () => resolve(reached(w[2])), who || null]; waiters.push(w) })
     },
+    idle (client) {
+      if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} idle ${client.username} game=${state.game}`)
+      if (!state.game || !members.has(client)) return
+      const who = `idle:${client.username}`
+      if (holds.has(who)) return
+      holds.set(who, 1)
+      idleTimers.set(who, clock.real.setTimeout(() => { idleTimers.delete(who); this.releaseAll(who) }, IDLE_LIMIT_MS))
+    },
+    busy (client) {
+      if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} busy ${client.username}`)
+      this.releaseAll(`idle:${client.username}`)
+    },
+    releaseAll (who) {
+      const t = idleTimers.get(who)
+      if (t) { clock.real.clearTimeout(t); idleTimers.delete(who) }
+      if (holds.delete(who)) schedule(0)
+    },
     join (client) {
       members.set(client, state.tick)
       schedule(0)
@@ -105,6 +132,7 @@ module.exports.server = function (serv) {
       schedule(0)
     },
     leave (client) {
+      this.releaseAll(`idle:${client.username}`)
       if (members.delete(client)) schedule(0)
     }
   }
@@ -119,6 +147,8 @@ function listen (serv, client) {
   client.on('custom_payload', ({ channel, data }) => {
     if (channel === CHANNELS.JOIN) serv.pb.clock.join(client)
     else if (channel === CHANNELS.DONE) serv.pb.clock.done(client, tickOf(data))
+    else if (channel === CHANNELS.IDLE) serv.pb.clock.idle(client)
+    else if (channel === CHANNELS.BUSY) serv.pb.clock.busy(client)
   })
   client.on('end', () => serv.pb.clock.leave(client))
 }
