@@ -54,6 +54,11 @@ def one_line_refusal(tmp_path, *args, lines=1):
         (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; known: ablation_models"),
         (["llm=nope"], "pillagerbench run: unknown llm preset 'nope'; known: fake"),
         (["epsiodes=3"], "pillagerbench run: epsiodes: no such key"),
+        (["clock=fast"], "pillagerbench run: unknown clock 'fast'; known: lockstep, real"),
+        (["clock=lockstep", "clock.speed=0"], "pillagerbench run: clock.speed=0: a multiple of real time above 0"),
+        (["clock=lockstep", "clock.speed=fast"], "pillagerbench run: clock.speed='fast': a multiple of real time"),
+        (["clock=lockstep", "paper=true"], "pillagerbench run: paper=true plays on the real clock"),
+        (["clock=lockstep", "server.tps=40"], "pillagerbench run: server.tps=40: clock=lockstep plays 20 ticks"),
     ],
 )
 def test_a_bad_value_is_one_line_naming_key_value_and_choices(tmp_path, args, expected):
