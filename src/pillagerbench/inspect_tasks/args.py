@@ -1,0 +1,151 @@
+"""The task arguments (`inspect eval pillagerbench/mushroom_war -T team=cot -T opponents=balanced`)
+and the series they make: our generalization design (experiments/spec.py) with the task's scenarios,
+team, opponents, sides and arenas, so a sample is one series (opponent, side, arena) built exactly
+as `pillagerbench run experiment=generalization` builds it. With model roles for both sides
+(`--model-role red=... --model-role blue=...`) the team plays itself: model against model.
+
+A bad argument is one line naming it and what is accepted (`TaskArgumentError`, which Inspect prints
+without a traceback); nothing is started and no run directory is written.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from inspect_ai._util.error import PrerequisiteError
+
+from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.experiments.spec import build_series
+from pillagerbench.match.validate import check_run_config
+from pillagerbench.rundir import SeriesSpec
+from pillagerbench.scenarios.layout import SPLITS
+from pillagerbench.teams import TEAMS, find_team
+
+SIDES = ("red", "blue")
+ARGS = ("team", "opponents", "sides", "split", "episodes", "episode_length", "paper", "seed", "run_dir")
+
+
+class TaskArgumentError(PrerequisiteError):
+    """A task argument Inspect was given that cannot work: one line, no traceback, nothing started."""
+
+    def __init__(self, task: str, message: str):
+        super().__init__(f"pillagerbench/{task}: {message}")
+
+
+@dataclass(frozen=True)
+class TaskArgs:
+    scenarios: tuple[str, ...]
+    team: str = "cot"
+    opponents: tuple[str, ...] = ()  # () = do_nothing and the scenario's built-in opponents
+    sides: tuple[str, ...] = ("red",)
+    splits: tuple[str, ...] = ("paper",)  # each: every episode on the paper's layout, or a fresh one of the split
+    episodes: int = 5  # per sample (one series: the team keeps what it learned)
+    episode_length: int | None = None  # None: the scenario's
+    paper: bool = False  # upstream's scoring and step protocol (paper=true)
+    seed: int | None = None
+    run_dir: str | None = None  # where the series directories go; None: runs/inspect/<time>_<task>
+
+
+def names(value: Any) -> tuple[str, ...]:
+    """A list argument as given on Inspect's command line (`a,b`) or in Python (a list)."""
+    if value is None:
+        return ()
+    items = value if isinstance(value, (list, tuple)) else str(value).split(",")
+    return tuple(str(v).strip() for v in items if str(v).strip())
+
+
+def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArgs:
+    """The task's arguments checked: an unknown one, a side, a split or a number out of range is refused."""
+    unknown = sorted(set(given) - set(ARGS))
+    if unknown:
+        raise TaskArgumentError(task, f"unknown task argument {unknown[0]!r}; accepted: {', '.join(ARGS)}")
+    args = TaskArgs(
+        scenarios=tuple(scenarios),
+        team=str(given.get("team") or "cot"),
+        opponents=names(given.get("opponents")),
+        sides=names(given.get("sides")) or ("red",),
+        splits=names(given.get("split")) or ("paper",),
+        episodes=_number(task, "episodes", given.get("episodes", 5)),
+        episode_length=None if given.get("episode_length") is None else _number(task, "episode_length", given["episode_length"]),
+        paper=bool(given.get("paper", False)),
+        seed=None if given.get("seed") is None else int(given["seed"]),
+        run_dir=given.get("run_dir"),
+    )
+    for key, values, known in (("sides", args.sides, SIDES), ("split", args.splits, tuple(SPLITS))):
+        bad = [v for v in values if v not in known]
+        if bad:
+            raise TaskArgumentError(task, f"{key}={bad[0]!r} is not one; accepted: {', '.join(known)}")
+    return args
+
+
+def _number(task: str, key: str, value: Any) -> int:
+    try:
+        n = int(value)
+    except (TypeError, ValueError):
+        n = 0
+    if n < 1 or isinstance(value, bool):
+        raise TaskArgumentError(task, f"{key}={value!r}: a whole number ≥ 1")
+    return n
+
+
+def overrides(args: TaskArgs, roles: Iterable[str]) -> list[str]:
+    """The `pillagerbench run` overrides of the series: the generalization design, llm=inspect."""
+    both = set(SIDES) <= set(roles)  # model against model: the team plays itself, one model per side
+    opponents = (args.team,) if both else args.opponents
+    sides = ("red",) if both else args.sides
+    argv = [
+        "experiment=generalization",
+        f"experiment.scenarios=[{','.join(args.scenarios)}]",
+        f"experiment.team={args.team}",
+        f"experiment.sides=[{','.join(sides)}]",
+        *(f"experiment.arenas.{split}={args.episodes if split in args.splits else 0}" for split in SPLITS),
+        "llm=inspect",
+        "llm.preflight=false",  # Inspect checks its models itself; a preflight call would be one more answer
+    ]
+    if opponents:
+        argv.append(f"experiment.opponents=[{','.join(opponents)}]")
+    if args.episode_length:
+        argv.append(f"episode_length={args.episode_length}")
+    if args.paper:
+        argv.append("paper=true")
+    if args.seed is not None:
+        argv.append(f"seed={args.seed}")
+    return argv
+
+
+def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
+    """The series of the task (one per sample), every team and the model roles checked."""
+    roles = [r for r in roles if r in SIDES]
+    argv = overrides(args, roles)
+    try:
+        cfg = check_run_config(to_dict(load_config(argv)), teams=False)
+        specs = build_series(cfg, argv)
+    except ConfigError as exc:
+        raise TaskArgumentError(task, str(exc).splitlines()[0]) from None
+    for spec in specs:
+        for side in roles:
+            team = spec.red_team if side == "red" else spec.blue_team
+            if not getattr(find_team(team), "uses_llm", False):
+                llm_teams = ", ".join(n for n, c in TEAMS.items() if getattr(c, "uses_llm", False))
+                raise TaskArgumentError(
+                    task,
+                    f"model role {side!r} given, but {side} plays {team}, which is not an LLM team "
+                    f"(LLM teams: {llm_teams}; roles: red, blue)",
+                )
+    return specs
+
+
+def run_root(task: str, args: TaskArgs) -> Path:
+    """The directory the task's series directories go in."""
+    if args.run_dir:
+        return Path(args.run_dir)
+    return Path("runs") / "inspect" / f"{time.strftime('%Y-%m-%d_%H-%M-%S')}_{task}"
+
+
+def side_of(spec: SeriesSpec) -> str:
+    """The side the task's team plays in a series (red when it plays itself)."""
+    return "blue" if spec.red != spec.variant and spec.blue == spec.variant else "red"

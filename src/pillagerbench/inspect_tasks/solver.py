@@ -1,0 +1,50 @@
+"""The solver: one sample's series played by our series runner (experiments/series.py), exactly as
+`pillagerbench run experiment=generalization` plays it, into its own run directory; the LLM teams ask
+Inspect's models (llm=inspect), so every call is in the sample's transcript. At most as many matches
+at once as our runner would choose for this machine (host/machine.py), whatever --max-samples says.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+from typing import Any
+
+from inspect_ai.solver import Generate, Solver, TaskState, solver
+from inspect_ai.util import concurrency
+
+from pillagerbench.experiments.series import run_series
+from pillagerbench.host.machine import choose_parallel
+from pillagerbench.rundir import SeriesSpec
+
+from . import transcript
+
+EPOCH_SEED = 100_003  # a later epoch plays the same series on other seeds (a replicate, not a copy)
+
+
+def epoch_spec(spec: SeriesSpec, epoch: int) -> SeriesSpec:
+    """The series of one epoch: its own seed (epoch 1 keeps the series' own)."""
+    seed = spec.seed + EPOCH_SEED * (epoch - 1)
+    return dataclasses.replace(spec, seed=seed, config={**spec.config, "seed": seed})
+
+
+def series_dir(root: Path, spec: SeriesSpec, epoch: int) -> Path:
+    return root / f"{spec.id}_epoch{epoch}"
+
+
+@solver
+def play_series(root: str) -> Solver:
+    """Play the sample's series (metadata `series`) into `<root>/<series id>_epoch<k>`."""
+
+    async def solve(state: TaskState, generate: Generate) -> TaskState:
+        spec = epoch_spec(SeriesSpec.from_dict(state.metadata["series"]), state.epoch)
+        where = series_dir(Path(root), spec, state.epoch)
+        async with concurrency("pillagerbench-matches", choose_parallel().parallel):
+            summary: dict[str, Any] = await run_series(spec, where, say=transcript.say)
+        state.metadata["run_dir"] = str(where.resolve())
+        state.metadata["summary"] = summary
+        transcript.episodes(where)
+        state.completed = True
+        return state
+
+    return solve
