@@ -43,7 +43,7 @@ class TaskArgs:
     opponents: tuple[str, ...] = ()  # () = do_nothing and the scenario's built-in opponents
     sides: tuple[str, ...] = ("red",)
     splits: tuple[str, ...] = ("paper",)  # each: every episode on the paper's layout, or a fresh one of the split
-    episodes: int = 5  # per sample (one series: the team keeps what it learned)
+    episodes: int = 1  # per sample (one series: the team keeps what it learned; the paper plays 5)
     episode_length: int | None = None  # None: the scenario's
     paper: bool = False  # upstream's scoring and step protocol (paper=true)
     seed: int | None = None
@@ -69,7 +69,7 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
         opponents=names(given.get("opponents")),
         sides=names(given.get("sides")) or ("red",),
         splits=names(given.get("split")) or ("paper",),
-        episodes=_number(task, "episodes", given.get("episodes", 5)),
+        episodes=_number(task, "episodes", given.get("episodes", 1)),
         episode_length=None if given.get("episode_length") is None else _number(task, "episode_length", given["episode_length"]),
         paper=bool(given.get("paper", False)),
         seed=None if given.get("seed") is None else int(given["seed"]),

@@ -10,12 +10,14 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
+from inspect_ai.model import get_model
 from inspect_ai.solver import Generate, Solver, TaskState, solver
 from inspect_ai.util import concurrency
 
 from pillagerbench.experiments.series import run_series
 from pillagerbench.host.machine import choose_parallel
 from pillagerbench.rundir import SeriesSpec
+from pillagerbench.teams import find_team
 
 from . import transcript
 
@@ -23,9 +25,17 @@ EPOCH_SEED = 100_003  # a later epoch plays the same series on other seeds (a re
 
 
 def epoch_spec(spec: SeriesSpec, epoch: int) -> SeriesSpec:
-    """The series of one epoch: its own seed (epoch 1 keeps the series' own)."""
+    """The series of one epoch: its own seed (epoch 1 keeps the series' own), and each LLM side's
+    model named as Inspect gives it (the side's model role, else the evaluation's model), so the run
+    directory, the entrants and the ledger's prices name the real model, not `eval`."""
     seed = spec.seed + EPOCH_SEED * (epoch - 1)
-    return dataclasses.replace(spec, seed=seed, config={**spec.config, "seed": seed})
+    config = {**spec.config, "seed": seed}
+    for side in ("red", "blue"):
+        team = spec.red_team if side == "red" else spec.blue_team
+        if getattr(find_team(team), "uses_llm", False):
+            own = dict(config[side].get("llm") or {})
+            config[side] = {**config[side], "llm": {**own, "model": str(get_model(role=side))}}
+    return dataclasses.replace(spec, seed=seed, config=config)
 
 
 def series_dir(root: Path, spec: SeriesSpec, epoch: int) -> Path:

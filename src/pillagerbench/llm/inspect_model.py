@@ -35,16 +35,29 @@ def _config(s: LLMSettings, request: dict[str, Any]) -> Any:
     return GenerateConfig(temperature=request.get("temperature"), max_tokens=tokens, seed=request.get("seed"))
 
 
+def _model(s: LLMSettings, team: str | None) -> Any:
+    """Inspect's model for the team: inside an evaluation the side's model role (else the evaluation's
+    model) when `llm.model` is `eval` or names it (that instance, with its own arguments and
+    config); else Inspect's model by the name `llm.model` gives."""
+    from inspect_ai.model import get_model
+    from inspect_ai.model._model import active_model  # the evaluation's model, None outside one
+
+    if active_model() is not None:
+        ambient = get_model(role=team or None)
+        if s.model in (EVAL_MODEL, str(ambient)):
+            return ambient
+    return get_model(None if s.model == EVAL_MODEL else s.model)
+
+
 async def send(s: LLMSettings, request: dict[str, Any], *, role: str, team: str | None, ctx: dict) -> dict:
     """One generate() through Inspect; returns the cacheable answer plus `retries` (Inspect's own
     retries are not counted: 0). An Inspect limit reached (--token-limit, --message-limit, a cost
     limit) is our BudgetExceeded: the team stops asking, as when its own budget is spent."""
-    from inspect_ai.model import get_model
     from inspect_ai.util import LimitExceededError
 
     t0 = time.perf_counter()
     try:
-        model = get_model(None if s.model == EVAL_MODEL else s.model, role=team or None)
+        model = _model(s, team)
         output = await model.generate(_messages(request), config=_config(s, request))
     except LimitExceededError as exc:
         raise E.BudgetExceeded(f"Inspect's {exc.type} limit reached: {exc.message}", **ctx) from None
