@@ -3,15 +3,17 @@ mock model (no network: its token count offline, offline_tokens.py) answering wi
 
 from __future__ import annotations
 
+import importlib.util
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-pytest.importorskip("inspect_ai", reason="the inspect extra is not installed (pip install -e '.[inspect]')")
+from tests.inspect_tasks.offline_tokens import patch_tiktoken
 
-from tests.inspect_tasks.offline_tokens import patch_tiktoken  # noqa: E402
+if importlib.util.find_spec("inspect_ai") is None:  # the inspect extra is not installed: nothing to test
+    collect_ignore_glob = ["test_*.py"]
 
 OFFLINE = Path(__file__).resolve().parent / "offline"
 ROOT = Path(__file__).resolve().parents[2]
@@ -25,7 +27,9 @@ PROGRAM = """async function main(bot) {
     await bot.waitForTicks(20)
   }
 }"""
-ANSWER = "Plan: both players harvest.\n" + "\n".join(f"Code for bot {i}:\n```javascript\n{PROGRAM}\n```" for i in range(2))
+ANSWER = "Plan: both players harvest.\n" + "\n".join(
+    f"Code for bot {i}:\n```javascript\n{PROGRAM}\n```" for i in range(2)
+)
 
 
 @pytest.fixture(autouse=True, scope="session")

@@ -65,4 +65,6 @@ def test_pillagerbench_run_asks_inspects_model(tmp_path: Path) -> None:
     [record] = RunDir(run_dir).records()
     assert record.status == "ok" and not record.problems
     calls = [json.loads(line) for line in (run_dir / "llm_calls.jsonl").read_text().splitlines()]
-    assert calls and all((c["provider"], c["model"], c["error_type"]) == ("inspect", "mockllm/model", None) for c in calls)
+    assert calls and all(
+        (c["provider"], c["model"], c["error_type"]) == ("inspect", "mockllm/model", None) for c in calls
+    )

@@ -52,7 +52,11 @@ def test_llm_inspect_without_the_extra_is_one_line(tmp_path: Path) -> None:
         ({"bogus": 1}, {}, "unknown task argument 'bogus'; accepted: team, opponents"),
         ({"sides": "green"}, {}, "sides='green' is not one; accepted: red, blue"),
         ({"team": "cott"}, {}, "unknown team 'cott'"),
-        ({"opponents": "passive"}, {"blue": True}, "model role 'blue' given, but blue plays passive, which is not an LLM team"),
+        (
+            {"opponents": "passive"},
+            {"blue": True},
+            "model role 'blue' given, but blue plays passive, which is not an LLM team",
+        ),
         ({"team": "balanced"}, {"red": True}, "red plays balanced, which is not an LLM team"),
     ],
 )

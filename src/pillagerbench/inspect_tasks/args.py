@@ -70,7 +70,9 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
         sides=names(given.get("sides")) or ("red",),
         splits=names(given.get("split")) or ("paper",),
         episodes=_number(task, "episodes", given.get("episodes", 1)),
-        episode_length=None if given.get("episode_length") is None else _number(task, "episode_length", given["episode_length"]),
+        episode_length=None
+        if given.get("episode_length") is None
+        else _number(task, "episode_length", given["episode_length"]),
         paper=bool(given.get("paper", False)),
         seed=None if given.get("seed") is None else int(given["seed"]),
         run_dir=given.get("run_dir"),

@@ -48,7 +48,7 @@ def series_score() -> Scorer:
         values, used = series_scores(Path(state.metadata["run_dir"]), side)
         summary = state.metadata.get("summary", {})
         return Score(
-            value=values,  # type: ignore[arg-type]
+            value=values,
             answer=f"{side}: " + ", ".join(f"{k} {v:g}" for k, v in values.items()),
             explanation=f"{used} episode(s) used, {summary.get('spoiled', 0)} spoiled on our side (in no score)",
             metadata={"side": side, "episodes_used": used, "run_dir": state.metadata["run_dir"]},

@@ -25,7 +25,10 @@ def _messages(request: dict[str, Any]) -> list[Any]:
     from inspect_ai.model import ChatMessageAssistant, ChatMessageSystem, ChatMessageUser
 
     kinds = {"system": ChatMessageSystem, "developer": ChatMessageSystem, "assistant": ChatMessageAssistant}
-    return [kinds.get(m.get("role", "user"), ChatMessageUser)(content=str(m.get("content") or "")) for m in request["messages"]]
+    return [
+        kinds.get(m.get("role", "user"), ChatMessageUser)(content=str(m.get("content") or ""))
+        for m in request["messages"]
+    ]
 
 
 def _config(s: LLMSettings, request: dict[str, Any]) -> Any:

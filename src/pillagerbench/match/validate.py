@@ -71,7 +71,9 @@ def _team_problems(data: dict[str, Any], side: str, scenario: str) -> list[str]:
         where = f"{side}.llm" if own_llm else "llm"
         found_llm = problems(LLMConfig, merged, where)
         out += found_llm
-        if not found_llm:  # settings that cannot work (llm=inspect without its extra); a dollar budget needs a known price
+        if (
+            not found_llm
+        ):  # settings that cannot work (llm=inspect without its extra); a dollar budget needs a known price
             try:
                 out += [p for p in [price_problem(LLMSettings.from_config(merged), where)] if p]
             except LLMConfigError as exc:
