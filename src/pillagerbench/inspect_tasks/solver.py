@@ -49,9 +49,9 @@ def play_series(root: str) -> Solver:
     async def solve(state: TaskState, generate: Generate) -> TaskState:
         spec = epoch_spec(SeriesSpec.from_dict(state.metadata["series"]), state.epoch)
         where = series_dir(Path(root), spec, state.epoch)
+        state.metadata["run_dir"] = str(where.resolve())  # a series cut by --time-limit scores what it finished
         async with concurrency("pillagerbench-matches", choose_parallel().parallel):
             summary: dict[str, Any] = await run_series(spec, where, say=transcript.say)
-        state.metadata["run_dir"] = str(where.resolve())
         state.metadata["summary"] = summary
         transcript.episodes(where)
         state.completed = True
