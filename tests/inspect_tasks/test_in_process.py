@@ -50,7 +50,10 @@ def test_model_against_model_plays_and_scores_as_the_report(tmp_path: Path) -> N
     row = pairings(runs.episodes, resolve(runs, fallback=True)[0]).iloc[0]
     for name, col in (("points", "P"), ("dominance", "D"), ("win", "W"), ("sabotage", "S")):
         assert math.isclose(values[name], row[col], abs_tol=1e-9) or (math.isnan(values[name]) and math.isnan(row[col]))
-    assert set(log.results.scores[0].metrics) >= {"mean", "stderr"}
+    # and the task's metrics are Inspect's over the samples (one sample here: its values)
+    metrics = {s.name: s.metrics for s in log.results.scores}
+    assert metrics["points"]["mean"].value == values["points"] and "stderr" in metrics["win"]
+    assert metrics["sabotage"]["known_mean"].value == values["sabotage"]  # σ_blue of passive: known
 
 
 def test_token_limit_stops_the_team_as_its_budget_does(tmp_path: Path) -> None:

@@ -9,9 +9,23 @@ no usable episode is an error of the sample (Inspect retries it with --retry-on-
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
+from typing import Any, cast
 
-from inspect_ai.scorer import Score, Scorer, Target, bootstrap_stderr, mean, scorer, stderr
+from inspect_ai.scorer import (
+    Metric,
+    SampleScore,
+    Score,
+    Scorer,
+    Target,
+    Value,
+    bootstrap_stderr,
+    mean,
+    metric,
+    scorer,
+    stderr,
+)
 from inspect_ai.solver import TaskState
 
 from pillagerbench.metrics.calibration import resolve
@@ -41,7 +55,30 @@ def series_scores(run_dir: Path, side: str) -> tuple[dict[str, float], int]:
     return {NAMES[k]: float(e.mean) for k, e in estimates.items()}, len(df)
 
 
-@scorer(metrics={name: [mean(), stderr(), bootstrap_stderr()] for name in NAMES.values()})
+def known(inner: Metric, scores: list[SampleScore]) -> Value:
+    """`inner` over the samples whose value is known: sabotage has none against do_nothing (σ_blue
+    unknown; the report's "–"), and the report's mean over opponents leaves those out too."""
+    compute: Any = inner  # Inspect's Metric type also admits the older form over a list of Score
+    return cast(Value, compute([s for s in scores if not math.isnan(s.score.as_float())]))
+
+
+@metric
+def known_mean() -> Metric:
+    """The mean of the known values (the report's "all opponents" sabotage leaves the unknown out)."""
+    return lambda scores: known(mean(), scores)
+
+
+@metric
+def known_stderr() -> Metric:
+    """The standard error of the known values."""
+    return lambda scores: known(stderr(), scores)
+
+
+METRICS = {name: [mean(), stderr(), bootstrap_stderr()] for name in NAMES.values()}
+METRICS["sabotage"] = [known_mean(), known_stderr()]
+
+
+@scorer(metrics=METRICS)
 def series_score() -> Scorer:
     async def score(state: TaskState, target: Target) -> Score:
         side = state.metadata["side"]
