@@ -65,13 +65,21 @@ def known(inner: Metric, scores: list[SampleScore]) -> Value:
 @metric
 def known_mean() -> Metric:
     """The mean of the known values (the report's "all opponents" sabotage leaves the unknown out)."""
-    return lambda scores: known(mean(), scores)
+
+    def compute(scores: list[SampleScore]) -> Value:
+        return known(mean(), scores)
+
+    return compute
 
 
 @metric
 def known_stderr() -> Metric:
     """The standard error of the known values."""
-    return lambda scores: known(stderr(), scores)
+
+    def compute(scores: list[SampleScore]) -> Value:
+        return known(stderr(), scores)
+
+    return compute
 
 
 METRICS = {name: [mean(), stderr(), bootstrap_stderr()] for name in NAMES.values()}
