@@ -53,7 +53,8 @@ def test_model_against_model_plays_and_scores_as_the_report(tmp_path: Path) -> N
     # and the task's metrics are Inspect's over the samples (one sample here: its values)
     metrics = {s.name: s.metrics for s in log.results.scores}
     assert metrics["points"]["mean"].value == values["points"] and "stderr" in metrics["win"]
-    assert metrics["sabotage"]["known_mean"].value == values["sabotage"]  # σ_blue of passive: known
+    assert math.isnan(values["sabotage"])  # against cot: σ_blue unknown (the report's "–"), left out of the mean
+    assert math.isnan(metrics["sabotage"]["pillagerbench/known_mean"].value)
 
 
 def test_token_limit_stops_the_team_as_its_budget_does(tmp_path: Path) -> None:
@@ -68,4 +69,7 @@ def test_token_limit_stops_the_team_as_its_budget_does(tmp_path: Path) -> None:
     [record] = RunDir(run_dir).records()
     assert record.status == "ok" and "BudgetExceeded" in record.problems["red"][0]
     assert faults(record) and spoiled(record) is None
-    assert sample.scores["series_score"].value["points"] == record.red_score
+    values = sample.scores["series_score"].value
+    assert values["points"] == record.red_score
+    sabotage = {s.name: s.metrics for s in log.results.scores}["sabotage"]["pillagerbench/known_mean"].value
+    assert not math.isnan(values["sabotage"]) and sabotage == values["sabotage"]  # against passive: σ_blue known
