@@ -51,6 +51,9 @@ def test_llm_inspect_without_the_extra_is_one_line(tmp_path: Path) -> None:
     [
         ({"bogus": 1}, {}, "unknown task argument 'bogus'; accepted: team, opponents"),
         ({"sides": "green"}, {}, "sides='green' is not one; accepted: red, blue"),
+        ({"episodes": "two"}, {}, "episodes='two': a whole number ≥ 1"),
+        ({"seed": -1}, {}, "seed=-1: a whole number ≥ 0"),
+        ({"paper": "yes"}, {}, "paper='yes': true or false"),
         ({"team": "cott"}, {}, "unknown team 'cott'"),
         (
             {"opponents": "passive"},

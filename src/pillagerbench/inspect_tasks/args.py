@@ -73,8 +73,8 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
         episode_length=None
         if given.get("episode_length") is None
         else _number(task, "episode_length", given["episode_length"]),
-        paper=bool(given.get("paper", False)),
-        seed=None if given.get("seed") is None else int(given["seed"]),
+        paper=_flag(task, "paper", given.get("paper", False)),
+        seed=None if given.get("seed") is None else _number(task, "seed", given["seed"], least=0),
         run_dir=given.get("run_dir"),
     )
     for key, values, known in (("sides", args.sides, SIDES), ("split", args.splits, tuple(SPLITS))):
@@ -84,14 +84,20 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
     return args
 
 
-def _number(task: str, key: str, value: Any) -> int:
+def _number(task: str, key: str, value: Any, least: int = 1) -> int:
     try:
         n = int(value)
     except (TypeError, ValueError):
-        n = 0
-    if n < 1 or isinstance(value, bool):
-        raise TaskArgumentError(task, f"{key}={value!r}: a whole number ≥ 1")
+        n = least - 1
+    if n < least or isinstance(value, bool) or str(n) != str(value).strip():
+        raise TaskArgumentError(task, f"{key}={value!r}: a whole number ≥ {least}")
     return n
+
+
+def _flag(task: str, key: str, value: Any) -> bool:
+    if isinstance(value, bool) or str(value).lower() in ("true", "false"):
+        return str(value).lower() == "true"
+    raise TaskArgumentError(task, f"{key}={value!r}: true or false")
 
 
 def overrides(args: TaskArgs, roles: Iterable[str]) -> list[str]:

@@ -134,7 +134,7 @@ class LLMClient:
 
     def for_team(self, team: str, budget: Budget | None = None) -> LLMClient:
         """A client for one team: same provider connection, ledger and cache; its own budget."""
-        return LLMClient(
+        client = LLMClient(
             self.settings,
             team=team,
             ledger=self.ledger,
@@ -143,6 +143,8 @@ class LLMClient:
             price=self.price,
             _sdk=self._sdk,
         )
+        client._owns_sdk = False  # llm=inspect has no SDK client to share: the ledger stays this one's to close
+        return client
 
     def _default_budget(self) -> Budget:
         problem = price_problem(self.settings)
