@@ -44,8 +44,9 @@ def test_inspect_eval_plays_an_episode_and_the_run_directory_reports(tmp_path: P
     run_dir = Path(sample.metadata["run_dir"])
     [record] = RunDir(run_dir).records()
     assert record.red_entrant["label"] == "cot@mockllm/model"
+    assert run_dir.parent.parent == tmp_path / "runs"  # the Inspect run: one experiment directory
     report = subprocess.run(
-        [str(BIN / "pillagerbench"), "report", str(run_dir), "--out", str(tmp_path / "report")],
+        [str(BIN / "pillagerbench"), "report", str(tmp_path / "runs"), "--out", str(tmp_path / "report")],
         capture_output=True,
         text=True,
         cwd=tmp_path,

@@ -20,6 +20,7 @@ from pillagerbench.rundir import SeriesSpec
 from pillagerbench.teams import find_team
 
 from . import transcript
+from .experiment_dir import add_series
 
 EPOCH_SEED = 100_003  # a later epoch plays the same series on other seeds (a replicate, not a copy)
 
@@ -35,23 +36,19 @@ def epoch_spec(spec: SeriesSpec, epoch: int) -> SeriesSpec:
         if getattr(find_team(team), "uses_llm", False):
             own = dict(config[side].get("llm") or {})
             config[side] = {**config[side], "llm": {**own, "model": str(get_model(role=side))}}
-    return dataclasses.replace(spec, seed=seed, config=config)
-
-
-def series_dir(root: Path, spec: SeriesSpec, epoch: int) -> Path:
-    return root / f"{spec.id}_epoch{epoch}"
+    return dataclasses.replace(spec, id=f"{spec.id}_epoch{epoch}", seed=seed, config=config)
 
 
 @solver
-def play_series(root: str) -> Solver:
-    """Play the sample's series (metadata `series`) into `<root>/<series id>_epoch<k>`."""
+def play_series(root: str, task: str) -> Solver:
+    """Play the sample's series (metadata `series`) into `<root>/series/<series id>_epoch<k>`."""
 
     async def solve(state: TaskState, generate: Generate) -> TaskState:
         spec = epoch_spec(SeriesSpec.from_dict(state.metadata["series"]), state.epoch)
-        where = series_dir(Path(root), spec, state.epoch)
+        spec, where = add_series(Path(root), spec, task)
         state.metadata["run_dir"] = str(where.resolve())  # a series cut by --time-limit scores what it finished
         async with concurrency("pillagerbench-matches", choose_parallel().parallel):
-            summary: dict[str, Any] = await run_series(spec, where, say=transcript.say)
+            summary: dict[str, Any] = await run_series(spec, where, Path(root), say=transcript.say)
         state.metadata["summary"] = summary
         transcript.episodes(where)
         state.completed = True

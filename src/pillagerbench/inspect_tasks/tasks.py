@@ -41,7 +41,7 @@ def make_task(name: str, scenarios: tuple[str, ...], given: dict[str, Any], **de
     specs = series(name, args, model_roles())
     return Task(
         dataset=MemoryDataset([sample(s) for s in specs], name=f"pillagerbench_{name}"),
-        solver=play_series(str(run_root(name, args))),
+        solver=play_series(str(run_root(name, args)), name),
         scorer=series_score(),
         metadata={"scenarios": list(scenarios), "team": args.team},
     )

@@ -16,6 +16,7 @@ from pillagerbench.replay.page import write_replay
 from pillagerbench.rundir import EpisodeDir, EpisodeRecord, RunDir, spoiled
 
 SIDES = ("red", "blue")
+REFUSED_SHOWN = 20  # refused actions listed per episode (the record counts them all)
 CODE_KEYS = ("programs", "errors", "iterations", "agents", "problems")  # what an artefact says of the code run
 
 
@@ -45,6 +46,7 @@ def episode_event(record: EpisodeRecord, files: EpisodeDir) -> dict[str, Any]:
         "layout": record.layout,
         "problems": record.problems,
         "refusals": record.refusals,
+        "refused": _refused(files),
         "runs": record.runs,
         "lagged": record.lagged,
         "code": {side: team_code(files.side(side)) for side in SIDES},
@@ -65,6 +67,20 @@ def team_code(out_dir: Path) -> dict[str, Any]:
             continue
         if isinstance(data, dict):
             found[path.name] = {k: data[k] for k in CODE_KEYS if k in data}
+    return found
+
+
+def _refused(files: EpisodeDir, most: int = REFUSED_SHOWN) -> list[dict[str, Any]]:
+    """The first actions the server refused (world_events.jsonl's `refused` events: who, what, why)."""
+    found: list[dict[str, Any]] = []
+    try:
+        with open(files.world_events_path) as f:
+            for line in f:
+                event = json.loads(line)
+                if event.get("event") == "refused" and len(found) < most:
+                    found.append(event)
+    except (OSError, ValueError):
+        pass
     return found
 
 
