@@ -8,6 +8,7 @@ the generalization design) and played by our series runner (`experiments/series.
 directory written as any other; the LLM teams ask Inspect's models (llm=inspect,
 `llm/inspect_model.py`). `args.py`: the task arguments and the series they make; `solver.py`: one
 series played; `scorer.py`: win, points, sabotage, dominance from our metrics; `transcript.py`:
-what each episode adds to the sample's transcript. Importing this package imports Inspect: nothing
+what each episode adds to the sample's transcript; `experiment_dir.py`: the Inspect run as one
+experiment directory (`pillagerbench report` reads it whole). Its modules import Inspect: nothing
 of the default install imports it (tests/inspect_tasks/test_optional.py).
 """
