@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from pillagerbench.inspect_tasks.args import TaskArgs, overrides, parse, series, side_of
+from pillagerbench.inspect_tasks.args import TaskArgs, TaskArgumentError, overrides, parse, series, side_of
 from pillagerbench.inspect_tasks.solver import epoch_spec
 
 
@@ -54,3 +54,13 @@ def test_each_epoch_has_its_own_seeds_and_names_the_real_model(monkeypatch: pyte
     assert first.seed == spec.seed != second.seed == second.config["seed"]
     assert (first.id, second.id) == (f"{spec.id}_epoch1", f"{spec.id}_epoch2")
     assert first.config["red"]["llm"]["model"] == "mockllm/model" and "llm" not in first.config["blue"]
+
+
+def test_a_layout_replaces_the_split() -> None:
+    args = parse("mushroom_war", ("mushroom_war",), {"opponents": "passive", "layout": 7})
+    [spec] = series("mushroom_war", args, roles=[])
+    assert spec.id.endswith("_cot_vs_passive_layout-7") and (spec.config["layout"], spec.config["split"]) == (7, None)
+    with pytest.raises(TaskArgumentError, match="layout=7 and split=test: give one or the other"):
+        parse("mushroom_war", ("mushroom_war",), {"layout": 7, "split": "test"})
+    with pytest.raises(TaskArgumentError, match="layout=nowhere.json: no such layout file"):
+        series("mushroom_war", TaskArgs(scenarios=("mushroom_war",), opponents=("passive",), layout="nowhere.json"), [])

@@ -10,6 +10,7 @@ without a traceback); nothing is started and no run directory is written.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -19,14 +20,14 @@ from typing import Any
 from inspect_ai._util.error import PrerequisiteError
 
 from pillagerbench.config.compose import ConfigError, load_config, to_dict
-from pillagerbench.experiments.spec import build_series
-from pillagerbench.match.validate import check_run_config
+from pillagerbench.experiments.spec import build_series, slug
+from pillagerbench.match.validate import check_run_config, layout_problems
 from pillagerbench.rundir import SeriesSpec
-from pillagerbench.scenarios.layout import SPLITS
+from pillagerbench.scenarios.layout import PAPER, SPLITS
 from pillagerbench.teams import TEAMS, find_team
 
 SIDES = ("red", "blue")
-ARGS = ("team", "opponents", "sides", "split", "episodes", "episode_length", "paper", "seed", "run_dir")
+ARGS = ("team", "opponents", "sides", "split", "layout", "episodes", "episode_length", "paper", "seed", "run_dir")
 
 
 class TaskArgumentError(PrerequisiteError):
@@ -43,6 +44,7 @@ class TaskArgs:
     opponents: tuple[str, ...] = ()  # () = do_nothing and the scenario's built-in opponents
     sides: tuple[str, ...] = ("red",)
     splits: tuple[str, ...] = ("paper",)  # each: every episode on the paper's layout, or a fresh one of the split
+    layout: str | int | None = None  # every episode on this layout (a seed or a layout file) instead of a split
     episodes: int = 1  # per sample (one series: the team keeps what it learned; the paper plays 5)
     episode_length: int | None = None  # None: the scenario's
     paper: bool = False  # upstream's scoring and step protocol (paper=true)
@@ -69,6 +71,7 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
         opponents=names(given.get("opponents")),
         sides=names(given.get("sides")) or ("red",),
         splits=names(given.get("split")) or ("paper",),
+        layout=given.get("layout"),
         episodes=_number(task, "episodes", given.get("episodes", 1)),
         episode_length=None
         if given.get("episode_length") is None
@@ -77,6 +80,8 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
         seed=None if given.get("seed") is None else _number(task, "seed", given["seed"], least=0),
         run_dir=given.get("run_dir"),
     )
+    if args.layout is not None and given.get("split") is not None:
+        raise TaskArgumentError(task, f"layout={args.layout} and split={given['split']}: give one or the other")
     for key, values, known in (("sides", args.sides, SIDES), ("split", args.splits, tuple(SPLITS))):
         bad = [v for v in values if v not in known]
         if bad:
@@ -134,6 +139,8 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
         specs = build_series(cfg, argv)
     except ConfigError as exc:
         raise TaskArgumentError(task, str(exc).splitlines()[0]) from None
+    if args.layout is not None:
+        specs = [on_layout(task, spec, args.layout) for spec in specs]
     for spec in specs:
         for side in roles:
             team = spec.red_team if side == "red" else spec.blue_team
@@ -145,6 +152,16 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
                     f"(LLM teams: {llm_teams}; roles: red, blue)",
                 )
     return specs
+
+
+def on_layout(task: str, spec: SeriesSpec, layout: str | int) -> SeriesSpec:
+    """A series of the paper's arena played on `layout` instead (every episode), named by it."""
+    config = {**spec.config, "layout": layout, "split": None}
+    problems = layout_problems(config)
+    if problems:
+        raise TaskArgumentError(task, problems[0])
+    name = spec.id.removesuffix(f"_{PAPER}") + f"_layout-{slug(Path(str(layout)).stem)}"
+    return dataclasses.replace(spec, id=name, config=config)
 
 
 def run_root(task: str, args: TaskArgs) -> Path:

@@ -7,7 +7,8 @@ sides, on the paper's layout and on fresh test layouts: our experiment=generaliz
 
 Arguments (-T): team (cot; tacticrafter or any registered team), opponents (default do_nothing and
 the scenario's built-in opponents), sides (red; red,blue), split (paper; test, dev, or several),
-episodes per sample (one series), episode_length, paper (upstream's scoring and step protocol),
+layout (instead of split: every episode on this layout, a seed or a layout file), episodes per
+sample (one series), episode_length, paper (upstream's scoring and step protocol),
 seed, run_dir. A sample is one series; Inspect's --epochs plays each again on other seeds.
 """
 
@@ -37,6 +38,8 @@ def sample(spec: SeriesSpec) -> Sample:
 
 
 def make_task(name: str, scenarios: tuple[str, ...], given: dict[str, Any], **defaults: Any) -> Task:
+    if "layout" in given:  # a layout of the user's replaces the task's splits
+        defaults.pop("split", None)
     args: TaskArgs = parse(name, scenarios, {**defaults, **given})
     specs = series(name, args, model_roles())
     return Task(
