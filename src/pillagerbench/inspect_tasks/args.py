@@ -21,7 +21,7 @@ from inspect_ai._util.error import PrerequisiteError
 
 from pillagerbench.config.compose import ConfigError, load_config, to_dict
 from pillagerbench.experiments.spec import build_series, slug
-from pillagerbench.match.validate import check_run_config, layout_problems
+from pillagerbench.match.validate import check_run_config, layout_problems, team_problems
 from pillagerbench.rundir import SeriesSpec
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 from pillagerbench.teams import TEAMS, find_team
@@ -142,6 +142,9 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
     if args.layout is not None:
         specs = [on_layout(task, spec, args.layout) for spec in specs]
     for spec in specs:
+        problems = team_problems(spec.config)  # each series' teams, their options and LLM settings, as a run's
+        if problems:
+            raise TaskArgumentError(task, problems[0])
         for side in roles:
             team = spec.red_team if side == "red" else spec.blue_team
             if not getattr(find_team(team), "uses_llm", False):
