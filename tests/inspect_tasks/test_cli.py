@@ -69,3 +69,11 @@ def test_pillagerbench_run_asks_inspects_model(tmp_path: Path) -> None:
     assert calls and all(
         (c["provider"], c["model"], c["error_type"]) == ("inspect", "mockllm/model", None) for c in calls
     )
+
+
+def test_pillagerbench_run_with_a_model_inspect_lacks_is_one_line(tmp_path: Path) -> None:
+    command = [str(BIN / "pillagerbench"), "run", "red=cot", "llm=inspect", "llm.model=nosuch/model"]
+    out = subprocess.run(command + [f"run_dir={tmp_path / 'run'}"], capture_output=True, text=True, cwd=tmp_path)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1, out.stderr
+    assert "Inspect has no model for llm.model=nosuch/model" in out.stderr and "check llm.model" in out.stderr
+    assert not (tmp_path / "run").exists()

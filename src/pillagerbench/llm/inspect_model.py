@@ -11,6 +11,7 @@ here, and only when a call is made.
 
 from __future__ import annotations
 
+import re
 import time
 from typing import Any
 
@@ -19,6 +20,11 @@ from .parsing import strip_think
 from .settings import EVAL_MODEL, LLMSettings
 
 STOP_REASONS = {"max_tokens": "length", "model_length": "length"}  # Inspect's -> the OpenAI finish_reason we record
+
+
+def one_line(text: object) -> str:
+    """Inspect's message (rich markup, several lines) as one plain line."""
+    return " ".join(re.sub(r"\[/?[a-z ]+\]", "", str(text)).split())
 
 
 def _messages(request: dict[str, Any]) -> list[Any]:
@@ -56,6 +62,7 @@ async def send(s: LLMSettings, request: dict[str, Any], *, role: str, team: str 
     """One generate() through Inspect; returns the cacheable answer plus `retries` (Inspect's own
     retries are not counted: 0). An Inspect limit reached (--token-limit, --message-limit, a cost
     limit) is our BudgetExceeded: the team stops asking, as when its own budget is spent."""
+    from inspect_ai._util.error import PrerequisiteError
     from inspect_ai.util import LimitExceededError
 
     t0 = time.perf_counter()
@@ -64,8 +71,10 @@ async def send(s: LLMSettings, request: dict[str, Any], *, role: str, team: str 
         output = await model.generate(_messages(request), config=_config(s, request))
     except LimitExceededError as exc:
         raise E.BudgetExceeded(f"Inspect's {exc.type} limit reached: {exc.message}", **ctx) from None
-    except ValueError as exc:  # no model given and none in the evaluation
-        raise E.LLMConfigError(f"Inspect has no model for llm.model={s.model}: {exc}", **ctx) from None
+    except PrerequisiteError as exc:  # the provider's key or package missing
+        raise E.LLMConfigError(f"Inspect cannot use llm.model={s.model}: {one_line(exc.message)}", **ctx) from None
+    except ValueError as exc:  # an unknown model, or none given and none in the evaluation
+        raise E.ModelNotFound(f"Inspect has no model for llm.model={s.model}: {exc}", **ctx) from None
     except Exception as exc:  # noqa: BLE001 - Inspect retried already; any failure left is the provider's
         raise E.ProviderError(f"Inspect model call failed: {type(exc).__name__}: {exc}", **ctx) from None
     if output.error:
