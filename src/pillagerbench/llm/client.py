@@ -32,7 +32,7 @@ from .cache import LLMCache, normalize_mode
 from .ledger import Ledger
 from .parsing import parse_json, strip_think
 from .prices import Price, price_of, price_problem
-from .settings import LLMSettings
+from .settings import INSPECT, LLMSettings
 from .thinking import Thinking
 
 Messages = str | Sequence[Mapping[str, Any]]
@@ -79,7 +79,14 @@ class LLMClient:
         self.cache = cache if cache is not None else LLMCache(None, "off")
         self.budget = budget if budget is not None else self._default_budget()
         self._owns_sdk = _sdk is None
-        self._sdk = _sdk or openai.AsyncOpenAI(
+        self._sdk = _sdk or self._make_sdk(settings)
+
+    @staticmethod
+    def _make_sdk(settings: LLMSettings) -> openai.AsyncOpenAI | None:
+        """The OpenAI SDK's client; None for llm=inspect, whose calls go through Inspect (inspect_model.py)."""
+        if settings.provider == INSPECT:
+            return None
+        return openai.AsyncOpenAI(
             api_key=settings.api_key(), base_url=settings.base_url, max_retries=0, timeout=settings.timeout
         )
 
@@ -130,7 +137,7 @@ class LLMClient:
 
     def for_team(self, team: str, budget: Budget | None = None) -> LLMClient:
         """A client for one team: same provider connection, ledger and cache; its own budget."""
-        return LLMClient(
+        client = LLMClient(
             self.settings,
             team=team,
             ledger=self.ledger,
@@ -139,6 +146,8 @@ class LLMClient:
             price=self.price,
             _sdk=self._sdk,
         )
+        client._owns_sdk = False  # llm=inspect has no SDK client to share: the ledger stays this one's to close
+        return client
 
     def _default_budget(self) -> Budget:
         problem = price_problem(self.settings)
@@ -151,7 +160,7 @@ class LLMClient:
         self.budget.reset()
 
     async def aclose(self) -> None:
-        if self._owns_sdk:
+        if self._owns_sdk and self._sdk is not None:
             await self._sdk.close()
         if self.ledger is not None and self._owns_sdk:
             self.ledger.close()
@@ -225,7 +234,12 @@ class LLMClient:
                 raise E.CacheMiss(
                     f"replay: request not in the cache {self.cache.dir} (key {key}, sample {sample})", key=key, **ctx
                 )
-            response = await provider.send(self._sdk, s, request, role=role, team=self.team, ctx=ctx)
+            if self._sdk is None:  # llm=inspect
+                from . import inspect_model
+
+                response = await inspect_model.send(s, request, role=role, team=self.team, ctx=ctx)
+            else:
+                response = await provider.send(self._sdk, s, request, role=role, team=self.team, ctx=ctx)
             retries = response.pop("retries")
             self.cache.put(
                 key, {"key": key, "sample": sample, "provider": s.provider, "request": request, "response": response}

@@ -123,7 +123,10 @@ def resolve_price(
 def price_of(settings: Any) -> Price:
     """resolve_price for an LLMSettings."""
     s = settings
-    return resolve_price(s.provider, s.model, s.base_url, s.price_input_per_1m, s.price_output_per_1m)
+    provider, model = s.provider, s.model
+    if provider == "inspect" and "/" in model:  # Inspect's name, `anthropic/claude-...`: priced by its parts
+        provider, model = model.split("/", 1)
+    return resolve_price(provider, model, s.base_url, s.price_input_per_1m, s.price_output_per_1m)
 
 
 def price_problem(settings: Any, where: str = "llm") -> str | None:

@@ -6,6 +6,7 @@ client is made and handed straight to the SDK.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
@@ -14,6 +15,9 @@ from typing import Any
 from .errors import LLMConfigError
 from .redact import register_secret
 
+INSPECT = "inspect"  # the provider whose calls go through Inspect's model API (inspect_model.py)
+EVAL_MODEL = "eval"  # llm=inspect llm.model=eval: the Inspect evaluation's model (or the side's model role)
+INSPECT_EXTRA = "pip install 'pillagerbench[inspect]'"
 NO_KEY = "no-key"  # sent to servers that need none, so the SDK never falls back to OPENAI_API_KEY
 
 
@@ -60,6 +64,10 @@ class LLMSettings:
             raise LLMConfigError(f"llm.system_role must be system or developer, not {settings.system_role!r}")
         if settings.max_tokens_param not in ("max_tokens", "max_completion_tokens"):
             raise LLMConfigError("llm.max_tokens_param must be max_tokens or max_completion_tokens")
+        if settings.provider == INSPECT and not inspect_installed():
+            raise LLMConfigError(
+                f"llm=inspect needs the inspect extra, which is not installed: {INSPECT_EXTRA} (or choose another llm= preset)"
+            )
         return settings
 
     def api_key(self) -> str:
@@ -74,3 +82,11 @@ class LLMSettings:
             )
         register_secret(value)
         return value
+
+
+def inspect_installed() -> bool:
+    """Whether inspect-ai (the optional extra behind llm=inspect) can be imported, without importing it."""
+    try:
+        return importlib.util.find_spec("inspect_ai") is not None
+    except (ImportError, ValueError):  # ValueError: its sys.modules entry is None (blocked)
+        return False

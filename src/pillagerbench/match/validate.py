@@ -25,6 +25,7 @@ from pillagerbench.config.schema import (
     watch_problems,
 )
 from pillagerbench.config.schema import merged as merged_llm
+from pillagerbench.llm.errors import LLMConfigError
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
 from pillagerbench.scenarios import SCENARIOS
@@ -71,8 +72,13 @@ def _team_problems(data: dict[str, Any], side: str, scenario: str) -> list[str]:
         where = f"{side}.llm" if own_llm else "llm"
         found_llm = problems(LLMConfig, merged, where)
         out += found_llm
-        if not found_llm:  # a dollar budget needs a known price (llm/prices.py)
-            out += [p for p in [price_problem(LLMSettings.from_config(merged), where)] if p]
+        if (
+            not found_llm
+        ):  # settings that cannot work (llm=inspect without its extra); a dollar budget needs a known price
+            try:
+                out += [p for p in [price_problem(LLMSettings.from_config(merged), where)] if p]
+            except LLMConfigError as exc:
+                out.append(exc.detail)
     return out
 
 
