@@ -38,7 +38,7 @@ def test_arguments_become_the_generalization_designs_keys() -> None:
         ("cot", "passive", "red"),
         ("passive", "cot", "blue"),
     ]
-    assert all(s.config["split"] == "test" and s.episodes == 2 for s in specs)
+    assert all(s.config.split == "test" and s.episodes == 2 for s in specs)
 
 
 def test_model_roles_for_both_sides_make_the_team_play_itself() -> None:
@@ -51,15 +51,15 @@ def test_each_epoch_has_its_own_seeds_and_names_the_real_model(monkeypatch: pyte
     monkeypatch.setenv("INSPECT_EVAL_MODEL", "mockllm/model")  # get_model() outside an evaluation
     [spec] = series("mushroom_war", TaskArgs(scenarios=("mushroom_war",), opponents=("passive",)), roles=[])
     first, second = epoch_spec(spec, 1), epoch_spec(spec, 2)
-    assert first.seed == spec.seed != second.seed == second.config["seed"]
+    assert first.seed == spec.seed != second.seed == second.config.seed
     assert (first.id, second.id) == (f"{spec.id}_epoch1", f"{spec.id}_epoch2")
-    assert first.config["red"]["llm"]["model"] == "mockllm/model" and "llm" not in first.config["blue"]
+    assert first.config.red.llm["model"] == "mockllm/model" and not first.config.blue.llm
 
 
 def test_a_layout_replaces_the_split() -> None:
     args = parse("mushroom_war", ("mushroom_war",), {"opponents": "passive", "layout": 7})
     [spec] = series("mushroom_war", args, roles=[])
-    assert spec.id.endswith("_cot_vs_passive_layout-7") and (spec.config["layout"], spec.config["split"]) == (7, None)
+    assert spec.id.endswith("_cot_vs_passive_layout-7") and (spec.config.layout, spec.config.split) == (7, None)
     with pytest.raises(TaskArgumentError, match="layout=7 and split=test: give one or the other"):
         parse("mushroom_war", ("mushroom_war",), {"layout": 7, "split": "test"})
     with pytest.raises(TaskArgumentError, match="layout=nowhere.json: no such layout file"):

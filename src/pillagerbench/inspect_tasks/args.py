@@ -142,7 +142,7 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
     if args.layout is not None:
         specs = [on_layout(task, spec, args.layout) for spec in specs]
     for spec in specs:
-        problems = team_problems(spec.config)  # each series' teams, their options and LLM settings, as a run's
+        problems = team_problems(spec.config.stored())  # each series' teams, their options and LLM settings, as a run's
         if problems:
             raise TaskArgumentError(task, problems[0])
         for side in roles:
@@ -159,10 +159,10 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
 
 def on_layout(task: str, spec: SeriesSpec, layout: str | int) -> SeriesSpec:
     """A series of the paper's arena played on `layout` instead (every episode), named by it."""
-    config = {**spec.config, "layout": layout, "split": None}
-    problems = layout_problems(config)
+    problems = layout_problems({**spec.config.stored(), "layout": layout, "split": None})
     if problems:
         raise TaskArgumentError(task, problems[0])
+    config = spec.config.updated({"layout": layout, "split": None})
     name = spec.id.removesuffix(f"_{PAPER}") + f"_layout-{slug(Path(str(layout)).stem)}"
     return dataclasses.replace(spec, id=name, config=config)
 

@@ -30,12 +30,12 @@ def epoch_spec(spec: SeriesSpec, epoch: int) -> SeriesSpec:
     model named as Inspect gives it (the side's model role, else the evaluation's model), so the run
     directory, the entrants and the ledger's prices name the real model, not `eval`."""
     seed = spec.seed + EPOCH_SEED * (epoch - 1)
-    config = {**spec.config, "seed": seed}
+    changes: dict = {"seed": seed}
     for side in ("red", "blue"):
         team = spec.red_team if side == "red" else spec.blue_team
         if getattr(find_team(team), "uses_llm", False):
-            own = dict(config[side].get("llm") or {})
-            config[side] = {**config[side], "llm": {**own, "model": str(get_model(role=side))}}
+            changes[side] = {"llm": {"model": str(get_model(role=side))}}
+    config = spec.config.updated(changes)
     return dataclasses.replace(spec, id=f"{spec.id}_epoch{epoch}", seed=seed, config=config)
 
 

@@ -29,7 +29,7 @@ from .solver import play_series
 
 def sample(spec: SeriesSpec) -> Sample:
     side = side_of(spec)
-    arena = spec.config.get("split", "paper")
+    arena = spec.config.split or "paper"
     return Sample(
         id=spec.id,
         input=f"{spec.scenario}: {spec.red} (red) vs {spec.blue} (blue), {spec.episodes} episode(s) on {arena} layouts",
