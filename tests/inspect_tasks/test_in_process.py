@@ -11,8 +11,8 @@ from pathlib import Path
 from inspect_ai.log import read_eval_log, resolve_sample_attachments
 
 from pillagerbench.metrics.calibration import resolve
-from pillagerbench.metrics.runs import read_runs
 from pillagerbench.metrics.estimates import pairings
+from pillagerbench.metrics.runs import read_runs
 from pillagerbench.rundir import RunDir, faults, spoiled
 from tests.inspect_tasks.conftest import PROGRAM, mock_model, run_eval
 
