@@ -28,6 +28,7 @@ def write_run(
     layouts: list[str | int] | None = None,
     protocol: str | None = None,
     seeds: list[int] | None = None,
+    conditions: dict | None = None,
 ) -> Path:
     """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
     it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream);
@@ -36,7 +37,8 @@ def write_run(
     error; `problems[i]`: episode i's problems by side; `layouts[i]`: episode i's layout ("paper", a seed
     or a file; its split follows from it), else none recorded (a record from before layouts); `protocol`:
     the step protocol every record names (none: a record from before protocols); `seeds[i]`: episode i's
-    seed (none: 0, as a record from before seeds were recorded)."""
+    seed (none: 0, as a record from before seeds were recorded); `conditions`: further rules every
+    record names as played under (`{"clock.mode": "lockstep"}`)."""
     run.mkdir(parents=True)
     base = run_config().stored()  # a real run's config: every key composed
     config = {
@@ -74,6 +76,8 @@ def write_run(
             }
             given = {"suite": suite, "protocol": protocol, "seed": seeds[i] if seeds else None}
             rec.update({k: v for k, v in given.items() if v is not None})
+            if conditions:  # rules recorded as the match records them (e.g. clock.mode)
+                rec["conditions"] = {**({"protocol": protocol} if protocol else {}), **conditions}
             if layouts:
                 rec.update(layout=layouts[i], split=split_of(layouts[i]))
             if failed and i in failed:

@@ -91,6 +91,26 @@ def test_episodes_played_unlike_the_references_get_no_reference_and_say_what_dif
     assert not [n for n in notes if "no reference" in n]
 
 
+def test_the_lockstep_clock_is_checked_against_the_same_references(tmp_path):
+    # lockstep is the same game on another clock: upstream's figures and the suite's apply, and say so
+    write_run(
+        tmp_path / "ls", "mushroom_war", "do_nothing", "passive", [(0, 24)] * TEN,
+        conditions={"clock.mode": "lockstep"}, **AS_REFERENCES,
+    )  # fmt: skip
+    table, notes = fidelity_table(load_runs([tmp_path / "ls"]).episodes)
+    (row,) = table.itertuples()
+    assert (row.within_25pct, row.vs_suite) == ("✓", "✓")
+    assert row.conditions == "clock.mode=lockstep, protocol=upstream"
+    assert not [n for n in notes if "no reference" in n]
+    # a rule that is another game is still refused
+    write_run(
+        tmp_path / "tps", "mushroom_war", "do_nothing", "passive", [(0, 24)] * TEN,
+        conditions={"server.tps": 10}, **AS_REFERENCES,
+    )  # fmt: skip
+    table, _ = fidelity_table(load_runs([tmp_path / "tps"]).episodes)
+    assert table.iloc[0].within_25pct == "–"
+
+
 def test_bad_input_is_one_line_each_and_the_rest_is_printed(tmp_path, capsys):
     write_run(tmp_path / "few", "mushroom_war", "do_nothing", "balanced", [(0, 16), (0, 17)], **AS_REFERENCES)
     write_run(tmp_path / "other", "capture_the_flag", "do_nothing", "rusher", [(0, 5)] * TEN, **AS_REFERENCES)

@@ -150,13 +150,19 @@ def played_under(g: pd.DataFrame) -> str:
     return "; ".join(sorted(_rules(g)))
 
 
+# besides the rules the references were played under, what they still apply to: either scoring (both
+# are columns), and either clock (lockstep is the same game on another clock: this table checks that;
+# the conditions column says which clock played)
+SAME_GAME = frozenset({"scoring", "clock.mode"})
+
+
 def unlike_references(g: pd.DataFrame) -> str:
     """'' when every episode was played as the references were (rules, length, split), else what
     differs, as `key=value` of the episodes."""
     differ: list[str] = []
     for scenario, conditions in zip(g["scenario"], g["conditions"]):
         defaults = suite_defaults(scenario)
-        for key in sorted((set(conditions) | set(REFERENCE_CONDITIONS)) - {"scoring"}):
+        for key in sorted((set(conditions) | set(REFERENCE_CONDITIONS)) - SAME_GAME):
             mine = conditions.get(key, defaults.get(key))
             if key != "episode_length" and mine != REFERENCE_CONDITIONS.get(key, defaults.get(key)):
                 differ.append(f"{key}={mine}")
