@@ -1,0 +1,73 @@
+"""Same seed, same episode? (issue "Game time, not wall time", item 4): play one seeded lockstep episode
+of built-in teams several times and compare them: the score timelines, and the replay frames (every
+player's position and look at each frame, from the game's first frame on). Prints JSON.
+
+    python benchmarks/lockstep_determinism.py [--repeats 5] [--length 60] [--seed 3] [--load]
+
+`--load` plays a second match (real clock) beside each repeat, loading the machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gzip
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+CLI = [sys.executable, "-m", "pillagerbench.cli", "run", "display=plain"]
+
+
+def frames(run: Path) -> list[dict]:
+    path = run / "episode_000" / "replay.jsonl.gz"
+    recs = (json.loads(line) for line in gzip.open(path))
+    found = [r for r in recs if r.get("type") == "frame"]
+    first = found[0]["tick"] if found else 0
+    return [{"tick": f["tick"] - first, "players": f.get("players")} for f in found]
+
+
+def play(run: Path, args: argparse.Namespace) -> dict:
+    cmd = [*CLI, "clock=lockstep", f"seed={args.seed}", f"episode_length={args.length}", f"run_dir={run}"]
+    load = None
+    if args.load:
+        load = subprocess.Popen([*CLI, "episode_length=60", f"run_dir={run}-load"], cwd=ROOT, stdout=subprocess.DEVNULL)
+    subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True)
+    if load is not None:
+        load.wait()
+    return {"timeline": json.loads((run / "episode_000" / "timeline.json").read_text()), "frames": frames(run)}
+
+
+def first_difference(a: list[dict], b: list[dict]) -> float | None:
+    """Game seconds to the first replay frame that differs (None: none does)."""
+    for x, y in zip(a, b):
+        if x != y:
+            return round(x["tick"] * 0.05, 2)
+    return None
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--length", type=float, default=60.0)
+    ap.add_argument("--seed", type=int, default=3)
+    ap.add_argument("--load", action="store_true")
+    args = ap.parse_args()
+    base = Path(tempfile.mkdtemp(prefix="lockstep-determinism-"))
+    plays = [play(base / f"r{i}", args) for i in range(args.repeats)]
+    first = plays[0]
+    out = {
+        "repeats": args.repeats,
+        "load": args.load,
+        "identical_timelines": sum(p["timeline"] == first["timeline"] for p in plays),
+        "finals": [p["timeline"][-1] for p in plays],
+        "first_frame_difference_s": [first_difference(first["frames"], p["frames"]) for p in plays[1:]],
+        "runs": str(base),
+    }
+    print(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main()
