@@ -30,15 +30,10 @@ def write_run(
     seeds: list[int] | None = None,
     conditions: dict | None = None,
 ) -> Path:
-    """One plain run. `first_points[i]`: the second the red score of episode i leaves 0 (default 1:
-    it grows linearly); `upstream[i]`: episode i also recorded upstream's scoring (scoring=upstream);
-    `lagged[i]`: episode i was played under lag, for that reason; `suite`: the suite version every
-    record names (none: a record from before suite versions); `failed[i]`: episode i failed with that
-    error; `problems[i]`: episode i's problems by side; `layouts[i]`: episode i's layout ("paper", a seed
-    or a file; its split follows from it), else none recorded (a record from before layouts); `protocol`:
-    the step protocol every record names (none: a record from before protocols); `seeds[i]`: episode i's
-    seed (none: 0, as a record from before seeds were recorded); `conditions`: further rules every
-    record names as played under (`{"clock.mode": "lockstep"}`)."""
+    """One plain run. Per episode i: `first_points[i]` the second red's score leaves 0 (default 1),
+    `upstream[i]` upstream's scoring too, `lagged[i]` played under lag (why), `failed[i]` failed (error),
+    `problems[i]` by side, `layouts[i]` ("paper", a seed or a file), `seeds[i]`. Every record: `suite`,
+    `protocol`, `conditions` (more rules played under). None of these: a record from before them."""
     run.mkdir(parents=True)
     base = run_config().stored()  # a real run's config: every key composed
     config = {

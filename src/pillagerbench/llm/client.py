@@ -206,9 +206,8 @@ class LLMClient:
     async def complete(
         self, messages: Messages, *, role: str, temperature: Any = _UNSET, max_tokens: Any = _UNSET, **params: Any
     ) -> LLMResponse:
-        """One chat completion. `params` (stop, seed, top_p, response_format, ...) go into the body.
-        Raises an LLMError subclass; every call, failed or not, is one ledger record. During a game on
-        the lockstep clock the world waits for it (`thinking`)."""
+        """One chat completion (`params`: stop, seed, top_p, ... into the body); an LLMError subclass, or
+        one ledger record per call, failed or not. The lockstep clock waits for it (`thinking`)."""
         async with self.thinking.held():
             answer = await self._complete(messages, role, temperature, max_tokens, params)
         await self.thinking.charged(answer.output_tokens)

@@ -65,11 +65,9 @@ class Player:
         login_timeout: float = 30.0,
         clock: str = "real",
     ):
-        self.name = name
+        self.name, self.server_port, self.host = name, server_port, host
         self.clock = clock  # "real" or "lockstep": the bot's timers on the wall clock or the server's ticks
         self.last_tick: int | None = None  # lockstep: the server's tick when the last run ended
-        self.server_port = server_port
-        self.host = host
         self.log_dir = Path(log_dir) if log_dir else None
         self.primitives = list(primitives) if primitives is not None else None
         self.server = server  # the arena's control channel (None: no server-side checks)
@@ -276,9 +274,7 @@ class Player:
                 except PlayerError as exc:
                     state.add(["onError", {"onError": str(exc)}])
                     return state.events
-                answer = await state.done
-                tick = (answer.get("result") or {}).get("tick") if isinstance(answer, dict) else None
-                self.last_tick = tick if isinstance(tick, int) else None
+                self.last_tick = _tick_of(await state.done)
                 if self._recover_lock.locked():  # recovery finishing: its events are already in
                     async with self._recover_lock:
                         pass
@@ -354,3 +350,9 @@ class Player:
 
     async def __aexit__(self, *exc) -> None:
         await self.close()
+
+
+def _tick_of(answer: object) -> int | None:
+    """The server's tick a run's answer names (the lockstep clock), else None."""
+    tick = (answer.get("result") or {}).get("tick") if isinstance(answer, dict) else None
+    return tick if isinstance(tick, int) else None

@@ -8,6 +8,10 @@ const clock = require('../clock/game_clock')
 const { CHANNELS, tickData, tickOf } = require('../clock/channels')
 
 const FREE_MS = 10
+// mineflayer's 50 ms physics timer starts at login. At its first tick the bot moves its game time on
+// so that the physics step comes PHASE_MS after each tick's start in every run: runs begin on a tick's
+// start, so what they time in whole ticks (waits, digs) never coincides with a physics step.
+const PHASE_MS = 25
 const state = { tick: null } // the server's last tick this bot has begun (null: not on the clock)
 
 function attach (bot) {
@@ -15,9 +19,16 @@ function attach (bot) {
   const client = bot._client
   let chain = Promise.resolve()
   let free = clock.real.setInterval(() => { chain = chain.then(() => clock.advance(FREE_MS)) }, FREE_MS)
+  let loginAt = null
+  client.once('login', () => { loginAt = clock.now() })
   client.on('custom_payload', ({ channel, data }) => {
     if (channel !== CHANNELS.TICK) return
-    if (free) { clock.real.clearInterval(free); free = null; onBoundaries(client) }
+    if (free) {
+      clock.real.clearInterval(free)
+      free = null
+      onBoundaries(client)
+      chain = chain.then(() => clock.advance(phaseShift(loginAt)))
+    }
     const tick = tickOf(data)
     state.tick = tick
     chain = chain
@@ -27,6 +38,13 @@ function attach (bot) {
   })
   client.on('end', () => { if (free) clock.real.clearInterval(free) })
   client.once('login', () => client.write('custom_payload', { channel: CHANNELS.JOIN, data: Buffer.alloc(0) }))
+}
+
+// How far to move game time on so that a timer of 50 ms set at `since` fires PHASE_MS into each tick.
+function phaseShift (since) {
+  if (since === null) return 0
+  const tick = clock.TICK_MS
+  return (((since + PHASE_MS - clock.now()) % tick) + tick) % tick
 }
 
 // What the server sends reaches the bot's handlers between two ticks, never within one: the server
