@@ -108,6 +108,9 @@ async def test_honest_primitives_trip_nothing(server, area, make_player):
     q = server.control.subscribe()
     try:
         events = await p.run(
+            f"const seen = [[new Vec3({area.x0 + 8}, 4, 4), 'red_mushroom_block'], [new Vec3({area.x0 + 9}, 4, -4), 'chest']]\n"
+            "for (let i = 0; i < 100 && !seen.every(([v, name]) => bot.blockAt(v)?.name === name); i++)"
+            " await bot.waitForTicks(1)\n"  # the blocks just set reach the bot a moment later
             f"await mineBlock(bot, 'red_mushroom_block', 1)\nawait placeItem(bot, 'dirt', new Vec3({area.x0 + 3}, 4, 0))\n"
             f"await getItemFromChest(bot, new Vec3({area.x0 + 9}, 4, -4), {{gold_nugget: 5}})",
             timeout=60,
