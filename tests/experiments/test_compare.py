@@ -50,8 +50,10 @@ def test_pairs_alternate_sides_against_an_opponent_and_score_by_points(tmp_path)
 
 @pytest.mark.timeout(600)
 def test_passive_against_balanced_decides_on_the_real_server_and_resumes(tmp_path):
+    # On the game clock: 15 s of game do not shrink when the machine is loaded (a real-clock CI run tied
+    # a pair and ended undecided), and the four episodes take seconds, not minutes.
     run = tmp_path / "cmp"
-    args = ["passive", "balanced", "opponent=do_nothing", "episode_length=15", *WIDE, f"run_dir={run}"]
+    args = ["passive", "balanced", "opponent=do_nothing", "episode_length=15", "clock=lockstep", *WIDE, f"run_dir={run}"]
     res = run_cli(tmp_path, "compare", *args, timeout=540)
     assert res.returncode == 0, res.stdout + res.stderr
     lines = res.stdout.splitlines()
@@ -60,6 +62,8 @@ def test_passive_against_balanced_decides_on_the_real_server_and_resumes(tmp_pat
     last = lines[-1]
     assert last.startswith("compare: passive is ") and " than balanced (SPRT " in last, last
     assert "undecided" not in last and f"{len(pairs)} pairs, {2 * len(pairs)} episodes, $0.0000)" in last, last
+    played = [json.loads(x) for x in (run / "series" / "a_red" / "episodes.jsonl").read_text().splitlines()]
+    assert all(e["conditions"]["clock.mode"] == "lockstep" for e in played), played
     saved = json.loads((run / "compare.json").read_text())
     assert saved["opponent"] == "do_nothing" and saved["cap"] == 3 and saved["bounds"]["p1"] == 0.9
 
