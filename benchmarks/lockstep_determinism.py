@@ -2,9 +2,11 @@
 of built-in teams several times and compare them: the score timelines, and the replay frames (every
 player's position and look at each frame, from the game's first frame on). Prints JSON.
 
-    python benchmarks/lockstep_determinism.py [--repeats 5] [--length 60] [--seed 3] [--load]
+    python benchmarks/lockstep_determinism.py [--repeats 5] [--length 60] [--seed 3] [--load] [--ticks]
 
-`--load` plays a second match (real clock) beside each repeat, loading the machine.
+`--load` plays a second match (real clock) beside each repeat, loading the machine. `--ticks` has each
+bot write where it is after every tick (PB_TRACE=ticks, js/bot/lockstep.js) and says, per bot, the
+first tick at which a repeat parts from the first, and how.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ from __future__ import annotations
 import argparse
 import gzip
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -21,10 +24,12 @@ ROOT = Path(__file__).resolve().parents[1]
 CLI = [sys.executable, "-m", "pillagerbench.cli", "run", "display=plain"]
 
 
-def frames(run: Path) -> list[dict]:
+def recorded(run: Path) -> list[dict]:
     path = run / "episode_000" / "replay.jsonl.gz"
-    recs = (json.loads(line) for line in gzip.open(path))
-    found = [r for r in recs if r.get("type") == "frame"]
+    return [r for r in (json.loads(line) for line in gzip.open(path)) if r.get("type") == "frame"]
+
+
+def frames(found: list[dict]) -> list[dict]:
     first = found[0]["tick"] if found else 0
     return [{"tick": f["tick"] - first, "players": f.get("players")} for f in found]
 
@@ -34,10 +39,31 @@ def play(run: Path, args: argparse.Namespace) -> dict:
     load = None
     if args.load:
         load = subprocess.Popen([*CLI, "episode_length=60", f"run_dir={run}-load"], cwd=ROOT, stdout=subprocess.DEVNULL)
-    subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True)
+    env = {**os.environ, "PB_TRACE": "ticks"} if args.ticks else None
+    subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, env=env)
     if load is not None:
         load.wait()
-    return {"timeline": json.loads((run / "episode_000" / "timeline.json").read_text()), "frames": frames(run)}
+    timeline = json.loads((run / "episode_000" / "timeline.json").read_text())
+    found = recorded(run)
+    start = found[0]["tick"] if found else 0
+    return {"timeline": timeline, "frames": frames(found), "ticks": ticks(run, start) if args.ticks else {}}
+
+
+def ticks(run: Path, start: int) -> dict[str, dict[int, str]]:
+    """Each bot's state after each tick of the game (counted from its first frame), from its log."""
+    found: dict[str, dict[int, str]] = {}
+    for log in sorted((run / "logs").glob("*.log")):
+        lines = (x.split(" ", 2) for x in log.read_text().splitlines() if x.startswith("[tick] "))
+        found[log.stem] = {int(t) - start: rest for _, t, rest in lines if int(t) >= start}
+    return found
+
+
+def first_parting(a: dict[int, str], b: dict[int, str]) -> list | None:
+    """The first tick of the game at which two traces of one bot differ, and both states."""
+    for t in sorted(a):
+        if a[t] != b.get(t):
+            return [t, a[t], b.get(t)]
+    return None
 
 
 def first_difference(a: list[dict], b: list[dict]) -> float | None:
@@ -54,6 +80,7 @@ def main() -> None:
     ap.add_argument("--length", type=float, default=60.0)
     ap.add_argument("--seed", type=int, default=3)
     ap.add_argument("--load", action="store_true")
+    ap.add_argument("--ticks", action="store_true")
     args = ap.parse_args()
     base = Path(tempfile.mkdtemp(prefix="lockstep-determinism-"))
     plays = [play(base / f"r{i}", args) for i in range(args.repeats)]
@@ -64,6 +91,10 @@ def main() -> None:
         "identical_timelines": sum(p["timeline"] == first["timeline"] for p in plays),
         "finals": [p["timeline"][-1] for p in plays],
         "first_frame_difference_s": [first_difference(first["frames"], p["frames"]) for p in plays[1:]],
+        "ticks_parted": [
+            {bot: first_parting(trace, p["ticks"].get(bot, {})) for bot, trace in first["ticks"].items()}
+            for p in plays[1:]
+        ],
         "runs": str(base),
     }
     print(json.dumps(out, indent=1))

@@ -53,7 +53,15 @@ def test_passive_against_balanced_decides_on_the_real_server_and_resumes(tmp_pat
     # On the game clock: 15 s of game do not shrink when the machine is loaded (a real-clock CI run tied
     # a pair and ended undecided), and the four episodes take seconds, not minutes.
     run = tmp_path / "cmp"
-    args = ["passive", "balanced", "opponent=do_nothing", "episode_length=15", "clock=lockstep", *WIDE, f"run_dir={run}"]
+    args = [
+        "passive",
+        "balanced",
+        "opponent=do_nothing",
+        "episode_length=15",
+        "clock=lockstep",
+        *WIDE,
+        f"run_dir={run}",
+    ]
     res = run_cli(tmp_path, "compare", *args, timeout=540)
     assert res.returncode == 0, res.stdout + res.stderr
     lines = res.stdout.splitlines()

@@ -124,3 +124,38 @@ async def test_a_busy_loop_is_stopped_by_wall_time_and_the_clock_goes_on(world):
         (10,) if (await server.clock())["mode"] == "lockstep" else range(8, 13)
     )
     assert (await server.clock())["tick"] > tick
+
+
+async def test_a_rested_player_holds_the_clock_again_on_its_tick(world):
+    server, player, _ = world
+    if (await server.clock())["mode"] == "real":
+        with pytest.raises(Exception, match="needs clock=lockstep"):
+            await server.rest([player.name], 10)
+        return
+    tick = (await server.clock(game=True))["tick"]  # a game: every bot idle, holding the clock
+    try:
+        await asyncio.sleep(0.5)
+        assert (await server.clock())["tick"] == tick
+        assert await server.rest([player.name], 30) == tick + 30  # the hold goes, and is back 30 ticks on
+        await asyncio.sleep(0.5)
+        assert (await server.clock())["tick"] == tick + 30 and (await server.clock())["holds"] == [f"idle:{player.name}"]
+    finally:
+        await server.clock(game=False, drop_holds=True)
+
+
+async def test_agent_codes_date_and_chance_are_the_games(world):
+    server, player, area = world
+    lockstep = (await server.clock())["mode"] == "lockstep"
+    events = await player.run(
+        "const t = Date.now(); await new Promise(r => setTimeout(r, 5000)); bot.chat('ms ' + (Date.now() - t))"
+    )
+    ms = int([c for c in chats_by(events, player.name) if c.startswith("ms ")][-1].split()[1])
+    assert (ms == 5000) if lockstep else (4000 < ms < 7000), ms
+    draws = []
+    for _ in range(2):  # the same episode seed, the same draws: the bot's and its agent code's
+        await player.reset(position=area.at(0, 4, 0), inventory={}, seed=7)
+        events = await player.run("bot.chat('r ' + [Math.random(), Math.random()].join(' '))")
+        draws.append([c for c in chats_by(events, player.name) if c.startswith("r ")][-1])
+    await player.reset(position=area.at(0, 4, 0), inventory={}, seed=8)
+    events = await player.run("bot.chat('r ' + [Math.random(), Math.random()].join(' '))")
+    assert draws[0] == draws[1] != [c for c in chats_by(events, player.name) if c.startswith("r ")][-1], draws

@@ -47,7 +47,7 @@ async def test_an_answer_3_s_late_costs_no_tick_and_the_clock_runs_on_after(lock
     ticks = Ticks(lockstep)
     clock = await LockstepClock(ticks, lockstep.control).start()
     llm = llm_client("red")
-    llm.thinking.during_game(lambda: clock.thinking("red"), clock.charge)
+    llm.thinking.during_game(lambda: clock.thinking("red"), lambda tokens: clock.charge(tokens, []))
     started = time.monotonic()
     answer = await llm.complete("hello", role="action")
     assert answer.text == "fine" and time.monotonic() - started >= 3.0
@@ -63,7 +63,7 @@ async def test_thinking_charged_per_token_costs_that_many_ticks(lockstep, fake_l
     fake_llm.add(Rule(reply="word " * 200))
     clock = await LockstepClock(lockstep, lockstep.control, ticks_per_1k_tokens=100).start()
     llm = llm_client("red")
-    llm.thinking.during_game(lambda: clock.thinking("red"), clock.charge)
+    llm.thinking.during_game(lambda: clock.thinking("red"), lambda tokens: clock.charge(tokens, []))
     before = (await lockstep.clock())["tick"]
     answer = await llm.complete("hello", role="action")
     charged = answer.output_tokens / 1000 * 100
@@ -80,6 +80,6 @@ async def test_the_real_clock_neither_holds_nor_charges():
     async with clock.thinking("red"):
         pass
     started = time.monotonic()
-    await clock.charge(10_000)
+    await clock.charge(10_000, ["Ryn"])
     async with clock.at(time.monotonic() + 0.2, "game-master"):
         assert time.monotonic() - started >= 0.19

@@ -186,7 +186,7 @@ class Match:
         await sc.arena.build(self.server)
         await self.server.crop_growth(sc.crop_growth_chance, sc.random_tick_speed)
         names = [p.name for p in sc.all_players()]
-        resets = (self.players[p.name].reset(position=p.spawn, inventory={}) for p in sc.all_players())
+        resets = (self.players[p.name].reset(position=p.spawn, inventory={}, seed=rec.seed) for p in sc.all_players())
         observations = dict(zip(names, await asyncio.gather(*resets)))
         for p in sc.all_players():
             await self.server.gamemode(p.name, p.gamemode)
@@ -263,7 +263,7 @@ class Match:
             for key, llm in self.llms.items():
                 names = [s.player_names for s in self.scenario.sides if s.key == key][0]
                 llm.thinking.during_game(
-                    functools.partial(clock.thinking, key), functools.partial(_charged, clock, names)
+                    functools.partial(clock.thinking, key), functools.partial(clock.charge, players=names)
                 )
         try:
             yield
@@ -286,9 +286,3 @@ class Match:
         for key, team in self.teams.items():
             if team.problems:
                 rec.problems.setdefault(key, []).extend(team.problems)
-
-
-async def _charged(clock: LockstepClock, players: list[str], tokens: int) -> None:
-    """Thinking charged in game time: the team's players wait it out (their idle bots let the world go)."""
-    await clock.resume(players)
-    await clock.charge(tokens)

@@ -33,8 +33,7 @@ class RecordedPlayer:
         return getattr(self._player, name)
 
     async def _pause(self) -> None:
-        await self._clock.resume([self._player.name])  # lockstep: the bot idle since its last run holds the world
-        await self._clock.sleep(self._wait)
+        await self._clock.rest([self._player.name], self._wait)  # lockstep: its bot, idle since its last run, waits
 
     def _program(self, what: str, message: str | None = None) -> None:
         if self._on_program is not None:

@@ -311,9 +311,11 @@ class Player:
         position: Sequence[float] | None = None,
         inventory: dict[str, int] | None = None,
         equipment: placement.Equipment = None,
+        seed: int | None = None,
     ) -> list:
         """Stop code, then set inventory/equipment/position (through the control channel) and return
-        [["observe", {...}]]. Events from before the reset are dropped."""
+        [["observe", {...}]]. Events from before the reset are dropped. `seed`: the episode's, from
+        which the bot seeds its chance (Math.random, its own and its agent code's)."""
         await self.stop()
         async with self._run_lock:
             if not self.alive:
@@ -331,7 +333,7 @@ class Player:
             if equipment is not None:
                 await placement.wait_inventory(self._observe, inventory or {}, equipment)
                 await self._request("equip", equipment=equipment, wait=15)
-            await self._request("clear")
+            await self._request("clear", **({} if seed is None else {"seed": seed}))
             return await self.observe()
 
     async def close(self) -> None:

@@ -7,8 +7,8 @@ LLM call (or a remote team's HTTP call): on the lockstep clock the world waits f
 then costs `ticks_per_1k_tokens` of game time for the tokens it generated, if set. `at(t, who)` runs a
 step of the game (the game master's, a score sample) at game time `t`: on the lockstep clock at that
 tick exactly, with the world held until the step is done. During a game a bot whose run has ended
-holds the world (`idle:NAME`) until its next run begins or its team `resume`s it (a wait), so the
-next program starts at the tick the last one ended. `end()` at the whistle drops every hold
+holds the world (`idle:NAME`) until its next run begins or its team `rest`s it (a wait, exact to the
+tick), so the next program starts at the tick the last one ended. `end()` at the whistle drops every hold
 (stopping the players needs ticks); `begin()` before the next game.
 """
 
@@ -40,11 +40,11 @@ class GameClock(Protocol):
 
     def at(self, t: float, who: str) -> AbstractAsyncContextManager[None]: ...
 
-    async def charge(self, tokens: int) -> None: ...
+    async def rest(self, players: list[str], seconds: float) -> None: ...
+
+    async def charge(self, tokens: int, players: list[str]) -> None: ...
 
     async def end(self) -> None: ...
-
-    async def resume(self, players: list[str]) -> None: ...
 
     def saw(self, tick: int | None) -> None: ...
 
@@ -76,13 +76,13 @@ class RealClock:
         await self.sleep_until(t)
         yield
 
-    async def charge(self, tokens: int) -> None:
+    async def rest(self, players: list[str], seconds: float) -> None:
+        await self.sleep(seconds)
+
+    async def charge(self, tokens: int, players: list[str]) -> None:
         return None
 
     async def end(self) -> None:
-        return None
-
-    async def resume(self, players: list[str]) -> None:
         return None
 
     def saw(self, tick: int | None) -> None:
@@ -172,20 +172,25 @@ class LockstepClock:
         finally:
             await asyncio.shield(self.server.release(who))
 
-    async def charge(self, tokens: int) -> None:
+    async def rest(self, players: list[str], seconds: float) -> None:
+        """These players' bots, idle since their last run, wait `seconds` of game time: their holds go
+        and come back on the tick that ends the wait (one op, so that tick is exact however long
+        Python takes), when their team's next step begins."""
+        if not math.isfinite(seconds):
+            for name in players:
+                await self.server.release(f"idle:{name}")
+            await _forever()
+        self._seen(await self.server.rest(players, self.tick_of(max(0.0, seconds))))
+
+    async def charge(self, tokens: int, players: list[str]) -> None:
+        """Thinking charged in game time: the team's players wait it out."""
         if self.ticks_per_1k_tokens and tokens > 0 and not self.over:
-            await self.sleep(tokens / 1000 * self.ticks_per_1k_tokens * TICK_S)
+            await self.rest(players, tokens / 1000 * self.ticks_per_1k_tokens * TICK_S)
 
     async def end(self) -> None:
         self.over = True
         self._held.clear()
         await self.server.clock(drop_holds=True, game=False)  # a step cancelled at the whistle may still be due a hold
-
-    async def resume(self, players: list[str]) -> None:
-        """These players' bots, idle since their last run, hold the world no more (their team has
-        said what next: a wait, a charge for thinking)."""
-        for name in players:
-            await self.server.release(f"idle:{name}")
 
     async def begin(self) -> None:
         """A new game: thinking holds the world again, and so does a bot whose run has ended."""

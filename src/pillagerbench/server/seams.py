@@ -272,6 +272,9 @@ class Control(Protocol):
     async def wait_tick(self, tick: int, hold: str | None = None) -> int:
         return await self.send("wait_tick", tick=tick, hold=hold)
 
+    async def rest(self, players: Sequence[str], ticks: int) -> int:
+        return await self.send("rest", players=players, ticks=ticks)
+
     async def seed(self, seed: int) -> bool:
         return await self.send("seed", seed=seed)
 

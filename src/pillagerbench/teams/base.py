@@ -68,9 +68,8 @@ class TeamContext:
         """Wait `seconds` of game time, or to the whistle if that comes first. `player`: the player
         whose loop waits (on the lockstep clock its bot, idle since its last run, holds the world until
         its team says what next: this is what next)."""
-        if player is not None:
-            await self.clock.resume([player])
-        await self.clock.sleep(min(seconds, self.time_left()))
+        wait = min(seconds, self.time_left())
+        await (self.clock.sleep(wait) if player is None else self.clock.rest([player], wait))
 
     @property
     def opponent(self) -> Side:
@@ -109,8 +108,7 @@ class Team:
 
     async def play(self, ctx: TeamContext) -> None:
         """Drive the players until the whistle (the match cancels this task then)."""
-        await ctx.clock.resume(list(ctx.side.player_names))  # lockstep: its idle bots hold the world no more
-        await ctx.sleep(ctx.time_left())
+        await ctx.clock.rest(list(ctx.side.player_names), ctx.time_left())  # lockstep: its idle bots let the world go
 
     async def post_game(self, ctx: TeamContext) -> None:
         """Look back after the game (ctx.last_episode holds this episode's record)."""

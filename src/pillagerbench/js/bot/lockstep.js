@@ -12,11 +12,14 @@ const FREE_MS = 10
 // so that the physics step comes PHASE_MS after each tick's start in every run: runs begin on a tick's
 // start, so what they time in whole ticks (waits, digs) never coincides with a physics step.
 const PHASE_MS = 25
+const CLOCK_CHANNELS = new Set(Object.values(CHANNELS))
+const TRACE = /\bticks\b/.test(process.env.PB_TRACE || '') // PB_TRACE=ticks: where the bot is after each tick
 const state = { tick: null } // the server's last tick this bot has begun (null: not on the clock)
 
 function attach (bot) {
   if (!clock.lockstep) return
   const client = bot._client
+  sendWithinTicks(client)
   let chain = Promise.resolve()
   let free = clock.real.setInterval(() => { chain = chain.then(() => clock.advance(FREE_MS)) }, FREE_MS)
   let loginAt = null
@@ -34,6 +37,7 @@ function attach (bot) {
     chain = chain
       .then(() => clock.advance(clock.TICK_MS))
       .catch(() => {}) // a timer that threw was reported by its own handler; the tick is still done
+      .then(() => { if (TRACE) trace(bot, tick) })
       .then(() => client.write('custom_payload', { channel: CHANNELS.DONE, data: tickData(tick) }))
   })
   client.on('end', () => { if (free) clock.real.clearInterval(free) })
@@ -56,6 +60,26 @@ function onBoundaries (client) {
     clock.atBoundary(() => emit.apply(this, args))
     return true
   }
+}
+
+// What the bot sends between two ticks (a run begun or stopped from Python, an answer to the server)
+// goes out as the next tick begins: the server reads it with that tick's packets, not at whatever
+// moment of its own next tick it would arrive. The clock's own packets go at once. Installed before
+// gate.js's, which must judge a packet when it is written, in the context of whoever wrote it.
+function sendWithinTicks (client) {
+  const write = client.write
+  client.write = function (name, params) {
+    const now = state.tick === null || clock.advancing || (name === 'custom_payload' && CLOCK_CHANNELS.has(params.channel))
+    if (now) return write.call(this, name, params)
+    clock.atNextTick(() => write.call(this, name, params))
+  }
+}
+
+function trace (bot, tick) { // for benchmarks/lockstep_determinism.py: the first tick two runs part
+  const e = bot.entity
+  if (!e) return
+  const f = (v) => v.toFixed(6)
+  console.error(`[tick] ${tick} ${f(e.position.x)} ${f(e.position.y)} ${f(e.position.z)} ${f(e.yaw)} ${f(e.pitch)} ${f(e.velocity.x)} ${f(e.velocity.y)} ${f(e.velocity.z)}`)
 }
 
 // A run has begun (BUSY) or ended (IDLE): during a game an ended run holds the clock until the next

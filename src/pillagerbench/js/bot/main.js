@@ -34,6 +34,7 @@ const { LagMeter } = require('./lag')
 const watchdog = require('./watchdog')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
+const { seededRandom, seedOf } = require('../clock/random')
 
 const CHAT_LIMIT = 25
 const CHAT_WINDOW_TICKS = 100
@@ -171,7 +172,8 @@ async function doRun (msg) {
     const prims = primitives.build(ctx, settings.primitives || null)
     const context = sandbox.createContext({
       bot, run, mcData, Vec3, primitives: prims, chat: ctx.chat, save: ctx.save, report: reportError,
-      log: (level, text) => log(`[agent ${level}] ${text.slice(0, 2000)}`)
+      log: (level, text) => log(`[agent ${level}] ${text.slice(0, 2000)}`),
+      random: Math.random
     })
     const done = within(run, () => sandbox.execute(context, code)) // its packets carry the run (gate.js)
     await Promise.race([done, run.stopped])
@@ -220,7 +222,8 @@ const OPS = {
     if (reset) lag.reset()
     return result
   },
-  clear: async () => {
+  clear: async ({ seed }) => {
+    if (Number.isInteger(seed)) Math.random = seededRandom(seedOf(seed, bot.username)) // this episode's chance
     buffered.length = 0
     pendingEcho.length = 0
     observer.clear()

@@ -5,6 +5,7 @@
 // context and the host realm's function constructors are blocked (harden), so `x.constructor.constructor`
 // leads nowhere; the process also runs under Node's permission model (see main.js).
 const vm = require('vm')
+const clock = require('../clock/game_clock')
 const { goals, Movements } = require('mineflayer-pathfinder')
 const { isStop } = require('./run')
 const { waitTicks } = require('./ticks')
@@ -207,7 +208,7 @@ function toolOptions (o) {
 }
 
 // A fresh context for one run. `names`: primitive functions; `log`: console output.
-function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report, log }) {
+function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report, log, random }) {
   const trackTimer = (set, clear, registry) => (fn, ms, ...args) => {
     run.check()
     if (typeof fn !== 'function') throw new TypeError('timer callback must be a function')
@@ -244,8 +245,26 @@ function createContext ({ bot, run, mcData, Vec3, primitives, chat, save, report
   Object.assign(sandbox, primitives)
   const context = vm.createContext(sandbox, { name: 'agent', codeGeneration: { strings: false, wasm: false } })
   LOCK_STACK_TRACES.runInContext(context)
+  GAME_TIME_AND_CHANCE.runInContext(context)(clock.lockstep ? () => Date.now() : null, random || Math.random)
   return context
 }
+
+// The context's own Date and Math are its realm's, not the host's: on the lockstep clock its `Date`
+// reads game time as the host's does (js/clock/game_clock.js), and its `Math.random` draws from the
+// bot's seeded chance (js/clock/random.js), so agent code too plays the same game from the same seed.
+const GAME_TIME_AND_CHANCE = new vm.Script(`(function (now, random) {
+  Math.random = () => random()
+  if (now === null) return
+  const WallDate = Date
+  const GameDate = function Date (...args) {
+    if (!new.target) return new WallDate(now()).toString()
+    return args.length ? new WallDate(...args) : new WallDate(now())
+  }
+  Object.setPrototypeOf(GameDate, WallDate)
+  GameDate.prototype = WallDate.prototype
+  GameDate.now = () => now()
+  globalThis.Date = GameDate
+})`)
 
 // Node formats a stack trace with the `Error.prepareStackTrace` of the realm that made the error.
 // Set in the agent's realm, it would receive V8's call sites, and `callSite.getThis()` on a frame

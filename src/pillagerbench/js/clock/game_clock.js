@@ -25,6 +25,7 @@ const real = {
 let fake = null
 let advancing = false
 const deferred = [] // what came from outside during an advance, to be done at its end
+const nextTick = [] // what is to be done as the next advance begins
 
 // Do `fn` between two ticks: now if game time stands still, else when the advance in progress ends.
 // Requests from outside the process (the control channel, a bot's stdin) come at any moment of the
@@ -32,6 +33,13 @@ const deferred = [] // what came from outside during an advance, to be done at i
 // every outside input on a tick boundary.
 function atBoundary (fn) {
   if (advancing) deferred.push(fn)
+  else fn()
+}
+
+// Do `fn` as the next tick begins, before its timers (on the real clock: now). A bot sends what it
+// writes between two ticks this way (js/bot/lockstep.js).
+function atNextTick (fn) {
+  if (fake) nextTick.push(fn)
   else fn()
 }
 
@@ -82,6 +90,7 @@ async function advance (ms = TICK_MS) {
   if (!fake) return
   advancing = true
   try {
+    for (const fn of nextTick.splice(0)) fn()
     await fake.tickAsync(ms)
   } finally {
     advancing = false
@@ -91,8 +100,10 @@ async function advance (ms = TICK_MS) {
 
 module.exports = {
   install,
+  get advancing () { return advancing },
   advance,
   atBoundary,
+  atNextTick,
   real,
   TICK_MS,
   get lockstep () { return fake !== null },

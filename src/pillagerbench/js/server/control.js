@@ -163,6 +163,7 @@ const OPS = {
   hold: async (serv, { who }) => serv.pb.clock.hold(who),
   release: async (serv, { who }) => serv.pb.clock.release(who),
   wait_tick: async (serv, { tick, hold }) => serv.pb.clock.waitTick(tick, hold),
+  rest: async (serv, { players, ticks }) => serv.pb.clock.rest(players, ticks),
   seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
   // The order in which the server visits its players (packets, block updates, anything that loops
   // over serv.players): the online players named in `names` first, in that order, then the rest as

@@ -82,19 +82,6 @@ function propertiesOf (block) {
 
 module.exports = { ControlError, toPos, toBlockPos, blockByName, itemByName, stateIdOf, propertiesOf, Vec3 }
 
-// A small seedable PRNG (mulberry32) so drops and growth can be reproduced.
-function seededRandom (seed) {
-  let a = (Number(seed) >>> 0) || 1
-  return function () {
-    a = (a + 0x6D2B79F5) >>> 0
-    let t = a
-    t = Math.imul(t ^ (t >>> 15), t | 1)
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61)
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296
-  }
-}
-module.exports.seededRandom = seededRandom
-
 // A count drawn uniformly from [lo, hi], negative results meaning none (vanilla's way of giving
 // mushroom blocks 0-2 mushrooms, 0 with probability 7/9).
 function rollCount ([lo, hi], random = Math.random) {

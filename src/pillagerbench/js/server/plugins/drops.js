@@ -3,13 +3,17 @@
 // rule drop their loot-table items once, as flying-squid does. Reports every dug block.
 const { Vec3 } = require('vec3')
 const { BLOCK_DROPS, GROWTH, PICKUP } = require('../tables')
-const { seededRandom, rollCount } = require('../util')
+const { rollCount } = require('../util')
+const { seededRandom, seedOf } = require('../../clock/random')
 
 module.exports.server = function (serv) {
   const reg = serv.registry
   serv.pb.rollCount = (range) => rollCount(range, serv.pb.random)
   serv.pb.random = Math.random
-  serv.pb.seedRandom = (seed) => { serv.pb.random = seededRandom(seed) }
+  serv.pb.seedRandom = (seed) => { // every draw of the server's, flying-squid's too (js/clock/random.js)
+    serv.pb.random = seededRandom(seed)
+    Math.random = seededRandom(seedOf(seed, 'server'))
+  }
 
   // [{id, count}] for a dug block (properties decide ripeness).
   serv.pb.dropsFor = (block) => {

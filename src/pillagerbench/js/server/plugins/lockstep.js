@@ -12,6 +12,7 @@
 // clock=real: the ops answer the server's tick and refuse to hold.
 const clock = require('../../clock/game_clock')
 const { CHANNELS, tickData, tickOf } = require('../../clock/channels')
+const CLOCK_CHANNELS = new Set(Object.values(CHANNELS))
 const { ControlError } = require('../util')
 
 const PUSH_EVERY = 4
@@ -24,6 +25,7 @@ module.exports.server = function (serv) {
   const waiters = [] // [tick, resolve]
   const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false }
   const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
+  const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
 
   const ready = () => holds.size === 0 && [...members.values()].every(done => done >= state.tick)
 
@@ -46,6 +48,7 @@ module.exports.server = function (serv) {
     }
     state.busy = true
     try {
+      readPackets()
       state.tick++
       await clock.advance(clock.TICK_MS)
       for (const client of members.keys()) {
@@ -59,6 +62,16 @@ module.exports.server = function (serv) {
       state.busy = false
     }
     schedule(0)
+  }
+
+  // What the bots sent since the last tick, read now, bot by bot in the order of their names: the
+  // order in which the four connections happen to be read never decides who picked an item up first.
+  function readPackets () {
+    const order = [...inbox.keys()].sort((a, b) => String(a.username).localeCompare(String(b.username)))
+    for (const client of order) for (const fn of inbox.get(client).splice(0)) read(fn)
+  }
+  function read (fn) { // as the connection would have: a handler that throws is reported, the tick goes on
+    try { fn() } catch (err) { console.error(`[clock] a packet handler threw: ${err && err.stack ? err.stack : err}`) }
   }
 
   const describe = () => ({ mode: clock.lockstep ? 'lockstep' : 'real', tick: clock.lockstep ? state.tick : serv.tickCount, speed: state.speed, holds: [...holds.keys()], bots: members.size })
@@ -105,10 +118,25 @@ module.exports.server = function (serv) {
       if (tick <= state.tick) return Promise.resolve(reached(who))
       return new Promise(resolve => { const w = [tick, () => resolve(reached(w[2])), who || null]; waiters.push(w) })
     },
+    // The players' idle holds go now and come back `ticks` later, on that tick exactly (atomic: the
+    // clock cannot pass it before the wait is in place, for it is held until the release).
+    rest (players, ticks) {
+      lockstepOnly('rest')
+      const names = players.map(name => `idle:${name}`)
+      const back = new Promise(resolve => waiters.push([state.tick + Math.max(0, ticks), () => {
+        for (const who of names) if (state.game) this.holdIdle(who)
+        resolve(state.tick)
+      }, null]))
+      for (const who of names) this.releaseAll(who)
+      if (ticks <= 0) for (let i = waiters.length - 1; i >= 0; i--) if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
+      return back
+    },
     idle (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} idle ${client.username} game=${state.game}`)
       if (!state.game || !members.has(client)) return
-      const who = `idle:${client.username}`
+      this.holdIdle(`idle:${client.username}`)
+    },
+    holdIdle (who) { // held until its next run or a rest; after IDLE_LIMIT_MS of wall time it lets go
       if (holds.has(who)) return
       holds.set(who, 1)
       idleTimers.set(who, clock.real.setTimeout(() => { idleTimers.delete(who); this.releaseAll(who) }, IDLE_LIMIT_MS))
@@ -124,6 +152,7 @@ module.exports.server = function (serv) {
     },
     join (client) {
       members.set(client, state.tick)
+      inbox.set(client, queueing(client))
       schedule(0)
     },
     done (client, tick) {
@@ -132,6 +161,8 @@ module.exports.server = function (serv) {
       schedule(0)
     },
     leave (client) {
+      for (const fn of (inbox.get(client) || []).splice(0)) read(fn)
+      inbox.delete(client)
       this.releaseAll(`idle:${client.username}`)
       if (members.delete(client)) schedule(0)
     }
@@ -140,6 +171,24 @@ module.exports.server = function (serv) {
     serv._server.on('connection', (client) => listen(serv, client))
     schedule(0)
   }
+}
+
+// From now on the packets a bot sends reach flying-squid's handlers only when the queue returned is
+// read (at the next tick); the clock's own packets are read at once.
+function queueing (client) {
+  const queue = []
+  const emit = client.emit
+  let later = false // the packet being emitted (events 'packet', its name, 'raw.NAME', 'raw') waits
+  client.emit = function (event, ...args) {
+    if (event === 'packet') later = !(args[1].name === 'custom_payload' && CLOCK_CHANNELS.has(args[0].channel))
+    const name = args[1]?.name
+    const wait = later && (event === 'packet' || event === 'raw' || event === name || event === `raw.${name}`)
+    if (event === 'raw') later = false
+    if (!wait) return emit.call(this, event, ...args)
+    queue.push(() => emit.call(this, event, ...args))
+    return true
+  }
+  return queue
 }
 
 // Each connection, from its first packet on (a bot joins as it logs in, before flying-squid has made it a player).
