@@ -46,7 +46,13 @@ def play(run: Path, args: argparse.Namespace) -> dict:
     timeline = json.loads((run / "episode_000" / "timeline.json").read_text())
     found = recorded(run)
     start = found[0]["tick"] if found else 0
-    return {"timeline": timeline, "frames": frames(found), "ticks": ticks(run, start) if args.ticks else {}}
+    events = (run / "episode_000" / "world_events.jsonl").read_text().splitlines()
+    return {
+        "timeline": timeline,
+        "events": events,
+        "frames": frames(found),
+        "ticks": ticks(run, start) if args.ticks else {},
+    }
 
 
 def ticks(run: Path, start: int) -> dict[str, dict[int, str]]:
@@ -60,9 +66,10 @@ def ticks(run: Path, start: int) -> dict[str, dict[int, str]]:
 
 def first_parting(a: dict[int, str], b: dict[int, str]) -> list | None:
     """The first tick of the game at which two traces of one bot differ, and both states."""
+    state = lambda line: (line or "").split(" p", 1)[0]  # noqa: E731 (the packets seen may differ: update_time)
     for t in sorted(a):
-        if a[t] != b.get(t):
-            return [t, a[t], b.get(t)]
+        if state(a[t]) != state(b.get(t)):
+            return [t, *(x.get(y) for x in (a, b) for y in (t - 1, t))]
     return None
 
 
@@ -89,6 +96,7 @@ def main() -> None:
         "repeats": args.repeats,
         "load": args.load,
         "identical_timelines": sum(p["timeline"] == first["timeline"] for p in plays),
+        "identical_world_events": sum(p["events"] == first["events"] for p in plays),
         "finals": [p["timeline"][-1] for p in plays],
         "first_frame_difference_s": [first_difference(first["frames"], p["frames"]) for p in plays[1:]],
         "ticks_parted": [

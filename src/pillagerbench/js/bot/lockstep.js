@@ -20,6 +20,7 @@ function attach (bot) {
   if (!clock.lockstep) return
   const client = bot._client
   sendWithinTicks(client)
+  if (TRACE) watch(bot)
   let chain = Promise.resolve()
   let free = clock.real.setInterval(() => { chain = chain.then(() => clock.advance(FREE_MS)) }, FREE_MS)
   let loginAt = null
@@ -75,11 +76,18 @@ function sendWithinTicks (client) {
   }
 }
 
+const seen = { packets: [], physics: 0 } // since the last trace
 function trace (bot, tick) { // for benchmarks/lockstep_determinism.py: the first tick two runs part
   const e = bot.entity
   if (!e) return
   const f = (v) => v.toFixed(6)
-  console.error(`[tick] ${tick} ${f(e.position.x)} ${f(e.position.y)} ${f(e.position.z)} ${f(e.yaw)} ${f(e.pitch)} ${f(e.velocity.x)} ${f(e.velocity.y)} ${f(e.velocity.z)}`)
+  const got = seen.packets.splice(0).join(',')
+  console.error(`[tick] ${tick} ${f(e.position.x)} ${f(e.position.y)} ${f(e.position.z)} ${f(e.yaw)} ${f(e.pitch)} ${f(e.velocity.x)} ${f(e.velocity.y)} ${f(e.velocity.z)} p${seen.physics} ${got}`)
+  seen.physics = 0
+}
+function watch (bot) {
+  bot.on('physicsTick', () => seen.physics++)
+  bot._client.on('packet', (_, meta) => { if (meta.name !== 'custom_payload') seen.packets.push(meta.name) })
 }
 
 // A run has begun (BUSY) or ended (IDLE): during a game an ended run holds the clock until the next

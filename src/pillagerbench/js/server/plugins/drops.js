@@ -11,8 +11,17 @@ module.exports.server = function (serv) {
   serv.pb.rollCount = (range) => rollCount(range, serv.pb.random)
   serv.pb.random = Math.random
   serv.pb.seedRandom = (seed) => { // every draw of the server's, flying-squid's too (js/clock/random.js)
+    serv.pb.seed = seed
     serv.pb.random = seededRandom(seed)
     Math.random = seededRandom(seedOf(seed, 'server'))
+  }
+  // On the lockstep clock, the draws of each tick of a game come from that tick's own seed: a draw made
+  // at a moment the game does not decide (a connection's keep-alive, on a timer begun at its login)
+  // then cannot shift the draws of every later tick (js/server/plugins/lockstep.js).
+  serv.pb.reseed = (tick) => {
+    if (serv.pb.seed === undefined) return
+    serv.pb.random = seededRandom(seedOf(serv.pb.seed, `tick ${tick}`))
+    Math.random = seededRandom(seedOf(serv.pb.seed, `server tick ${tick}`))
   }
 
   // [{id, count}] for a dug block (properties decide ripeness).

@@ -23,7 +23,7 @@ module.exports.server = function (serv) {
   const members = new Map() // a bot's connection -> the last tick it has done
   const holds = new Map() // who -> count
   const waiters = [] // [tick, resolve]
-  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false }
+  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false, gameStart: 0 }
   const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
   const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
 
@@ -48,6 +48,7 @@ module.exports.server = function (serv) {
     }
     state.busy = true
     try {
+      if (state.game && serv.pb.reseed) serv.pb.reseed(state.tick + 1 - state.gameStart)
       readPackets()
       state.tick++
       await clock.advance(clock.TICK_MS)
@@ -74,6 +75,15 @@ module.exports.server = function (serv) {
     try { fn() } catch (err) { console.error(`[clock] a packet handler threw: ${err && err.stack ? err.stack : err}`) }
   }
 
+  // A game begins: what the server counts in ticks (crop growth every 20, health regeneration, egg
+  // farms' cycles) counts from here, not from whenever the server started, so that the same seed
+  // gives the same game.
+  function beginGame () {
+    state.gameStart = state.tick
+    serv.tickCount = 0
+    if (serv.pb.mobs) serv.pb.mobs.gameBegins()
+  }
+
   const describe = () => ({ mode: clock.lockstep ? 'lockstep' : 'real', tick: clock.lockstep ? state.tick : serv.tickCount, speed: state.speed, holds: [...holds.keys()], bots: members.size })
   const lockstepOnly = (op) => { if (!clock.lockstep) throw new ControlError(`op ${op} needs clock=lockstep (this server runs on the real clock)`) }
 
@@ -87,6 +97,7 @@ module.exports.server = function (serv) {
         idleTimers.clear()
       }
       if (game !== undefined) state.game = game === true
+      if (game === true) beginGame()
       if (game === true) for (const client of members.keys()) this.idle(client) // until its first run
       if (speed !== undefined) {
         if (!(speed > 0)) throw new ControlError(`speed must be a multiple of real time above 0, got ${JSON.stringify(speed)}`)
