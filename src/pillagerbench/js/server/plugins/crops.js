@@ -157,7 +157,7 @@ module.exports.server = function (serv, settings) {
 
   let busy = false
   serv.on('tick', (delta, tickCount) => {
-    if (tickCount % 20 !== 0 || busy || tracked.size === 0) return
+    if ((tickCount - (serv.pb.tick0 || 0)) % 20 !== 0 || busy || tracked.size === 0) return // from a game's start (plugins/lockstep.js)
     busy = true
     Promise.all([...tracked.values()].map(p => grow(p).catch(err => serv.emit('pluginError', err, 'crop growth'))))
       .finally(() => { busy = false })

@@ -75,12 +75,12 @@ module.exports.server = function (serv) {
     try { fn() } catch (err) { console.error(`[clock] a packet handler threw: ${err && err.stack ? err.stack : err}`) }
   }
 
-  // A game begins: what the server counts in ticks (crop growth every 20, health regeneration, egg
-  // farms' cycles) counts from here, not from whenever the server started, so that the same seed
-  // gives the same game.
+  // A game begins: what the server does every so many ticks (crop growth every 20, health regeneration,
+  // egg farms' cycles) counts from here (serv.pb.tick0), not from whenever the server started, so that
+  // the same seed gives the same game. (serv.tickCount itself only ever goes on.)
   function beginGame () {
     state.gameStart = state.tick
-    serv.tickCount = 0
+    serv.pb.tick0 = serv.tickCount
     if (serv.pb.mobs) serv.pb.mobs.gameBegins()
   }
 

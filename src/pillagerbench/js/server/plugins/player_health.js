@@ -41,7 +41,7 @@ module.exports.server = function (serv) {
       const last = player.pbLastTickPos
       player.pbLastTickPos = player.position.clone()
       if (!vulnerable(player)) continue
-      if (tick % HEALTH.regeneration.everyTicks === 0 && player.health < HEALTH.max) {
+      if ((tick - (serv.pb.tick0 || 0)) % HEALTH.regeneration.everyTicks === 0 && player.health < HEALTH.max) { // from a game's start
         player.updateHealth(Math.min(HEALTH.max, player.health + HEALTH.regeneration.amount))
       }
       if (!last) continue
