@@ -94,7 +94,8 @@ class Recorder:
                 due = self._start + k * period
                 async with self.clock.at(due, "replay"):  # lockstep: that tick exactly, the world held
                     await self._frame()
-                k = max(k + 1, int((self.clock.now() - self._start) / period) + 1)  # late: skip, never bunch up
+                    now = self.clock.now()  # read while held: on the lockstep clock never late
+                k = max(k + 1, int((now - self._start) / period) + 1)  # late: skip, never bunch up
         except asyncio.CancelledError:
             raise
         except Exception as exc:  # noqa: BLE001 - the recording ends; the episode goes on
