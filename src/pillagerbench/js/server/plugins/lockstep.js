@@ -75,13 +75,13 @@ module.exports.server = function (serv) {
     try { fn() } catch (err) { console.error(`[clock] a packet handler threw: ${err && err.stack ? err.stack : err}`) }
   }
 
-  // A game begins: what the server does every so many ticks (crop growth every 20, health regeneration,
-  // egg farms' cycles) counts from here (serv.pb.tick0), not from whenever the server started, so that
-  // the same seed gives the same game. (serv.tickCount itself only ever goes on.)
+  // A game begins: what the server does every so many ticks (crop growth every 20, health regeneration)
+  // counts from here (serv.pb.tick0), not from whenever the server started, so that the same seed gives
+  // the same game (serv.tickCount itself only ever goes on). Not the hens' laying cycles (plugins/mobs.js):
+  // they run from the arena's build, as on the real clock, and may lay before the game begins.
   function beginGame () {
     state.gameStart = state.tick
     serv.pb.tick0 = serv.tickCount
-    if (serv.pb.mobs) serv.pb.mobs.gameBegins()
   }
 
   const describe = () => ({ mode: clock.lockstep ? 'lockstep' : 'real', tick: clock.lockstep ? state.tick : serv.tickCount, speed: state.speed, holds: [...holds.keys()], bots: members.size })

@@ -32,9 +32,7 @@ module.exports.server = function (serv) {
       if (!(intervalS > 0)) throw new ControlError('egg farm interval_s must be > 0')
       eggFarms.push({ chest, intervalTicks: Math.max(1, Math.round(intervalS * 20)), radius, next: new Map() })
     },
-    clearEggFarms: () => { eggFarms.length = 0 },
-    // A game begins on the lockstep clock (plugins/lockstep.js): every hen's laying cycle begins anew.
-    gameBegins: () => { for (const farm of eggFarms) farm.next.clear() }
+    clearEggFarms: () => { eggFarms.length = 0 }
   }
 
   serv.on('newEntity', (e) => {
