@@ -34,11 +34,14 @@ async def play_game(
 
     async def rules():
         due = clock.now() + gm.period_s
-        while not over.is_set():
-            async with clock.at(due, "game-master"), lock:  # lockstep: at that tick exactly, the world held
-                if not over.is_set():
-                    await gm.step()
-                due = clock.now() + gm.period_s  # a period after this step (its tick, on the lockstep clock)
+        try:
+            while not over.is_set():
+                async with clock.at(due, "game-master"), lock:  # lockstep: at that tick exactly, the world held
+                    if not over.is_set():
+                        await gm.step()
+                    due = clock.now() + gm.period_s  # a period after this step (its tick, on the lockstep clock)
+        finally:
+            await clock.let_go("game-master")
 
     def second(t: int, scores: dict) -> None:
         for part in parts:

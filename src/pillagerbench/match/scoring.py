@@ -33,11 +33,14 @@ class CleanScoring:
     async def sample(
         self, gm, clock: GameClock, start: float, length: float, second: Callable[[int, dict], None]
     ) -> None:
-        for t in range(int(length)):
-            async with clock.at(start + t, "scores"):  # lockstep: read at that tick exactly
-                scores = await gm.scores()
-            self.timeline.append({"t": t, **scores})
-            second(t, scores)
+        try:
+            for t in range(int(length)):
+                async with clock.at(start + t, "scores"):  # lockstep: read at that tick exactly
+                    scores = await gm.scores()
+                self.timeline.append({"t": t, **scores})
+                second(t, scores)
+        finally:
+            await clock.let_go("scores")
 
     def final(self, length: float, scores: dict[str, float]) -> None:
         self.timeline.append({"t": length, **scores})
@@ -56,11 +59,14 @@ class UpstreamScoring:
         self.timeline: list[dict[str, Any]] = []
 
     async def sample(self, gm, clock: GameClock, start: float, length: float, runs: dict[str, int]) -> None:
-        for line in range(int(length) + 1):
-            t = UPSTREAM_WAIT_S + line + 1
-            async with clock.at(start + t, "upstream-scores"):
-                scores = await gm.upstream_scores(dict(runs))
-            self.timeline.append({"t": t, "line": line, **scores})
+        try:
+            for line in range(int(length) + 1):
+                t = UPSTREAM_WAIT_S + line + 1
+                async with clock.at(start + t, "upstream-scores"):
+                    scores = await gm.upstream_scores(dict(runs))
+                self.timeline.append({"t": t, "line": line, **scores})
+        finally:
+            await clock.let_go("upstream-scores")
 
     def write(self, out: Path) -> None:
         (out / self.file).write_text(json.dumps(self.timeline))

@@ -100,6 +100,8 @@ class Recorder:
             raise
         except Exception as exc:  # noqa: BLE001 - the recording ends; the episode goes on
             self.error = f"{type(exc).__name__}: {exc}"
+        finally:
+            await self.clock.let_go("replay")
 
     def _drain_events(self, t: float) -> None:
         q = self._events

@@ -6,7 +6,7 @@ Both give `now()` (game seconds), `sleep_until(t)`, `sleep(s)`, and `thinking(wh
 LLM call (or a remote team's HTTP call): on the lockstep clock the world waits for it, and `charge`
 then costs `ticks_per_1k_tokens` of game time for the tokens it generated, if set. `at(t, who)` runs a
 step of the game (the game master's, a score sample) at game time `t`: on the lockstep clock at that
-tick exactly, with the world held until the step is done. During a game a bot whose run has ended
+tick exactly, with the world held until the same step's next wait is in place. During a game a bot whose run has ended
 holds the world (`idle:NAME`) until its next run begins or its team `rest`s it (a wait, exact to the
 tick), so the next program starts at the tick the last one ended. `end()` at the whistle drops every hold
 (stopping the players needs ticks); `begin()` before the next game.
@@ -43,6 +43,8 @@ class GameClock(Protocol):
     async def rest(self, players: list[str], seconds: float) -> None: ...
 
     async def charge(self, tokens: int, players: list[str]) -> None: ...
+
+    async def let_go(self, who: str) -> None: ...
 
     async def end(self) -> None: ...
 
@@ -82,6 +84,9 @@ class RealClock:
     async def charge(self, tokens: int, players: list[str]) -> None:
         return None
 
+    async def let_go(self, who: str) -> None:
+        return None
+
     async def end(self) -> None:
         return None
 
@@ -101,6 +106,7 @@ class LockstepClock:
         self.tick = 0
         self.over = False  # after the whistle thinking holds the world no more
         self._held: dict[str, int] = {}  # who -> holds of thinking() still on
+        self._stepping: set[str] = set()  # who holds the world since its last at(), until its next
         self._queue: asyncio.Queue | None = None
         self._follow: asyncio.Task | None = None
 
@@ -166,11 +172,20 @@ class LockstepClock:
 
     @asynccontextmanager
     async def at(self, t: float, who: str) -> AsyncIterator[None]:
-        self._seen(await self.server.wait_tick(self.tick_of(t), hold=who))
-        try:
-            yield
-        finally:
-            await asyncio.shield(self.server.release(who))
+        """The step runs at `t`'s tick with the world held, and the hold stays on after it: `who`'s next
+        `at` hands it on to its own tick in one op (the wait is in place before the world goes on, so
+        however late Python sends it, the next step is not late). The whistle (`end`) drops it."""
+        if self.over:  # after the whistle: held for the step only (nothing hands it on)
+            self._seen(await self.server.wait_tick(self.tick_of(t), hold=who))
+            try:
+                yield
+            finally:
+                await asyncio.shield(self.server.release(who))
+            return
+        handed = who if who in self._stepping else None
+        self._stepping.add(who)
+        self._seen(await self.server.wait_tick(self.tick_of(t), hold=who, release=handed))
+        yield
 
     async def rest(self, players: list[str], seconds: float) -> None:
         """These players' bots, idle since their last run, wait `seconds` of game time: their holds go
@@ -182,6 +197,12 @@ class LockstepClock:
             await _forever()
         self._seen(await self.server.rest(players, self.tick_of(max(0.0, seconds))))
 
+    async def let_go(self, who: str) -> None:
+        """`who`'s steps are over (its loop has ended): the hold its last `at` left on goes."""
+        if who in self._stepping:
+            self._stepping.discard(who)
+            await asyncio.shield(self.server.release(who))
+
     async def charge(self, tokens: int, players: list[str]) -> None:
         """Thinking charged in game time: the team's players wait it out."""
         if self.ticks_per_1k_tokens and tokens > 0 and not self.over:
@@ -190,9 +211,11 @@ class LockstepClock:
     async def end(self) -> None:
         self.over = True
         self._held.clear()
+        self._stepping.clear()
         await self.server.clock(drop_holds=True, game=False)  # a step cancelled at the whistle may still be due a hold
 
     async def begin(self) -> None:
         """A new game: thinking holds the world again, and so does a bot whose run has ended."""
         self.over = False
+        self._stepping.clear()
         self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held

@@ -269,8 +269,8 @@ class Control(Protocol):
     async def release(self, who: str) -> int:
         return await self.send("release", who=who)
 
-    async def wait_tick(self, tick: int, hold: str | None = None) -> int:
-        return await self.send("wait_tick", tick=tick, hold=hold)
+    async def wait_tick(self, tick: int, hold: str | None = None, release: str | None = None) -> int:
+        return await self.send("wait_tick", tick=tick, hold=hold, release=release)
 
     async def rest(self, players: Sequence[str], ticks: int) -> int:
         return await self.send("rest", players=players, ticks=ticks)

@@ -36,10 +36,13 @@ function attach (bot) {
     const tick = tickOf(data)
     state.tick = tick
     chain = chain
-      .then(() => clock.advance(clock.TICK_MS))
+      .then(() => { client.socket.cork(); return clock.advance(clock.TICK_MS) }) // the tick's packets: one write
       .catch(() => {}) // a timer that threw was reported by its own handler; the tick is still done
       .then(() => { if (TRACE) trace(bot, tick) })
-      .then(() => client.write('custom_payload', { channel: CHANNELS.DONE, data: tickData(tick) }))
+      .then(() => {
+        client.write('custom_payload', { channel: CHANNELS.DONE, data: tickData(tick) })
+        client.socket.uncork()
+      })
   })
   client.on('end', () => { if (free) clock.real.clearInterval(free) })
   client.once('login', () => client.write('custom_payload', { channel: CHANNELS.JOIN, data: Buffer.alloc(0) }))

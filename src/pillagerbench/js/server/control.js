@@ -162,7 +162,7 @@ const OPS = {
   clock: async (serv, args) => serv.pb.clock.configure(args),
   hold: async (serv, { who }) => serv.pb.clock.hold(who),
   release: async (serv, { who }) => serv.pb.clock.release(who),
-  wait_tick: async (serv, { tick, hold }) => serv.pb.clock.waitTick(tick, hold),
+  wait_tick: async (serv, { tick, hold, release }) => serv.pb.clock.waitTick(tick, hold, release),
   rest: async (serv, { players, ticks }) => serv.pb.clock.rest(players, ticks),
   seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
   // The order in which the server visits its players (packets, block updates, anything that loops

@@ -47,6 +47,8 @@ module.exports.server = function (serv) {
       if (wait > 1) return schedule(wait)
     }
     state.busy = true
+    const sockets = [...members.keys()].map(c => c.socket).filter(Boolean)
+    for (const socket of sockets) socket.cork() // what a tick sends each bot: one write, not one per packet
     try {
       if (state.game && serv.pb.reseed) serv.pb.reseed(state.tick + 1 - state.gameStart)
       readPackets()
@@ -60,6 +62,7 @@ module.exports.server = function (serv) {
         if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
       }
     } finally {
+      for (const socket of sockets) socket.uncork()
       state.busy = false
     }
     schedule(0)
@@ -123,11 +126,15 @@ module.exports.server = function (serv) {
     },
     // Answer at `tick` (at once if it has come); with `who`, hold the clock for it there (a step of the
     // game master's or a score sample, done exactly at that tick; then `release`).
-    waitTick (tick, who) {
+    // With `release`, one hold of that holder goes once the wait is in place.
+    waitTick (tick, who, release) {
       lockstepOnly('wait_tick')
       const reached = (holder) => { if (holder) holds.set(holder, (holds.get(holder) || 0) + 1); return state.tick }
-      if (tick <= state.tick) return Promise.resolve(reached(who))
-      return new Promise(resolve => { const w = [tick, () => resolve(reached(w[2])), who || null]; waiters.push(w) })
+      const answer = tick <= state.tick
+        ? Promise.resolve(reached(who))
+        : new Promise(resolve => { const w = [tick, () => resolve(reached(w[2])), who || null]; waiters.push(w) })
+      if (release) this.release(release)
+      return answer
     },
     // The players' idle holds go now and come back `ticks` later, on that tick exactly (atomic: the
     // clock cannot pass it before the wait is in place, for it is held until the release).
