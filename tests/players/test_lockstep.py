@@ -138,7 +138,9 @@ async def test_a_rested_player_holds_the_clock_again_on_its_tick(world):
         assert (await server.clock())["tick"] == tick
         assert await server.rest([player.name], 30) == tick + 30  # the hold goes, and is back 30 ticks on
         await asyncio.sleep(0.5)
-        assert (await server.clock())["tick"] == tick + 30 and (await server.clock())["holds"] == [f"idle:{player.name}"]
+        assert (await server.clock())["tick"] == tick + 30 and (await server.clock())["holds"] == [
+            f"idle:{player.name}"
+        ]
     finally:
         await server.clock(game=False, drop_holds=True)
 
