@@ -6,7 +6,8 @@ from tests.support.node_script import run_node_script
 
 SCRIPT = r"""
 const { indexRecipes } = require(process.argv[1] + '/server/recipes.js')
-const { rollCount, seededRandom } = require(process.argv[1] + '/server/util.js')
+const { rollCount } = require(process.argv[1] + '/server/util.js')
+const { seededRandom } = require(process.argv[1] + '/clock/random.js')
 const { BLOCK_DROPS } = require(process.argv[1] + '/server/tables.js')
 const reg = require('prismarine-registry')('1.16.5')
 const id = (n) => n ? reg.itemsByName[n].id : null

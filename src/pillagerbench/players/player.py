@@ -314,8 +314,7 @@ class Player:
         seed: int | None = None,
     ) -> list:
         """Stop code, then set inventory/equipment/position (through the control channel) and return
-        [["observe", {...}]]. Events from before the reset are dropped. `seed`: the episode's, from
-        which the bot seeds its chance (Math.random, its own and its agent code's)."""
+        [["observe", {...}]]; events from before are dropped. `seed`: the episode's (the bot's chance)."""
         await self.stop()
         async with self._run_lock:
             if not self.alive:
