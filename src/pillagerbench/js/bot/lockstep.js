@@ -5,14 +5,13 @@
 // and then says it has done the tick, after the packets it sent meanwhile. Until the first tick comes,
 // its game time follows the wall clock (mineflayer loads its plugins from a timer before logging in).
 const clock = require('../clock/game_clock')
-const { CHANNELS, tickData, tickOf } = require('../clock/channels')
+const { CHANNELS, CLOCK_CHANNELS, tickData, tickOf } = require('../clock/channels')
 
 const FREE_MS = 10
 // mineflayer's 50 ms physics timer starts at login. At its first tick the bot moves its game time on
 // so that the physics step comes PHASE_MS after each tick's start in every run: runs begin on a tick's
 // start, so what they time in whole ticks (waits, digs) never coincides with a physics step.
 const PHASE_MS = 25
-const CLOCK_CHANNELS = new Set(Object.values(CHANNELS))
 const TRACE = /\bticks\b/.test(process.env.PB_TRACE || '') // PB_TRACE=ticks: where the bot is after each tick
 const state = { tick: null } // the server's last tick this bot has begun (null: not on the clock)
 

@@ -25,4 +25,6 @@ function tickOf (data) {
   return Buffer.isBuffer(data) && data.length >= 4 ? data.readUInt32BE(0) : null
 }
 
-module.exports = { CHANNELS, tickData, tickOf }
+const CLOCK_CHANNELS = new Set(Object.values(CHANNELS)) // a plugin-channel packet of the clock's own
+
+module.exports = { CHANNELS, CLOCK_CHANNELS, tickData, tickOf }

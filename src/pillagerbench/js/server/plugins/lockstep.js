@@ -11,8 +11,7 @@
 // at most (a team that waits some other way), it lets go. A game begins with every bot idle.
 // clock=real: the ops answer the server's tick and refuse to hold.
 const clock = require('../../clock/game_clock')
-const { CHANNELS, tickData, tickOf } = require('../../clock/channels')
-const CLOCK_CHANNELS = new Set(Object.values(CHANNELS))
+const { CHANNELS, CLOCK_CHANNELS, tickData, tickOf } = require('../../clock/channels')
 const { ControlError } = require('../util')
 
 const PUSH_EVERY = 4
@@ -58,14 +57,18 @@ module.exports.server = function (serv) {
         try { client.write('custom_payload', { channel: CHANNELS.TICK, data: tickData(state.tick) }) } catch (_) {}
       }
       if (state.tick % PUSH_EVERY === 0) serv.emit('control_event', { event: 'clock', tick: state.tick })
-      for (let i = waiters.length - 1; i >= 0; i--) {
-        if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
-      }
+      answerDue()
     } finally {
       for (const socket of sockets) socket.uncork()
       state.busy = false
     }
     schedule(0)
+  }
+
+  function answerDue () { // every wait whose tick has come
+    for (let i = waiters.length - 1; i >= 0; i--) {
+      if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
+    }
   }
 
   // What the bots sent since the last tick, read now, bot by bot in the order of their names: the
@@ -146,7 +149,7 @@ module.exports.server = function (serv) {
         resolve(state.tick)
       }, null]))
       for (const who of names) this.releaseAll(who)
-      if (ticks <= 0) for (let i = waiters.length - 1; i >= 0; i--) if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
+      if (ticks <= 0) answerDue()
       return back
     },
     idle (client) {
