@@ -3,6 +3,7 @@ of built-in teams several times and compare them: the score timelines, and the r
 player's position and look at each frame, from the game's first frame on). Prints JSON.
 
     python benchmarks/lockstep_determinism.py [--repeats 5] [--length 60] [--seed 3] [--load] [--ticks]
+        [red=TEAM blue=TEAM]
 
 `--load` plays a second match (real clock) beside each repeat, loading the machine. `--ticks` has each
 bot write where it is after every tick (PB_TRACE=ticks, js/bot/lockstep.js) and says, per bot, the
@@ -35,7 +36,7 @@ def frames(found: list[dict]) -> list[dict]:
 
 
 def play(run: Path, args: argparse.Namespace) -> dict:
-    cmd = [*CLI, "clock=lockstep", f"seed={args.seed}", f"episode_length={args.length}", f"run_dir={run}"]
+    cmd = [*CLI, "clock=lockstep", f"seed={args.seed}", f"episode_length={args.length}", f"run_dir={run}", *args.teams]
     load = None
     if args.load:
         load = subprocess.Popen([*CLI, "episode_length=60", f"run_dir={run}-load"], cwd=ROOT, stdout=subprocess.DEVNULL)
@@ -88,6 +89,7 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=3)
     ap.add_argument("--load", action="store_true")
     ap.add_argument("--ticks", action="store_true")
+    ap.add_argument("teams", nargs="*", help="e.g. red=do_nothing blue=aggressive (default: the run's own)")
     args = ap.parse_args()
     base = Path(tempfile.mkdtemp(prefix="lockstep-determinism-"))
     plays = [play(base / f"r{i}", args) for i in range(args.repeats)]

@@ -7,6 +7,7 @@ final score, and `abort` when the game failed."""
 from __future__ import annotations
 
 import asyncio
+import json
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -143,6 +144,17 @@ def count_refusals(events: list[dict]) -> dict[str, int]:
     return counts
 
 
+def in_moments(events: list[dict]) -> list[dict]:
+    """On the lockstep clock every event names its game tick: the events of one tick are one moment of
+    the game, and the order in which they reached us within it is the machine's, not the game's (a dig,
+    and the game master's line about it). They are put in the order of their ticks, and within a tick in
+    a fixed order of their contents, so that the same game gives the same log. Unstamped (real clock):
+    as they came."""
+    if not events or not all(isinstance(e.get("tick"), int) for e in events):
+        return events
+    return sorted(events, key=lambda e: (e["tick"], json.dumps(e, sort_keys=True)))
+
+
 class WorldLog(Part):
     """Every event the server pushed during the game: world_events.jsonl, the chat everyone could read
     (chat.txt: "<player> message", game-master lines plain), and the refusals per player in the record."""
@@ -162,7 +174,9 @@ class WorldLog(Part):
             return
         if game.server.control is not None:
             game.server.control.unsubscribe(queue)
-        events = [e for e in (queue.get_nowait() for _ in range(queue.qsize())) if e.get("event") != CLOCK_EVENT]
+        events = in_moments(
+            [e for e in (queue.get_nowait() for _ in range(queue.qsize())) if e.get("event") != CLOCK_EVENT]
+        )
         files = EpisodeDir(game.out)
         files.write_world_events(events)
         lines = [

@@ -217,9 +217,16 @@ function checkArgs (op, args) {
   }
 }
 
+// On the lockstep clock each event says at which tick of the game it happened (docs/clock.md): events
+// of one tick are one moment, which the record puts in a fixed order (pillagerbench/match/parts.py).
+function stamped (serv, ev) {
+  const tick = ev.event === 'clock' ? null : serv.pb.clock?.gameTick()
+  return tick === null || tick === undefined ? ev : { ...ev, tick }
+}
+
 function attach (serv, { input, write }) {
   const reply = (obj) => write(JSON.stringify(obj) + '\n')
-  serv.on('control_event', (ev) => reply(ev))
+  serv.on('control_event', (ev) => reply(stamped(serv, ev)))
   let buffer = ''
   input.setEncoding('utf8')
   input.on('data', (chunk) => {

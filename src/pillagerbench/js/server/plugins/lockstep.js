@@ -95,6 +95,8 @@ module.exports.server = function (serv) {
 
   serv.pb.clock = {
     describe,
+    // The tick of the game in progress (0 at its start) on the lockstep clock; null on the real clock.
+    gameTick: () => (clock.lockstep ? state.tick - state.gameStart : null),
     configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
         holds.clear()
