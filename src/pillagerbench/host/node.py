@@ -154,12 +154,18 @@ def node_env(watch: bool = False) -> dict[str, str]:
 
 
 PROFILE_ENV = "PILLAGERBENCH_NODE_PROFILE"
+PERF_ENV = "PILLAGERBENCH_NODE_PERF"  # =1: V8 writes /tmp/perf-PID.map, so Linux `perf` names JS functions
 
 
 def profile_args() -> list[str]:
     """With PILLAGERBENCH_NODE_PROFILE=DIR set, V8 CPU profiles of our Node processes go to DIR
     (one .cpuprofile per process, written when it exits; docs/performance.md). Node writes none
-    under its permission model, so bots being profiled run without it: for measuring only."""
+    under its permission model, so bots being profiled run without it: for measuring only.
+    PILLAGERBENCH_NODE_PERF=1 instead has V8 write the map that `perf record -a` needs to name
+    JavaScript functions (CPU time; V8's profiles sample the wall clock, so a process waiting for a
+    core shows as busy in whatever it was doing): for measuring only too."""
+    if os.environ.get(PERF_ENV):
+        return ["--perf-basic-prof"]
     where = os.environ.get(PROFILE_ENV)
     if not where:
         return []
