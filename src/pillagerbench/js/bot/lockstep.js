@@ -35,6 +35,7 @@ function attach (bot) {
     const tick = tickOf(data)
     state.tick = tick
     chain = chain
+      .then(settled) // what the packets before the tick set off is done before the tick begins
       .then(() => { client.socket.cork(); return clock.advance(clock.TICK_MS) }) // the tick's packets: one write
       .catch(() => {}) // a timer that threw was reported by its own handler; the tick is still done
       .then(() => { if (TRACE) trace(bot, tick) })
@@ -46,6 +47,13 @@ function attach (bot) {
   client.on('end', () => { if (free) clock.real.clearInterval(free) })
   client.once('login', () => client.write('custom_payload', { channel: CHANNELS.JOIN, data: Buffer.alloc(0) }))
 }
+
+// One turn of the event loop: the promises that the packets read before a tick settled, and the
+// stream callbacks still to deliver them, all run before the tick begins. Without it they ran before
+// or inside the tick depending on whether the packets came in one read with the tick or in an earlier
+// one (TCP's choice): inside, what they sent went out a tick early and what they searched counted
+// against that tick's budget (a path search ended two ticks apart in two runs of one seed).
+const settled = () => new Promise(resolve => clock.real.setImmediate(resolve))
 
 // How far to move game time on so that a timer of 50 ms set at `since` fires PHASE_MS into each tick.
 function phaseShift (since) {
@@ -84,9 +92,10 @@ function trace (bot, tick) { // for benchmarks/lockstep_determinism.py: the firs
   if (!e) return
   const f = (v) => v.toFixed(6)
   const got = seen.packets.splice(0).join(',')
-  console.error(`[tick] ${tick} ${f(e.position.x)} ${f(e.position.y)} ${f(e.position.z)} ${f(e.yaw)} ${f(e.pitch)} ${f(e.velocity.x)} ${f(e.velocity.y)} ${f(e.velocity.z)} p${seen.physics} ${got}`)
+  console.error(`[tick] ${tick} ${f(e.position.x)} ${f(e.position.y)} ${f(e.position.z)} ${f(e.yaw)} ${f(e.pitch)} ${f(e.velocity.x)} ${f(e.velocity.y)} ${f(e.velocity.z)} c${columns(bot)} p${seen.physics} ${got}`)
   seen.physics = 0
 }
+const columns = (bot) => { try { return bot.world.async.getColumns().length } catch (_) { return -1 } }
 function watch (bot) {
   bot.on('physicsTick', () => seen.physics++)
   bot._client.on('packet', (_, meta) => { if (meta.name !== 'custom_payload') seen.packets.push(meta.name) })

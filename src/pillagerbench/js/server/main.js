@@ -16,7 +16,7 @@ const protocolOut = (line) => channel.write(line)
 
 // Plugin files in load order: one concern each.
 const PLUGINS = ['batching', 'guard', 'refusals', 'interact', 'player_list', 'teleport', 'movement', 'inventory', 'windows', 'blocks', 'crafting', 'furnace',
-  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'player_health', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch', 'lockstep']
+  'chest', 'drops', 'pickup', 'farming', 'crops', 'entities', 'mobs', 'attack_cooldown', 'player_health', 'reach', 'dig_time', 'placing', 'fill', 'no_commands', 'events', 'replay', 'watch', 'chunks', 'lockstep']
 
 function main () {
   const mc = require('flying-squid')

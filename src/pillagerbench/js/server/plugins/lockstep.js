@@ -26,7 +26,20 @@ module.exports.server = function (serv) {
   const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
   const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
 
-  const ready = () => holds.size === 0 && [...members.values()].every(done => done >= state.tick)
+  const answers = [] // the answers of waits whose tick has come, until every bot has done that tick
+  const botsDone = () => [...members.values()].every(done => done >= state.tick)
+  const ready = () => holds.size === 0 && botsDone()
+
+  // A wait is answered (to Python) only once every bot has done the tick it waited for: what Python does
+  // next (a team's next run, a step of the game master's) then reaches each bot between this tick and
+  // the next, never before the bot has received this tick, where it would act one tick early.
+  function answer (fn) {
+    if (botsDone()) fn()
+    else answers.push(fn)
+  }
+  function flushAnswers () {
+    if (answers.length && botsDone()) for (const fn of answers.splice(0)) fn()
+  }
 
   function schedule (ms) {
     if (state.scheduled) return
@@ -87,6 +100,7 @@ module.exports.server = function (serv) {
   // they run from the arena's build, as on the real clock, and may lay before the game begins.
   function beginGame () {
     state.gameStart = state.tick
+    state.gameEnd = null
     serv.pb.tick0 = serv.tickCount
   }
 
@@ -95,8 +109,10 @@ module.exports.server = function (serv) {
 
   serv.pb.clock = {
     describe,
-    // The tick of the game in progress (0 at its start) on the lockstep clock; null on the real clock.
-    gameTick: () => (clock.lockstep ? state.tick - state.gameStart : null),
+    // The tick of the game in progress (0 at its start) on the lockstep clock, and after its whistle the
+    // whistle's (the clock runs on then at whatever pace: what happens after is not the game's); null on
+    // the real clock.
+    gameTick: () => (clock.lockstep ? (state.game ? state.tick : state.gameEnd ?? state.tick) - state.gameStart : null),
     configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
         holds.clear()
@@ -104,9 +120,9 @@ module.exports.server = function (serv) {
         for (const t of idleTimers.values()) clock.real.clearTimeout(t)
         idleTimers.clear()
       }
-      if (game !== undefined) state.game = game === true
-      if (game === true) beginGame()
-      if (game === true) for (const client of members.keys()) this.idle(client) // until its first run
+      if (game === false && state.game) state.gameEnd = state.tick
+      if (game === false) state.game = false
+      if (game === true && !clock.lockstep) state.game = true
       if (speed !== undefined) {
         if (!(speed > 0)) throw new ControlError(`speed must be a multiple of real time above 0, got ${JSON.stringify(speed)}`)
         state.speed = speed
@@ -114,6 +130,19 @@ module.exports.server = function (serv) {
       if (unpaced === true) state.speed = null
       state.anchor = null
       if (clock.lockstep) schedule(0)
+      if (game === true && clock.lockstep) return this.startGame()
+      return describe()
+    },
+    // A game begins once no chunks are being sent to anyone and every bot has done a tick since, so that
+    // each bot begins with all the chunks around it (how many had arrived depended on how many ticks the
+    // reset took on the wall clock, and a bot short of a chunk searched its paths differently). Then every
+    // bot is idle (held) until its first run, and the answer waits for every bot (see answer()).
+    async startGame () {
+      await serv.pb.squareChunks?.() // js/server/plugins/chunks.js
+      await new Promise(resolve => waiters.push([state.tick + 1, () => answer(resolve), null]))
+      state.game = true
+      beginGame()
+      for (const client of members.keys()) this.idle(client)
       return describe()
     },
     hold (who) {
@@ -135,11 +164,12 @@ module.exports.server = function (serv) {
     waitTick (tick, who, release) {
       lockstepOnly('wait_tick')
       const reached = (holder) => { if (holder) holds.set(holder, (holds.get(holder) || 0) + 1); return state.tick }
-      const answer = tick <= state.tick
-        ? Promise.resolve(reached(who))
-        : new Promise(resolve => { const w = [tick, () => resolve(reached(w[2])), who || null]; waiters.push(w) })
+      const reply = (holder, resolve) => { const t = reached(holder); answer(() => resolve(t)) }
+      const got = tick <= state.tick
+        ? new Promise(resolve => reply(who, resolve))
+        : new Promise(resolve => { const w = [tick, () => reply(w[2], resolve), who || null]; waiters.push(w) })
       if (release) this.release(release)
-      return answer
+      return got
     },
     // The players' idle holds go now and come back `ticks` later, on that tick exactly (atomic: the
     // clock cannot pass it before the wait is in place, for it is held until the release).
@@ -148,7 +178,8 @@ module.exports.server = function (serv) {
       const names = players.map(name => `idle:${name}`)
       const back = new Promise(resolve => waiters.push([state.tick + Math.max(0, ticks), () => {
         for (const who of names) if (state.game) this.holdIdle(who)
-        resolve(state.tick)
+        const t = state.tick
+        answer(() => resolve(t))
       }, null]))
       for (const who of names) this.releaseAll(who)
       if (ticks <= 0) answerDue()
@@ -181,13 +212,14 @@ module.exports.server = function (serv) {
     done (client, tick) {
       if (!members.has(client) || tick === null) return
       members.set(client, Math.max(members.get(client), tick))
+      flushAnswers()
       schedule(0)
     },
     leave (client) {
       for (const fn of (inbox.get(client) || []).splice(0)) read(fn)
       inbox.delete(client)
       this.releaseAll(`idle:${client.username}`)
-      if (members.delete(client)) schedule(0)
+      if (members.delete(client)) { flushAnswers(); schedule(0) }
     }
   }
   if (clock.lockstep) {
