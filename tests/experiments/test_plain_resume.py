@@ -103,3 +103,19 @@ def test_a_plain_run_without_the_teams_state_is_refused_in_one_line(tmp_path):
     (line,) = res.stderr.strip().splitlines()
     assert line.startswith("pillagerbench run: cannot resume: red's state after episode 0 is missing (")
     assert [r["episode"] for r in records(run)] == [0]
+
+
+def test_a_killed_lockstep_run_resumes_on_its_clock(tmp_path):
+    """A plain run on the lockstep clock (issue 38), killed once episode 0 is recorded, resumes: every
+    episode, before the kill and after, played on that clock and stamped so, none lost or repeated."""
+    run, hold = tmp_path / "run", tmp_path / "hold"
+    args = [*command(run, hold, "record"), "clock=lockstep"]
+    before = kill_when_held(run, hold, "record", args)
+    assert [r["episode"] for r in before] == [0]
+    res = run_cli(ROOT, "run", *args, f"resume={run}", timeout=240)
+    assert res.returncode == 0, res.stdout + res.stderr
+    after = records(run)
+    assert [r["episode"] for r in after] == list(range(EPISODES))
+    assert after[:1] == before
+    assert [r["conditions"].get("clock.mode") for r in after] == ["lockstep"] * EPISODES
+    assert all(r["status"] == "ok" and r["lagged"] is False for r in after)

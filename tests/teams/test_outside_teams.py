@@ -295,3 +295,26 @@ async def test_a_remote_players_program_that_throws_is_started_again_within_the_
         errors_sent = [e[1]["onError"] for e in sent if e[0] == "onError"]
         assert len(errors_sent) >= 3 and all(err.startswith(thrown) for err in errors_sent), errors_sent
     assert rec.problems.get("red", []) == []  # a throw is the program's, not a failure of the protocol
+
+
+class Slow(TeamServer):
+    """Answers every /events call after 0.4 s of wall time."""
+
+    def on_events(self, n: int, body: dict) -> None:
+        time.sleep(0.4)
+        self.answer(b"{}")
+
+
+def test_on_the_lockstep_clock_a_slow_team_server_costs_no_game_time(tmp_path):
+    """Issue 38: a remote team's call holds the world, so a team server 0.4 s slow still gets its
+    events every 0.5 s of game (about 16 calls in 8 s of game; on the real clock, about 9)."""
+    with team_server(Slow) as url:
+        proc = run_cli(
+            tmp_path, "run", "red=remote", f"red.url={url}", "red.events_every_s=0.5", "blue=do_nothing",
+            "episode_length=8", "clock=lockstep", "display=plain", "run_dir=out", timeout=240,
+        )  # fmt: skip
+    assert proc.returncode in (0, 1), proc.stdout + proc.stderr  # 1: the pre-game's program for a stranger
+    rec = json.loads((tmp_path / "out" / "episodes.jsonl").read_text())
+    assert rec["status"] == "ok" and rec["conditions"].get("clock.mode") == "lockstep"
+    assert "no answer" not in "\n".join(rec["problems"]["red"])
+    assert Slow.calls.count("/events") >= 14, Slow.calls
