@@ -67,4 +67,4 @@ function splitterWithoutThrows () {
   proto.pbWithoutThrows = true
 }
 
-module.exports = { install, varInt }
+module.exports = { install }

@@ -10,12 +10,12 @@
 module.exports.server = function (serv, settings) {
   const sends = { pending: 0, waiters: [] }
   serv.pb.chunkSends = sends
-  const idle = () => new Promise(resolve => {
+  const noneUnderWay = () => new Promise(resolve => {
     if (sends.pending === 0) resolve()
     else sends.waiters.push(resolve)
   })
   serv.pb.squareChunks = async () => {
-    await idle()
+    await noneUnderWay()
     for (const player of serv.players) {
       if (!player.loadedChunks || !player.position || !player.worldSendRestOfChunks) continue
       await player.worldSendRestOfChunks() // the square around where it stands (as flying-squid's own)
