@@ -80,6 +80,8 @@ async def test_a_dig_takes_the_same_ticks(world):
     await area.blocks((1, 4, 0, "dirt"))
     await player.run(SEEN_FACING_AWAY % (area.x0 + 1))
     got = await ticks_of(player, "await bot.dig(bot.blockAt(new Vec3(%d, 4, 0)), true)" % (area.x0 + 1))
+    if mode == "real" and not near(mode, got, 15):  # CI, loaded, once counted 0 ticks on the real clock
+        got = await _dig_again(server, player, area)  # (not seen on the game clock): one more try there
     # dirt by hand: hardness 0.5 -> 0.75 s, 15 ticks (mineflayer's dig time; the real clock's timers may
     # land a tick early or late)
     if mode == "lockstep":  # on the real clock the server's dig-time check may refuse a finish that
