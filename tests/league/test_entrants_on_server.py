@@ -1,7 +1,9 @@
 """Entrants on the real server (issue 37, item 1): a league of cot on two models (the fake LLM provider
 under two model names) plays a match; every episode records each side's entrant, the board has one
 row per entrant with its label and id, the report one row per entrant, and its LLM calls in its row, and the same round with its
-records stripped of their entrants (a run from before them) reports the same entrants."""
+records stripped of their entrants (a run from before them) reports the same entrants. The league plays on
+the lockstep clock (issue 38, item 6: a league's thinking players hold the clock); a later `play` on the
+other clock is refused, so the board never rates the two clocks together."""
 
 from __future__ import annotations
 
@@ -21,6 +23,7 @@ from tests.support.cli import run_cli
 
 MODELS = {"cot_4o": "gpt-4o", "cot_mini": "gpt-4o-mini"}
 PLAY = ["play", "budget.episodes=2", "episodes_per_match=1", "episode_length=5", "parallel=1", "display=plain"]
+CLOCK = "clock=lockstep"
 
 
 @pytest.fixture(scope="module")
@@ -34,7 +37,7 @@ def league(tmp_path_factory):
         ]
         spec = {"scenarios": ["mushroom_war"], "matches_per_round": 1, "entrants": entrants}
         (root / "league.yaml").write_text(yaml.safe_dump(spec))
-        played = run_cli(Path.cwd(), "league", str(root), *PLAY, timeout=300)
+        played = run_cli(Path.cwd(), "league", str(root), *PLAY, CLOCK, timeout=300)
         assert played.returncode == 0, played.stdout + played.stderr
     board = run_cli(Path.cwd(), "league", str(root), "board")
     assert board.returncode == 0, board.stderr
@@ -56,6 +59,16 @@ def test_every_episode_records_the_entrant_its_config_gives(league):
         labels = {record["red_entrant"]["label"], record["blue_entrant"]["label"]}
         assert labels == {"cot@gpt-4o", "cot@gpt-4o-mini"}
         assert record["red_entrant"]["id"] != record["blue_entrant"]["id"]
+        assert config["clock"]["mode"] == "lockstep" and record["lagged"] is False
+
+
+def test_a_play_on_the_other_clock_is_refused_and_plays_nothing(league):
+    before = series_dirs(league)
+    other = run_cli(Path.cwd(), "league", str(league), *PLAY, "budget.episodes=4", "clock=real")
+    assert other.returncode == 2, other.stdout + other.stderr
+    (line,) = other.stderr.strip().splitlines()
+    assert "clock=lockstep" in line and "clock=real" in line
+    assert series_dirs(league) == before
 
 
 def test_the_board_has_a_row_per_entrant_with_its_label_and_id(league):
