@@ -64,3 +64,14 @@ def test_a_layout_replaces_the_split() -> None:
         parse("mushroom_war", ("mushroom_war",), {"layout": 7, "split": "test"})
     with pytest.raises(TaskArgumentError, match="layout=nowhere.json: no such layout file"):
         series("mushroom_war", TaskArgs(scenarios=("mushroom_war",), opponents=("passive",), layout="nowhere.json"), [])
+
+
+def test_the_clock_argument_picks_the_runs_clock_and_a_bad_one_names_the_clocks() -> None:
+    args = parse("mushroom_war", ("mushroom_war",), {"opponents": "passive", "clock": "lockstep"})
+    assert "clock=lockstep" in overrides(args, roles=[])
+    [spec] = series("mushroom_war", args, roles=[])
+    assert spec.config.clock.mode == "lockstep"
+    [default] = series("mushroom_war", TaskArgs(scenarios=("mushroom_war",), opponents=("passive",)), roles=[])
+    assert default.config.clock.mode == "real"
+    with pytest.raises(TaskArgumentError, match="clock 'fast'.*lockstep, real"):
+        series("mushroom_war", parse("mushroom_war", ("mushroom_war",), {"clock": "fast"}), roles=[])

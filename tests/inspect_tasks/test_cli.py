@@ -27,7 +27,7 @@ def offline_env() -> dict[str, str]:
 
 def test_inspect_eval_plays_an_episode_and_the_run_directory_reports(tmp_path: Path) -> None:
     command = [str(BIN / "inspect"), "eval", "pillagerbench/mushroom_war", "--model", "mockllm/model"]
-    command += ["-T", "episode_length=20", "--limit", "1", "-T", f"run_dir={tmp_path / 'runs'}"]
+    command += ["-T", "episode_length=20", "-T", "clock=lockstep", "--limit", "1", "-T", f"run_dir={tmp_path / 'runs'}"]
     command += ["--log-dir", str(tmp_path / "logs"), "--display", "plain"]
     out = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, env=offline_env(), timeout=240)
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
@@ -44,6 +44,7 @@ def test_inspect_eval_plays_an_episode_and_the_run_directory_reports(tmp_path: P
     run_dir = Path(sample.metadata["run_dir"])
     [record] = RunDir(run_dir).records()
     assert record.red_entrant["label"] == "cot@mockllm/model"
+    assert json.loads((run_dir / "manifest.json").read_text())["config"]["clock"]["mode"] == "lockstep"
     assert run_dir.parent.parent == tmp_path / "runs"  # the Inspect run: one experiment directory
     report = subprocess.run(
         [str(BIN / "pillagerbench"), "report", str(tmp_path / "runs"), "--out", str(tmp_path / "report")],
@@ -60,7 +61,7 @@ def test_inspect_eval_plays_an_episode_and_the_run_directory_reports(tmp_path: P
 def test_pillagerbench_run_asks_inspects_model(tmp_path: Path) -> None:
     run_dir = tmp_path / "run"
     command = [str(BIN / "pillagerbench"), "run", "red=cot", "blue=passive", "llm=inspect", "llm.model=mockllm/model"]
-    command += ["episode_length=20", f"run_dir={run_dir}", "display=plain"]
+    command += ["episode_length=20", "clock=lockstep", f"run_dir={run_dir}", "display=plain"]
     out = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, env=offline_env(), timeout=240)
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     [record] = RunDir(run_dir).records()

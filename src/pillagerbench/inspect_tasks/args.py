@@ -27,7 +27,19 @@ from pillagerbench.scenarios.layout import PAPER, SPLITS
 from pillagerbench.teams import TEAMS, find_team
 
 SIDES = ("red", "blue")
-ARGS = ("team", "opponents", "sides", "split", "layout", "episodes", "episode_length", "paper", "seed", "run_dir")
+ARGS = (
+    "team",
+    "opponents",
+    "sides",
+    "split",
+    "layout",
+    "episodes",
+    "episode_length",
+    "paper",
+    "seed",
+    "clock",
+    "run_dir",
+)
 
 
 class TaskArgumentError(PrerequisiteError):
@@ -49,6 +61,7 @@ class TaskArgs:
     episode_length: int | None = None  # None: the scenario's
     paper: bool = False  # upstream's scoring and step protocol (paper=true)
     seed: int | None = None
+    clock: str | None = None  # None: the run's default (real); lockstep: an LLM call holds the world (docs/clock.md)
     run_dir: str | None = None  # where the series directories go; None: runs/inspect/<time>_<task>
 
 
@@ -78,6 +91,7 @@ def parse(task: str, scenarios: Iterable[str], given: dict[str, Any]) -> TaskArg
         else _number(task, "episode_length", given["episode_length"]),
         paper=_flag(task, "paper", given.get("paper", False)),
         seed=None if given.get("seed") is None else _number(task, "seed", given["seed"], least=0),
+        clock=None if given.get("clock") is None else str(given["clock"]),
         run_dir=given.get("run_dir"),
     )
     if args.layout is not None and given.get("split") is not None:
@@ -127,6 +141,8 @@ def overrides(args: TaskArgs, roles: Iterable[str]) -> list[str]:
         argv.append("paper=true")
     if args.seed is not None:
         argv.append(f"seed={args.seed}")
+    if args.clock is not None:  # checked with the rest of the config (series()): a bad one names the clocks
+        argv.append(f"clock={args.clock}")
     return argv
 
 
