@@ -43,6 +43,8 @@ async def play_match(
     await server.start()
     if server.watch_url:
         print(f"live view: {server.watch_url}", flush=True)
+        if cfg.clock.mode == "lockstep" and cfg.clock.speed == "max":
+            print("live view: the lockstep clock runs unpaced (clock.speed=max); clock.speed=1 to watch", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
     config = cfg.stored()
     match = Match(
