@@ -11,12 +11,12 @@ import signal
 
 import pytest
 
-from pillagerbench.config.schema import ClockConfig
 from pillagerbench.host.machine import SERVER_TPS_MIN
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.server import ArenaServer
 from pillagerbench.teams import TEAMS, make_team
+from tests.support.server_clock import clock_of
 
 OPPONENTS = {name: cls.scenarios[0] for name, cls in TEAMS.items() if cls.scenarios}
 EPISODE_S = 60
@@ -40,8 +40,7 @@ async def one_episode(
     sc = make_scenario(scenario_key, layout=layout)  # Dash & Dine's crops grow by vanilla random ticks at speed 200
     teams = {"red": make_team(red, sc.key), "blue": make_team(blue, sc.key)}
     async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
-        time = ClockConfig(mode=clock, speed="max" if clock == "lockstep" else 1.0)
-        match = Match(server, sc, teams, run_dir, episode_length=length, seed=1, clock=time, **match_options)
+        match = Match(server, sc, teams, run_dir, episode_length=length, seed=1, clock=clock_of(clock), **match_options)
         try:
             await match.setup()
             rec = await match.play_episode(0)
@@ -122,10 +121,14 @@ async def test_on_the_real_clock_a_starved_server_flags_the_episode(tmp_path):
 
 @pytest.mark.parametrize("pair", [(("aggressive", 1), ("melon_pumpkin", 2))])
 async def test_builtin_opponents_score_on_generated_layouts(tmp_path, pair):
-    """30 s on a generated layout of each scenario (two matches at once): the opponents play the
-    layout's places, not the paper's, and nothing they do is refused."""
+    """30 s on a generated layout of each scenario (two matches at once, on the lockstep clock: layouts
+    under game time, issue 38's item 6): the opponents play the layout's places, not the paper's, and
+    nothing they do is refused."""
     recs = await asyncio.gather(
-        *(one_episode(OPPONENTS[name], name, "do_nothing", tmp_path / name, 30, layout=seed) for name, seed in pair)
+        *(
+            one_episode(OPPONENTS[name], name, "do_nothing", tmp_path / name, 30, layout=seed, clock="lockstep")
+            for name, seed in pair
+        )
     )
     for (name, seed), rec in zip(pair, recs):
         assert rec.status == "ok", rec.error

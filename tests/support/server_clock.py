@@ -58,3 +58,10 @@ async def caught_up(server, player: str, say: Callable[[str], Awaitable[object]]
 def chat_code(text: str) -> str:
     """JavaScript making a bot chat `text`."""
     return f"bot.chat({json.dumps(text)})"
+
+
+def clock_of(mode: str):
+    """A Match's clock for `mode`: lockstep as fast as the bots allow, or the real clock."""
+    from pillagerbench.config.schema import ClockConfig
+
+    return ClockConfig(mode=mode, speed="max" if mode == "lockstep" else 1.0)

@@ -10,6 +10,7 @@ from pillagerbench.scenarios import make_scenario
 from pillagerbench.server import ArenaServer
 from pillagerbench.teams import make_team
 from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
+from tests.support.server_clock import clock_of
 
 llm_client = llm_client_fixture()
 
@@ -24,14 +25,25 @@ async def play_series(
     length: float = 20,
     llms: dict | None = None,
     seed: int = 1,
+    clock: str = "real",
     **match_options,
 ):
-    """Play `episodes` episodes on a fresh server; red/blue are team names or Team objects;
+    """Play `episodes` episodes on a fresh server (on `clock`); red/blue are team names or Team objects;
     `match_options` go to Match (scoring=, protocol=)."""
     sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
     teams = {side: make_team(t, sc.key) if isinstance(t, str) else t for side, t in (("red", red), ("blue", blue))}
-    async with ArenaServer(log_path=run_dir / "server.log") as server:
-        match = Match(server, sc, teams, run_dir, episode_length=length, seed=seed, llms=llms or {}, **match_options)
+    async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
+        match = Match(
+            server,
+            sc,
+            teams,
+            run_dir,
+            episode_length=length,
+            seed=seed,
+            llms=llms or {},
+            clock=clock_of(clock),
+            **match_options,
+        )
         try:
             await match.setup()
             return [await match.play_episode(e) for e in range(episodes)]

@@ -1,4 +1,5 @@
-"""The Random baseline: seeded choices, executable actions, and whole episodes in both scenarios."""
+"""The Random baseline: seeded choices, executable actions, and whole episodes in both scenarios (on the
+lockstep clock: what it plays, not how fast)."""
 
 from __future__ import annotations
 
@@ -117,8 +118,8 @@ def test_smelts_only_what_the_server_can_smelt():
 
 async def test_random_plays_whole_episodes_in_both_scenarios(tmp_path):
     recs = await asyncio.gather(
-        play_series("mushroom_war", "random", "random", tmp_path / "mw", length=20),
-        play_series("dash_and_dine", "random", "do_nothing", tmp_path / "dd", length=20),
+        play_series("mushroom_war", "random", "random", tmp_path / "mw", length=20, clock="lockstep"),
+        play_series("dash_and_dine", "random", "do_nothing", tmp_path / "dd", length=20, clock="lockstep"),
     )
     for (rec,), key in zip(recs, ("mw", "dd")):
         assert rec.status == "ok", rec.error
