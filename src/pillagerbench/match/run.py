@@ -10,6 +10,7 @@ from pathlib import Path
 
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.match import Match
+from pillagerbench.players import PlayerError
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
 from pillagerbench.scenarios.layout import parse_layout
@@ -65,13 +66,27 @@ async def play_match(
     )
     match.last_records.update(last or {})
     try:
-        await match.setup()
+        await set_up(match, server)
         await match.play_episodes(episodes, on_episode)
     finally:
         await match.close()
         await server.stop()
         for llm in llms.values():
             await llm.aclose()
+
+
+async def set_up(match: Match, server: ArenaServer) -> None:
+    """Log the match's players in. A login that fails (a bot that never spawned: ours, no team's
+    fault, and no episode played yet) is tried once more on a fresh server before the series is
+    given up."""
+    try:
+        await match.setup()
+    except PlayerError as exc:
+        print(f"login failed ({str(exc).splitlines()[0]}); once more on a fresh server", flush=True)
+        await match.close()
+        await server.stop()
+        await server.start()
+        await match.setup()
 
 
 def scenario_from_config(cfg: RunConfig) -> Scenario:
