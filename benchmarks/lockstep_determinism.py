@@ -47,7 +47,8 @@ def play(run: Path, args: argparse.Namespace) -> dict:
     timeline = json.loads((run / "episode_000" / "timeline.json").read_text())
     found = recorded(run)
     start = found[0]["tick"] if found else 0
-    events = (run / "episode_000" / "world_events.jsonl").read_text().splitlines()
+    lines = (run / "episode_000" / "world_events.jsonl").read_text().splitlines()
+    events = [line for line in lines if not json.loads(line).get("after_whistle")]  # the game's, not the stop's
     return {
         "timeline": timeline,
         "events": events,

@@ -24,7 +24,10 @@ def play(tmp_path: Path, name: str, scenario: str, seed: int) -> tuple[list, lis
     assert res.returncode == 0, res.stdout[-2000:] + res.stderr[-2000:]
     episode = run / "episode_000"
     timeline = json.loads((episode / "timeline.json").read_text())
-    return timeline, (episode / "world_events.jsonl").read_text().splitlines()
+    events = [json.loads(line) for line in (episode / "world_events.jsonl").read_text().splitlines()]
+    after = [i for i, e in enumerate(events) if e.get("after_whistle")]
+    assert after == list(range(len(events) - len(after), len(events)))  # what came after the whistle: last
+    return timeline, [json.dumps(e) for e in events if not e.get("after_whistle")]  # the game's own
 
 
 @pytest.mark.timeout(600)

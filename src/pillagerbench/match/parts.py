@@ -148,11 +148,12 @@ def in_moments(events: list[dict]) -> list[dict]:
     """On the lockstep clock every event names its game tick: the events of one tick are one moment of
     the game, and the order in which they reached us within it is the machine's, not the game's (a dig,
     and the game master's line about it). They are put in the order of their ticks, and within a tick in
-    a fixed order of their contents, so that the same game gives the same log. Unstamped (real clock):
-    as they came."""
+    a fixed order of their contents, so that the same game gives the same log; those marked
+    `after_whistle` (done while the players were being stopped, on the wall clock: not the game's) come
+    last. Unstamped (real clock): as they came."""
     if not events or not all(isinstance(e.get("tick"), int) for e in events):
         return events
-    return sorted(events, key=lambda e: (e["tick"], json.dumps(e, sort_keys=True)))
+    return sorted(events, key=lambda e: (bool(e.get("after_whistle")), e["tick"], json.dumps(e, sort_keys=True)))
 
 
 class WorldLog(Part):

@@ -219,9 +219,11 @@ function checkArgs (op, args) {
 
 // On the lockstep clock each event says at which tick of the game it happened (docs/clock.md): events
 // of one tick are one moment, which the record puts in a fixed order (pillagerbench/match/parts.py).
+// One that came after the whistle (while the players were being stopped, on the wall clock) says so.
 function stamped (serv, ev) {
   const tick = ev.event === 'clock' ? null : serv.pb.clock?.gameTick()
-  return tick === null || tick === undefined ? ev : { ...ev, tick }
+  if (tick === null || tick === undefined) return ev
+  return serv.pb.clock.whistled() ? { ...ev, tick, after_whistle: true } : { ...ev, tick }
 }
 
 function attach (serv, { input, write }) {

@@ -113,6 +113,7 @@ module.exports.server = function (serv) {
     // whistle's (the clock runs on then at whatever pace: what happens after is not the game's); null on
     // the real clock.
     gameTick: () => (clock.lockstep ? (state.game ? state.tick : state.gameEnd ?? state.tick) - state.gameStart : null),
+    whistled: () => clock.lockstep && !state.game && state.gameEnd !== null && state.gameEnd !== undefined,
     configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
         holds.clear()
