@@ -114,6 +114,7 @@ module.exports.server = function (serv) {
     // the real clock.
     gameTick: () => (clock.lockstep ? (state.game ? state.tick : state.gameEnd ?? state.tick) - state.gameStart : null),
     whistled: () => clock.lockstep && !state.game && state.gameEnd !== null && state.gameEnd !== undefined,
+    inGame: () => state.game,
     configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
         holds.clear()

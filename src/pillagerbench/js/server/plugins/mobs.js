@@ -6,6 +6,7 @@
 const { Vec3 } = require('vec3')
 const { MOBS, ATTACK_DAMAGE } = require('../tables')
 const { ControlError } = require('../util')
+const clock = require('../../clock/game_clock')
 
 const MAX_SPEED = 20 // blocks/s per axis; the protocol's limit is about 81
 
@@ -68,6 +69,20 @@ module.exports.server = function (serv) {
     })
   }
 
+  // On the lockstep clock hens lay during games only, each one's cycle under way drawn at the game's first
+  // tick (from that tick's seeded draws): between games the clock keeps real time's pace, so a cycle
+  // counted from the arena's build would lay at a tick the wall clock chose, and its draws would move
+  // every other draw of that tick (docs/clock.md). The real clock keeps its cycles from the build.
+  let since = null
+  function layingNow () {
+    if (!clock.lockstep) return true
+    if (!serv.pb.clock?.inGame()) return false
+    if (since !== serv.pb.tick0) {
+      since = serv.pb.tick0
+      for (const farm of eggFarms) farm.next.clear()
+    }
+    return true
+  }
   const cycle = (farm) => farm.intervalTicks + Math.floor(serv.pb.random() * (farm.intervalTicks + 1))
   // the time left of a cycle under way: density proportional to P(cycle > t)
   function leftOfCycle (farm) {
@@ -78,7 +93,7 @@ module.exports.server = function (serv) {
     }
   }
   serv.on('tick', serv.guarded('egg farms', (delta, tick) => {
-    if (eggFarms.length === 0) return
+    if (eggFarms.length === 0 || !layingNow()) return
     const chickens = Object.values(serv.entities).filter(e => e.name === 'chicken' && !e.dead)
     for (const farm of eggFarms) {
       const at = new Vec3(farm.chest[0] + 0.5, farm.chest[1], farm.chest[2] + 0.5)
