@@ -1,6 +1,7 @@
 """Built-in opponents: one JavaScript script per player, on the control primitives, with the
 scenario's data substituted for `$placeholders`. Each player runs its script until the whistle; a
-script that throws or ends is started again (at most `max_runs` = 10 runs in all, as upstream's 10 steps).
+script that throws or ends is started again (at most `max_runs` = 10 runs in all, as upstream's 10 steps);
+with none left the player rests to the whistle (on the lockstep clock its bot no longer holds the world).
 """
 
 from __future__ import annotations
@@ -50,3 +51,4 @@ class ScriptedTeam(Team):
             if ctx.time_left() > 0 and ev.errors(events):
                 await ctx.sleep(0.5, player.name)
         self.iterations.append(runs)
+        await ctx.sleep(ctx.time_left(), player.name)  # no runs left: it rests (lockstep: the world goes on)

@@ -24,6 +24,10 @@ module.exports.server = function (serv) {
   const waiters = [] // [tick, resolve]
   const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false, gameStart: 0 }
   const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
+  // idle:NAME of the players resting (a `rest` in progress). Python's `rest` (the control channel) can
+  // reach the server before the bot's IDLE for the run that just ended (its game connection): that late
+  // IDLE must not hold the world again until the rest is over.
+  const resting = new Set()
   const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
 
   const answers = [] // the answers of waits whose tick has come, until every bot has done that tick
@@ -118,6 +122,7 @@ module.exports.server = function (serv) {
     configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
         holds.clear()
+        resting.clear()
         for (const w of waiters) w[2] = null
         for (const t of idleTimers.values()) clock.real.clearTimeout(t)
         idleTimers.clear()
@@ -179,23 +184,28 @@ module.exports.server = function (serv) {
       lockstepOnly('rest')
       const names = players.map(name => `idle:${name}`)
       const back = new Promise(resolve => waiters.push([state.tick + Math.max(0, ticks), () => {
+        for (const who of names) resting.delete(who)
         for (const who of names) if (state.game) this.holdIdle(who)
         const t = state.tick
         answer(() => resolve(t))
       }, null]))
-      for (const who of names) this.releaseAll(who)
+      for (const who of names) { resting.add(who); this.releaseAll(who) }
       if (ticks <= 0) answerDue()
       return back
     },
     idle (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} idle ${client.username} game=${state.game}`)
-      if (!state.game || !members.has(client)) return
+      if (!state.game || !members.has(client) || resting.has(`idle:${client.username}`)) return
       this.holdIdle(`idle:${client.username}`)
     },
     holdIdle (who) { // held until its next run or a rest; after IDLE_LIMIT_MS of wall time it lets go
       if (holds.has(who)) return
       holds.set(who, 1)
-      idleTimers.set(who, clock.real.setTimeout(() => { idleTimers.delete(who); this.releaseAll(who) }, IDLE_LIMIT_MS))
+      idleTimers.set(who, clock.real.setTimeout(() => {
+        idleTimers.delete(who)
+        console.error(`[clock] ${who} let go after ${IDLE_LIMIT_MS} ms of wall time: its team neither ran nor rested it`)
+        this.releaseAll(who)
+      }, IDLE_LIMIT_MS))
     },
     busy (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} busy ${client.username}`)
@@ -220,6 +230,7 @@ module.exports.server = function (serv) {
     leave (client) {
       for (const fn of (inbox.get(client) || []).splice(0)) read(fn)
       inbox.delete(client)
+      resting.delete(`idle:${client.username}`)
       this.releaseAll(`idle:${client.username}`)
       if (members.delete(client)) { flushAnswers(); schedule(0) }
     }
