@@ -47,6 +47,6 @@ class OneShot(Team):
             while ctx.time_left() > 0 and name in self.code:
                 self.iterations[k] += 1
                 await ctx.players[name].run(self.code[name])
-                await asyncio.sleep(min(1.0, ctx.time_left()))
+                await ctx.sleep(1.0, player=name)
 
         await asyncio.gather(*(keep_running(k, n) for k, n in enumerate(ctx.side.player_names)))

@@ -34,10 +34,10 @@ class Harvesters(Team):
         )
         self.iterations = [0] * len(ctx.players)
 
-        async def keep_harvesting(k: int, player) -> None:
+        async def keep_harvesting(k: int, name: str) -> None:
             while ctx.time_left() > 0:  # the match stops the code at the whistle
                 self.iterations[k] += 1
-                await player.run(code)
-                await asyncio.sleep(min(1.0, ctx.time_left()))
+                await ctx.players[name].run(code)
+                await ctx.sleep(1.0, player=name)  # a second of game time, to the whistle at most
 
-        await asyncio.gather(*(keep_harvesting(k, p) for k, p in enumerate(ctx.players.values())))
+        await asyncio.gather(*(keep_harvesting(k, n) for k, n in enumerate(ctx.side.player_names)))

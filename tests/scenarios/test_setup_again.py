@@ -22,7 +22,7 @@ async def test_a_failed_login_is_tried_once_more_on_a_fresh_server(tmp_path, cap
         os.kill(frozen, signal.SIGSTOP)  # the first login gets no answer: its bot never spawns
         match = Match(server, sc, teams, tmp_path / "run", episode_length=3, seed=1)
         try:
-            await set_up(match, server)
+            await set_up(match)
             assert server.process.pid != frozen
             assert sorted(p["name"] for p in await server.players()) == sorted(p.name for p in sc.all_players())
             rec = await match.play_episode(0)

@@ -119,10 +119,14 @@ class Match:
             rec = await self.play_episode(episode)
             on_episode(rec)
             if rec.status == "failed" and not self.server.alive:
-                await self.close()
-                await self.server.stop()
-                await self.server.start()
-                await self.setup()
+                await self.restart()
+
+    async def restart(self) -> None:
+        """Every player logged out, the server started afresh, and every player logged in again."""
+        await self.close()
+        await self.server.stop()
+        await self.server.start()
+        await self.setup()
 
     def _parts(self) -> tuple[Replay, list[Part]]:
         """The parts that follow a game, in the order their hooks run."""

@@ -66,7 +66,7 @@ async def play_match(
     )
     match.last_records.update(last or {})
     try:
-        await set_up(match, server)
+        await set_up(match)
         await match.play_episodes(episodes, on_episode)
     finally:
         await match.close()
@@ -75,7 +75,7 @@ async def play_match(
             await llm.aclose()
 
 
-async def set_up(match: Match, server: ArenaServer) -> None:
+async def set_up(match: Match) -> None:
     """Log the match's players in. A login that fails (a bot that never spawned: ours, no team's
     fault, and no episode played yet) is tried once more on a fresh server before the series is
     given up."""
@@ -83,10 +83,7 @@ async def set_up(match: Match, server: ArenaServer) -> None:
         await match.setup()
     except PlayerError as exc:
         print(f"login failed ({str(exc).splitlines()[0]}); once more on a fresh server", flush=True)
-        await match.close()
-        await server.stop()
-        await server.start()
-        await match.setup()
+        await match.restart()
 
 
 def scenario_from_config(cfg: RunConfig) -> Scenario:

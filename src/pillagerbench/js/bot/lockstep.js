@@ -19,8 +19,8 @@ function attach (bot) {
   if (!clock.lockstep) return
   // mineflayer injects its plugins from a zero-delay timer set in createBot. On the game clock that
   // timer waited for the first free advance, and the server's first packets could come before it: an
-  // `update_health` read before the health plugin listened, the bot never spawned (1 start in 40 on a
-  // busy machine). Run it now, before any packet can be read.
+  // `update_health` read before the health plugin listened, the bot never spawned (3 starts in about
+  // 150, two matches at once). Run it now, before any packet can be read.
   clock.runDue()
   const client = bot._client
   sendWithinTicks(client)

@@ -11,6 +11,7 @@
 const { Vec3 } = require('vec3')
 const { GROWTH, FRUIT_SOIL, SECTION_BLOCKS } = require('../tables')
 const { stateIdOf } = require('../util')
+const clock = require('../../clock/game_clock')
 
 const SIDES = [[1, 0, 'east'], [-1, 0, 'west'], [0, 1, 'south'], [0, -1, 'north']]
 const FACING = { east: [1, 0], west: [-1, 0], south: [0, 1], north: [0, -1] }
@@ -155,9 +156,15 @@ module.exports.server = function (serv, settings) {
     }
   })
 
+  // On the lockstep clock crops grow during games only. Between games the clock keeps real time's pace,
+  // so growth from the arena's build to the game's start came in as many steps as the reset took on the
+  // wall clock, and a game of one seed began with its crops at different ages (docs/clock.md). The real
+  // clock keeps its growth between games, as its reference figures were measured.
+  const growingNow = () => !clock.lockstep || serv.pb.clock?.inGame() === true
   let busy = false
   serv.on('tick', (delta, tickCount) => {
     if ((tickCount - (serv.pb.tick0 || 0)) % 20 !== 0 || busy || tracked.size === 0) return // from a game's start (plugins/lockstep.js)
+    if (!growingNow()) return
     busy = true
     Promise.all([...tracked.values()].map(p => grow(p).catch(err => serv.emit('pluginError', err, 'crop growth'))))
       .finally(() => { busy = false })
