@@ -91,8 +91,8 @@ async def test_a_dig_takes_the_same_ticks(world):
     DIGS[mode] = got
     if mode == "lockstep":
         assert got == await _dig_again(server, player, area)  # to the tick, every time
-        if "real" in DIGS:
-            assert abs(DIGS["real"] - got) <= 1, DIGS
+        if "real" in DIGS:  # the real clock's timer jitter: a tick or two (near())
+            assert near("real", DIGS["real"], got), DIGS
 
 
 async def _dig_again(server: ArenaServer, player: Player, area: Area) -> int:

@@ -263,7 +263,7 @@ class Match:
         if isinstance(clock, LockstepClock):
             speed = self.clock_config.speed
             await self.server.clock(unpaced=True) if speed == "max" else await self.server.clock(speed=float(speed))
-            await clock.begin()
+            await clock.begin(bystanders=[p.name for p in self.scenario.extra_players])
             for key, llm in self.llms.items():
                 names = [s.player_names for s in self.scenario.sides if s.key == key][0]
                 llm.thinking.during_game(

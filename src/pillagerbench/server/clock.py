@@ -17,7 +17,7 @@ from __future__ import annotations
 import asyncio
 import math
 import time
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Sequence
 from contextlib import AbstractAsyncContextManager, asynccontextmanager
 from typing import Protocol
 
@@ -214,8 +214,12 @@ class LockstepClock:
         self._stepping.clear()
         await self.server.clock(drop_holds=True, game=False)  # a step cancelled at the whistle may still be due a hold
 
-    async def begin(self) -> None:
-        """A new game: thinking holds the world again, and so does a bot whose run has ended."""
+    async def begin(self, bystanders: Sequence[str] = ()) -> None:
+        """A new game: thinking holds the world again, and so does a bot whose run has ended.
+        `bystanders`: players no team plays (Dash & Dine's servers), whose bots never run: they hold
+        nothing (held, each would stop the world for the 5 s of wall time the server allows)."""
         self.over = False
         self._stepping.clear()
         self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held
+        for name in bystanders:
+            await self.server.release(f"idle:{name}")

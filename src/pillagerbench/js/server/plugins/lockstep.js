@@ -8,7 +8,8 @@
 // During a game (`clock` op, `game: true`) a bot whose run has ended holds the clock (`idle:NAME`) until
 // its next run begins or its team releases it (Python, TeamContext.sleep): a team's next program then
 // starts at the tick its last one ended, however long Python took; held for IDLE_LIMIT_MS of wall time
-// at most (a team that waits some other way), it lets go. A game begins with every bot idle.
+// at most (a team that waits some other way), it lets go. A game begins with every bot idle (the match
+// releases those no team plays).
 // clock=real: the ops answer the server's tick and refuse to hold.
 const clock = require('../../clock/game_clock')
 const { CHANNELS, CLOCK_CHANNELS, tickData, tickOf } = require('../../clock/channels')
@@ -161,7 +162,7 @@ module.exports.server = function (serv) {
       lockstepOnly('release')
       const n = (holds.get(who) || 0) - 1
       if (n > 0) holds.set(who, n)
-      else holds.delete(who)
+      else this.releaseAll(who) // an idle hold's wall-clock limit goes with it
       schedule(0)
       return state.tick
     },
