@@ -7,7 +7,7 @@ import pytest
 
 from pillagerbench.cli import commands as cli
 from pillagerbench.experiments import plan as P
-from pillagerbench.experiments.spec import SeriesSpec
+from pillagerbench.experiments.spec import SeriesSpec, launch_order
 from tests.support.configs import run_config
 
 
@@ -110,3 +110,28 @@ def test_the_plan_answers_how_many_episodes_a_question_needs(capsys):
     assert "with `pillagerbench compare`" in line
     assert main(["run", "plan=true", "plan_width=0"]) == 2
     assert "plan_width=0" in capsys.readouterr().err
+
+
+def test_series_start_with_the_most_work_first_and_the_plan_agrees():
+    def spec(i: int, scenario: str, episodes: int, length: float = 120.0) -> SeriesSpec:
+        cfg = run_config(f"episode_length={length}")
+        return SeriesSpec(f"s{i}", i, "x", scenario, "a", "b", "a", "b", episodes, 0, cfg)
+
+    mw, dd, short, long = (
+        spec(0, "mushroom_war", 10),
+        spec(1, "dash_and_dine", 10),
+        spec(2, "mushroom_war", 2),
+        spec(3, "mushroom_war", 10, 240.0),
+    )
+    assert [s.id for s in launch_order([mw, dd, short, long, spec(4, "mushroom_war", 10)])] == [
+        "s3",
+        "s1",
+        "s0",
+        "s4",
+        "s2",
+    ]
+    # the plan starts them so too: s3 and s1, then s0, then s2 (220 s); in the given order it would be
+    # s2 and s0, then s1, then s3 alone to 300 s
+    durations = {"s0": 100.0, "s1": 100.0, "s2": 20.0, "s3": 200.0}
+    assert P.schedule([short, mw, dd, long], durations, 2) == 220.0
+    assert P.schedule([short, mw, dd, long], durations, 1) == 420.0

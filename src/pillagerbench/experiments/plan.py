@@ -32,7 +32,7 @@ from typing import Any
 
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.how_many import how_many
-from pillagerbench.experiments.spec import SeriesSpec, build_series
+from pillagerbench.experiments.spec import SeriesSpec, build_series, launch_order
 from pillagerbench.llm.tokens import count_tokens
 from pillagerbench.teams.entrant import entrant_of
 
@@ -236,7 +236,7 @@ def _sides(cfg: RunConfig) -> list[tuple[str, str, dict, Any]]:
 
 def schedule(specs: list[SeriesSpec], durations: dict[str, float], parallel: int) -> float:
     """Seconds until every series has finished, started as runner.run_all starts them."""
-    pending = list(specs)
+    pending = launch_order(specs)
     running: list[tuple[float, str]] = []
     done: set[str] = set()
     now = 0.0

@@ -29,7 +29,7 @@ from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig, RunnerConfig, default
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
-from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series
+from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series, launch_order
 from pillagerbench.host.machine import choose_parallel
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.rundir import (
@@ -141,7 +141,7 @@ async def run_all(
 ) -> dict[str, dict]:
     """Run every unfinished series, at most `parallel` at once, each after the series it depends on."""
     results: dict[str, dict] = {}
-    pending = {s.id: s for s in specs}
+    pending = {s.id: s for s in launch_order(specs)}
     for s in specs:
         if series_progress(s, dirs[s.id]).complete:
             results[s.id] = {"id": s.id, "status": "done", "played": 0}

@@ -21,7 +21,7 @@ from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.spec import SeriesSpec
 from pillagerbench.rundir import (
     EpisodeRecord,
-    Live,
+    LiveWriter,
     RunDir,
     episodes_to_play,
     has_team_state,
@@ -124,8 +124,10 @@ async def _play(
     # what the teams saw of the last episode before the kill, as an uninterrupted series would
     last = {side: rundir.last_seen(finished[ok[-1]]) for side in teams} if ok else {}
 
+    live = LiveWriter(rundir.write_live)
+
     def tick(status: dict) -> None:
-        rundir.write_live(Live.of(status))
+        live(status)
         if on_tick:
             on_tick(status)
 

@@ -22,6 +22,7 @@ Designs (conf/experiment/*.yaml, key `design`):
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -31,12 +32,26 @@ from pillagerbench.config.compose import ConfigError, load_config, to_dict
 from pillagerbench.config.registry import Registry
 from pillagerbench.config.schema import ExperimentConfig, RunConfig
 from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
+from pillagerbench.scenarios import make_scenario
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
 # keys of the top-level config that belong to the experiment machinery, not to one series
 RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
 SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario")
+
+
+def launch_order(specs: list[SeriesSpec]) -> list[SeriesSpec]:
+    """The order series start in when more wait than can run (experiments/runner.py run_all, and the
+    plan's schedule): the most work first, game seconds times bots (on the lockstep clock a series
+    costs its bots' ticks; on the real clock its game seconds), equal ones in the experiment's order.
+    Launched in the experiment's order, a run ended with its longest series alone on an idle core."""
+    return sorted(specs, key=lambda s: -s.episodes * s.config.episode_length * _bots(s.scenario))
+
+
+@functools.cache
+def _bots(scenario: str) -> int:
+    return len(make_scenario(scenario).all_players())
 
 
 def builtin_teams(scenario: str) -> list[str]:

@@ -17,7 +17,7 @@ from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode, TimelinePoi
 from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, ExperimentFile, read_experiment, write_experiment_file
 from pillagerbench.rundir.faults import HARNESS, TEAM, Fault, faults, spoiled
-from pillagerbench.rundir.live import Live
+from pillagerbench.rundir.live import Live, LiveWriter
 from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
 from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
@@ -36,6 +36,7 @@ __all__ = [
     "Fault",
     "LastEpisode",
     "Live",
+    "LiveWriter",
     "Manifest",
     "Progress",
     "RunDir",
