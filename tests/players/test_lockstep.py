@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import itertools
+import math
 import time
 
 import pytest
@@ -163,3 +164,18 @@ async def test_agent_codes_date_and_chance_are_the_games(world):
     await player.reset(position=area.at(0, 4, 0), inventory={}, seed=8)
     events = await player.run("bot.chat('r ' + [Math.random(), Math.random()].join(' '))")
     assert draws[0] == draws[1] != [c for c in chats_by(events, player.name) if c.startswith("r ")][-1], draws
+
+
+async def test_a_reset_faces_a_lockstep_player_as_at_login(world):
+    """The whistle stops a player on the wall clock, facing wherever that left it: on the lockstep clock
+    each episode's reset turns it back to the look it logged in with (placement.LOGIN_LOOK), so a series'
+    next episode does not begin from a look the machine chose. The real clock keeps the look."""
+    server, player, area = world
+    mode = (await server.clock())["mode"]
+    await player.run("await bot.look(2, 0.5, true); await bot.waitForTicks(2)")
+    status = (await player.reset(position=area.at(0, 4, 0)))[0][1]["status"]
+    look = (status["yaw"], status["pitch"])
+    if mode == "lockstep":
+        assert look == (math.pi, 0), look  # notchian yaw 0 (mineflayer's yaw is pi minus it)
+    else:  # as it was, to the server's byte-sized angle
+        assert abs(look[0] - 2) < 0.05 and abs(look[1] - 0.5) < 0.05, look

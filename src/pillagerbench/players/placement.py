@@ -48,14 +48,28 @@ async def restore(server: Control | None, channel: BotChannel, name: str, saved:
         await teleport(server, channel, name, saved["pos"])
 
 
-async def teleport(server: Control, channel: BotChannel, name: str, pos: list[float]) -> None:
-    """Teleport, then wait until the bot has settled there (three tries)."""
+# (yaw, pitch) a player faces at login. On the lockstep clock each episode begins so: a player stopped at
+# the whistle keeps turning for as long as its stop takes on the wall clock, and the next episode began
+# facing wherever that left it (a series' later episodes parted run after run). The real clock keeps the
+# look, as upstream's reset (a teleport) did.
+LOGIN_LOOK = (0.0, 0.0)
+
+
+async def teleport(server: Control, channel: BotChannel, name: str, pos: list[float], clock: str = "real") -> None:
+    """Teleport, then wait until the bot has settled there (three tries). On the lockstep clock the
+    player faces as at login (LOGIN_LOOK); on the real clock it keeps its own look."""
+    yaw, pitch = LOGIN_LOOK if clock == "lockstep" else (None, None)
     for _attempt in range(3):
-        await server.teleport(name, pos)
+        await server.teleport(name, pos, yaw, pitch)
         settled = await channel.request("settle", pos=pos, timeout=3, wait=6)
         if settled is True:
             return
     raise PlayerError(f"{name}: teleport to {pos} did not arrive (bot at {settled})")
+
+
+async def reset_to(server: Control, channel: BotChannel, name: str, position: Sequence[float], clock: str) -> None:
+    """A reset's teleport: to the middle of a whole-number block (`centred`), facing as `teleport` says."""
+    await teleport(server, channel, name, centred(position), clock)
 
 
 async def wait_inventory(

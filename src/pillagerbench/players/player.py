@@ -328,7 +328,7 @@ class Player:
                 items = placement.reset_items(inventory, equipment)
                 await self._control().set_inventory(self.name, items)
             if position is not None:
-                await placement.teleport(self._control(), self.channel, self.name, placement.centred(position))
+                await placement.reset_to(self._control(), self.channel, self.name, position, self.clock)
             if equipment is not None:
                 await placement.wait_inventory(self._observe, inventory or {}, equipment)
                 await self._request("equip", equipment=equipment, wait=15)

@@ -1,5 +1,6 @@
-"""live.json: the episode a series is playing (its clock and each side's points), written each second
-by the series (experiments/series.py) and read by an experiment's display (experiments/progress.py)."""
+"""live.json: the episode a series is playing (its clock and each side's points), written by the series
+(experiments/series.py, through `LiveWriter`: at most twice a wall second) and read by an experiment's
+display (experiments/progress.py)."""
 
 from __future__ import annotations
 

@@ -40,6 +40,8 @@ SCORE_FILES: tuple[str, ...] = (
     "match/scoring.py",
     "match/game.py",  # the clock, the game master's period, the whistle
     "match/player.py",  # upstream's step waits around each run (the team-loop timings)
+    "players/placement.py",  # how each player is put back at every reset (place, look, items)
+    "server/clock.py",  # the lockstep clock's Python side: what holds the world, rests, who is idle
     "metrics/formulas.py",  # P, S, D, W and each scenario's reported scale (Dash & Dine x0.1)
 )
 _SKIP_PARTS = {"__pycache__", "node_modules"}
