@@ -71,6 +71,7 @@ if (process.env.PB_TRACE) { // packets received by name: count and bytes, logged
   })
   process.on('exit', () => log(`[trace] packets ${JSON.stringify(Object.entries(got).sort((a, b) => b[1][1] - a[1][1]).slice(0, 15))}`))
 }
+if (/\bsearch\b/.test(process.env.PB_TRACE || '')) require('./search_trace').install(log)
 
 let mcData = null
 let observer = null
@@ -294,7 +295,7 @@ bot.once('spawn', async () => {
   bot.pathfinder.thinkTimeout = 2000
   // ms of path search per tick. 7 with the cheaper block lookup of movements.js visits about as many
   // nodes per tick as 20 did with the stock one (docs/performance.md): the same searches for a third
-  // of the CPU, and the bot answers stop() quickly.
+  // of the CPU, and the bot answers stop() quickly. On the lockstep clock: 140 nodes (game_clock.js).
   bot.pathfinder.tickTimeout = 7
   bot.on('physicsTick', () => { if (observer.ticks % CHAT_WINDOW_TICKS === 0) chatCount = 0 })
   bot.on('messagestr', (message, position) => {

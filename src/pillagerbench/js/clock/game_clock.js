@@ -66,9 +66,13 @@ function install (mode) {
 // Within a tick game time stands still, so code that limits its own work by the time it has spent
 // (mineflayer-pathfinder's A*: `tickTimeout` ms of search per tick, `thinkTimeout` in all) would never
 // stop. So each reading of performance.now() within one tick moves it on by READ_COST_MS: a search is
-// then limited by how many steps it takes (two readings per node: 7 ms per tick = 700 nodes), the same
-// on every machine. The readings start again at the tick's own time each tick (never past it).
-const READ_COST_MS = 0.005
+// then limited by how many steps it takes, the same on every machine. The readings start again at the
+// tick's own time each tick (never past it). Two readings per node: the 7 ms per tick of main.js are
+// 140 nodes, what the real clock's bots searched per tick when the suite's reference figures were
+// measured (4 matches at once on the 2-core reference machine: medians of 109 to 139 nodes per 7 ms slice
+// for the bots that search most, as fast as the machine was that hour; benchmarks/search_budget.py,
+// docs/clock.md). It was 5 µs (700 nodes): five times the real clock's search.
+const READ_COST_MS = 0.025
 const READ_CAP_MS = TICK_MS - 1
 
 function searchClock (clock) {
