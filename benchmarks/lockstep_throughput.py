@@ -3,7 +3,7 @@ teams on this machine, the fidelity experiment (every built-in opponent of both 
 do_nothing) played on each clock, and the wall time of the whole run. Prints JSON.
 
     python benchmarks/lockstep_throughput.py [--episodes 1] [--length 120] [--real-parallel 4]
-        [--lockstep-parallel 2] [--only lockstep|real] [--keep DIR]
+        [--lockstep-parallel 4] [--only lockstep|real] [--keep DIR]
 
 `--episodes 10` is the suite's reference run (80 episodes). Each run is `pillagerbench run
 experiment=fidelity scoring=upstream protocol=upstream` (as scripts/reference_figures.py's), in a
@@ -53,7 +53,7 @@ def main() -> None:
     ap.add_argument("--episodes", type=int, default=1, help="per opponent (10 = the reference run)")
     ap.add_argument("--length", type=float, default=120.0)
     ap.add_argument("--real-parallel", type=int, default=4)
-    ap.add_argument("--lockstep-parallel", type=int, default=2)
+    ap.add_argument("--lockstep-parallel", type=int, default=4)
     ap.add_argument("--only", choices=["real", "lockstep"])
     ap.add_argument("--keep", type=Path, help="write the run directories here (default: a temporary directory)")
     args = ap.parse_args()
