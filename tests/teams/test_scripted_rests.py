@@ -1,7 +1,9 @@
 """A built-in opponent's player with no runs left rests to the whistle: on the lockstep clock its bot,
 idle since its last run, no longer holds the world until the server lets go of it after 5 s of wall
 time (each such wait is named in server.log). Nor do the players no team plays (Dash & Dine's
-servers), whose bots never run."""
+servers), whose bots never run, nor those of a team whose play is over (returned or failed) while the
+game goes on: with scoring=upstream it plays on past the whistle to upstream's last sample, and
+do_nothing's players, their rest to the whistle over, held every such game for 5 s."""
 
 from __future__ import annotations
 
@@ -28,6 +30,23 @@ async def test_a_player_without_runs_left_lets_the_world_go_on(tmp_path):
 async def test_the_players_no_team_plays_hold_nothing(tmp_path):
     (rec,) = await play_series("dash_and_dine", "do_nothing", "do_nothing", tmp_path, length=120, clock="lockstep")
     assert rec.status == "ok", rec.error
+    assert_no_wall_clock_waits(tmp_path / "server.log")
+
+
+class GivesUp(Passive):
+    """A team whose play fails at once: its players never run."""
+
+    async def play(self, ctx) -> None:
+        raise RuntimeError("this team gives up")
+
+
+async def test_a_team_whose_play_is_over_holds_nothing_past_the_whistle(tmp_path):
+    (rec,) = await play_series(
+        "mushroom_war", "do_nothing", GivesUp(), tmp_path, length=5, clock="lockstep", scoring="upstream"
+    )
+    assert rec.status == "ok", rec.error
+    assert rec.scores["upstream"] == {"red": 0.0, "blue": 0.0}
+    assert (tmp_path / "episode_000" / "play-blue.error.txt").read_text().startswith("RuntimeError")
     assert_no_wall_clock_waits(tmp_path / "server.log")
 
 

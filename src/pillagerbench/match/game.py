@@ -10,6 +10,7 @@ import time
 
 from pillagerbench.match.parts import Game, Part
 from pillagerbench.match.scoring import CleanScoring, UpstreamScoring
+from pillagerbench.teams.base import TeamContext
 
 STOP_GRACE_S = 3.0
 
@@ -49,7 +50,7 @@ async def play_game(
 
     for part in parts:
         await part.start(game)
-    plays = [asyncio.create_task(game.teams[k].play(c), name=f"play-{k}") for k, c in contexts.items()]
+    plays = [asyncio.create_task(_play(game, c, over), name=f"play-{k}") for k, c in contexts.items()]
     background = [
         asyncio.create_task(rules(), name="game-master"),
         asyncio.create_task(clean.sample(gm, clock, start, game.length, second), name="scores"),
@@ -94,6 +95,17 @@ async def play_game(
         upstream.write(game.out)
     (game.out / "game_master.json").write_text(json.dumps(gm.log))
     return clean, upstream
+
+
+async def _play(game: Game, ctx: TeamContext, over: asyncio.Event) -> None:
+    """A team's play; once it is over (returned or failed) before the game is, its players rest to the
+    game's end: on the lockstep clock an idle bot of a team that will never run it again would hold the
+    world until the server lets go of it (5 s of wall time; scoring=upstream plays on past the whistle)."""
+    try:
+        await game.teams[ctx.side.key].play(ctx)
+    finally:
+        if not over.is_set():
+            await game.clock.retire(list(ctx.side.player_names))
 
 
 async def _until(whistle: asyncio.Task, tasks: list[asyncio.Task]) -> None:

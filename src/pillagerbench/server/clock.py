@@ -8,7 +8,7 @@ then costs `ticks_per_1k_tokens` of game time for the tokens it generated, if se
 step of the game (the game master's, a score sample) at game time `t`: on the lockstep clock at that
 tick exactly, with the world held until the same step's next wait is in place. During a game a bot whose run has ended
 holds the world (`idle:NAME`) until its next run begins or its team `rest`s it (a wait, exact to the
-tick), so the next program starts at the tick the last one ended. `end()` at the whistle drops every hold
+tick), so the next program starts at the tick the last one ended; `retire` once its team's play is over. `end()` at the whistle drops every hold
 (stopping the players needs ticks); `begin()` before the next game.
 """
 
@@ -45,6 +45,8 @@ class GameClock(Protocol):
     async def charge(self, tokens: int, players: list[str]) -> None: ...
 
     async def let_go(self, who: str) -> None: ...
+
+    async def retire(self, players: list[str]) -> None: ...
 
     async def end(self) -> None: ...
 
@@ -85,6 +87,9 @@ class RealClock:
         return None
 
     async def let_go(self, who: str) -> None:
+        return None
+
+    async def retire(self, players: list[str]) -> None:
         return None
 
     async def end(self) -> None:
@@ -192,8 +197,7 @@ class LockstepClock:
         and come back on the tick that ends the wait (one op, so that tick is exact however long
         Python takes), when their team's next step begins."""
         if not math.isfinite(seconds):
-            for name in players:
-                await self.server.release(f"idle:{name}")
+            await self.retire(players)
             await _forever()
         self._seen(await self.server.rest(players, self.tick_of(max(0.0, seconds))))
 
@@ -202,6 +206,12 @@ class LockstepClock:
         if who in self._stepping:
             self._stepping.discard(who)
             await asyncio.shield(self.server.release(who))
+
+    async def retire(self, players: list[str]) -> None:
+        """These players' team has nothing more for them this game (its play is over): they hold the world
+        no more, not even as a run of theirs ends, until the whistle."""
+        if not self.over:
+            self._seen(await self.server.retire(players))
 
     async def charge(self, tokens: int, players: list[str]) -> None:
         """Thinking charged in game time: the team's players wait it out."""

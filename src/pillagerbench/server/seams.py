@@ -275,6 +275,9 @@ class Control(Protocol):
     async def rest(self, players: Sequence[str], ticks: int) -> int:
         return await self.send("rest", players=players, ticks=ticks)
 
+    async def retire(self, players: Sequence[str]) -> int:
+        return await self.send("retire", players=players)
+
     async def seed(self, seed: int) -> bool:
         return await self.send("seed", seed=seed)
 

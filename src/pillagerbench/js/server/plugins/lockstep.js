@@ -194,6 +194,15 @@ module.exports.server = function (serv) {
       if (ticks <= 0) answerDue()
       return back
     },
+    // Their team's play is over: they rest to the game's end (the whistle's drop_holds forgets it). Held
+    // idle until then, each would stop the world for IDLE_LIMIT_MS of wall time (with scoring=upstream
+    // the game plays on past the whistle to upstream's last sample: do_nothing's players stopped every
+    // such game for 5 s).
+    retire (players) {
+      lockstepOnly('retire')
+      for (const who of players.map(name => `idle:${name}`)) { resting.add(who); this.releaseAll(who) }
+      return state.tick
+    },
     idle (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} idle ${client.username} game=${state.game}`)
       if (!state.game || !members.has(client) || resting.has(`idle:${client.username}`)) return
