@@ -3,7 +3,11 @@ of built-in teams several times and compare them: the score timelines, and the r
 player's position and look at each frame, from the game's first frame on). Prints JSON.
 
     python benchmarks/lockstep_determinism.py [--repeats 5] [--length 60] [--seed 3] [--load] [--ticks]
-        [red=TEAM blue=TEAM]
+        [--episodes 1] [red=TEAM blue=TEAM scoring=upstream ...]
+
+`--episodes N` plays N episodes in each repeat (one plain run, the series' episodes one after the
+other on one server, as an experiment plays them) and compares each episode with the same episode of
+the first repeat: what one episode leaves behind must not move the next.
 
 `--load` plays a second match (real clock) beside each repeat, loading the machine. `--ticks` has each
 bot write where it is after every tick (PB_TRACE=ticks, js/bot/lockstep.js) and says, per bot, the
@@ -25,8 +29,8 @@ ROOT = Path(__file__).resolve().parents[1]
 CLI = [sys.executable, "-m", "pillagerbench.cli", "run", "display=plain"]
 
 
-def recorded(run: Path) -> list[dict]:
-    path = run / "episode_000" / "replay.jsonl.gz"
+def recorded(episode: Path) -> list[dict]:
+    path = episode / "replay.jsonl.gz"
     return [r for r in (json.loads(line) for line in gzip.open(path)) if r.get("type") == "frame"]
 
 
@@ -35,25 +39,35 @@ def frames(found: list[dict]) -> list[dict]:
     return [{"tick": f["tick"] - first, "players": f.get("players")} for f in found]
 
 
-def play(run: Path, args: argparse.Namespace) -> dict:
-    cmd = [*CLI, "clock=lockstep", f"seed={args.seed}", f"episode_length={args.length}", f"run_dir={run}", *args.teams]
+def play(run: Path, args: argparse.Namespace) -> list[dict]:
+    cmd = [*CLI, "clock=lockstep", f"seed={args.seed}", f"episode_length={args.length}", f"run_dir={run}",
+           f"episodes={args.episodes}", *args.teams]  # fmt: skip
     load = None
     if args.load:
-        load = subprocess.Popen([*CLI, "episode_length=60", f"run_dir={run}-load"], cwd=ROOT, stdout=subprocess.DEVNULL)
+        load = subprocess.Popen(
+            [*CLI, "episode_length=60", f"episodes={args.episodes}", f"run_dir={run}-load"],
+            cwd=ROOT,
+            stdout=subprocess.DEVNULL,
+        )
     env = {**os.environ, "PB_TRACE": "ticks"} if args.ticks else None
     subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, env=env)
     if load is not None:
         load.wait()
-    timeline = json.loads((run / "episode_000" / "timeline.json").read_text())
-    found = recorded(run)
+    return [episode(run, i, args.ticks) for i in range(args.episodes)]
+
+
+def episode(run: Path, index: int, traced: bool) -> dict:
+    ep = run / f"episode_{index:03d}"
+    timeline = json.loads((ep / "timeline.json").read_text())
+    found = recorded(ep)
     start = found[0]["tick"] if found else 0
-    lines = (run / "episode_000" / "world_events.jsonl").read_text().splitlines()
+    lines = (ep / "world_events.jsonl").read_text().splitlines()
     events = [line for line in lines if not json.loads(line).get("after_whistle")]  # the game's, not the stop's
     return {
         "timeline": timeline,
         "events": events,
         "frames": frames(found),
-        "ticks": ticks(run, start) if args.ticks else {},
+        "ticks": ticks(run, start) if traced and index == 0 else {},
     }
 
 
@@ -89,15 +103,21 @@ def main() -> None:
     ap.add_argument("--length", type=float, default=60.0)
     ap.add_argument("--seed", type=int, default=3)
     ap.add_argument("--load", action="store_true")
-    ap.add_argument("--ticks", action="store_true")
+    ap.add_argument("--ticks", action="store_true", help="(first episode only)")
+    ap.add_argument("--episodes", type=int, default=1)
     ap.add_argument("teams", nargs="*", help="e.g. red=do_nothing blue=aggressive (default: the run's own)")
     args = ap.parse_args()
     base = Path(tempfile.mkdtemp(prefix="lockstep-determinism-"))
-    plays = [play(base / f"r{i}", args) for i in range(args.repeats)]
+    repeats = [play(base / f"r{i}", args) for i in range(args.repeats)]
+    out = {"repeats": args.repeats, "load": args.load, "episodes": [compare(list(e)) for e in zip(*repeats)]}
+    out["runs"] = str(base)
+    print(json.dumps(out if args.episodes > 1 else {**out, **out.pop("episodes")[0]}, indent=1))
+
+
+def compare(plays: list[dict]) -> dict:
+    """One episode as each repeat played it, against the first repeat's."""
     first = plays[0]
-    out = {
-        "repeats": args.repeats,
-        "load": args.load,
+    return {
         "identical_timelines": sum(p["timeline"] == first["timeline"] for p in plays),
         "identical_world_events": sum(p["events"] == first["events"] for p in plays),
         "finals": [p["timeline"][-1] for p in plays],
@@ -106,9 +126,7 @@ def main() -> None:
             {bot: first_parting(trace, p["ticks"].get(bot, {})) for bot, trace in first["ticks"].items()}
             for p in plays[1:]
         ],
-        "runs": str(base),
     }
-    print(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":

@@ -3,7 +3,8 @@ idle since its last run, no longer holds the world until the server lets go of i
 time (each such wait is named in server.log). Nor do the players no team plays (Dash & Dine's
 servers), whose bots never run, nor those of a team whose play is over (returned or failed) while the
 game goes on: with scoring=upstream it plays on past the whistle to upstream's last sample, and
-do_nothing's players, their rest to the whistle over, held every such game for 5 s."""
+do_nothing's players, their rest to the whistle over, held every such game for 5 s; nor a rest the
+whistle cut short, in the next game."""
 
 from __future__ import annotations
 
@@ -47,6 +48,18 @@ async def test_a_team_whose_play_is_over_holds_nothing_past_the_whistle(tmp_path
     assert rec.status == "ok", rec.error
     assert rec.scores["upstream"] == {"red": 0.0, "blue": 0.0}
     assert (tmp_path / "episode_000" / "play-blue.error.txt").read_text().startswith("RuntimeError")
+    assert_no_wall_clock_waits(tmp_path / "server.log")
+
+
+async def test_a_rest_the_whistle_cut_short_gives_nothing_back_in_the_next_game(tmp_path):
+    """protocol=upstream waits 4 s of game time after each run: the whistle cuts the last one short, and
+    its tick, reached in the next game, held that game's players idle until the server let go."""
+    recs = await play_series(
+        "mushroom_war", "do_nothing", "balanced", tmp_path, episodes=2, length=10, clock="lockstep",
+        protocol="upstream", scoring="upstream",
+    )  # fmt: skip
+    assert [r.status for r in recs] == ["ok", "ok"], [r.error for r in recs]
+    assert all(r.runs for r in recs), [r.runs for r in recs]
     assert_no_wall_clock_waits(tmp_path / "server.log")
 
 

@@ -23,7 +23,9 @@ module.exports.server = function (serv) {
   const members = new Map() // a bot's connection -> the last tick it has done
   const holds = new Map() // who -> count
   const waiters = [] // [tick, resolve]
-  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false, gameStart: 0 }
+  // holdsOf: how many times holds were dropped (each whistle, each game's start): a rest begun before
+  // neither takes nor gives back a hold after (see rest)
+  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false, gameStart: 0, holdsOf: 0 }
   const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
   // idle:NAME of the players resting (a `rest` in progress). Python's `rest` (the control channel) can
   // reach the server before the bot's IDLE for the run that just ended (its game connection): that late
@@ -122,6 +124,7 @@ module.exports.server = function (serv) {
     inGame: () => state.game,
     configure ({ speed, unpaced, drop_holds: dropHolds, game }) {
       if (dropHolds === true) { // the whistle: no hold outlives its game, not even one still to come
+        state.holdsOf++
         holds.clear()
         resting.clear()
         for (const w of waiters) w[2] = null
@@ -180,13 +183,19 @@ module.exports.server = function (serv) {
       return got
     },
     // The players' idle holds go now and come back `ticks` later, on that tick exactly (atomic: the
-    // clock cannot pass it before the wait is in place, for it is held until the release).
+    // clock cannot pass it before the wait is in place, for it is held until the release). A rest the
+    // whistle cut short still answers at its tick, but gives nothing back: its tick could fall in the
+    // next game (between games the clock keeps real time's pace, so when depended on the wall clock),
+    // where it ended that game's own rest of the player and held the world idle until the server let
+    // go (a stop of 5 s of wall time at each game's start but the first, with protocol=upstream).
     rest (players, ticks) {
       lockstepOnly('rest')
       const names = players.map(name => `idle:${name}`)
+      const holdsOf = state.holdsOf
       const back = new Promise(resolve => waiters.push([state.tick + Math.max(0, ticks), () => {
-        for (const who of names) resting.delete(who)
-        for (const who of names) if (state.game) this.holdIdle(who)
+        const mine = state.holdsOf === holdsOf
+        if (mine) for (const who of names) resting.delete(who)
+        for (const who of names) if (mine && state.game) this.holdIdle(who)
         const t = state.tick
         answer(() => resolve(t))
       }, null]))
