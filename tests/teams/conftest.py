@@ -26,13 +26,14 @@ async def play_series(
     llms: dict | None = None,
     seed: int = 1,
     clock: str = "real",
+    idle_limit_s: float | None = None,
     **match_options,
 ):
     """Play `episodes` episodes on a fresh server (on `clock`); red/blue are team names or Team objects;
     `match_options` go to Match (scoring=, protocol=)."""
     sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
     teams = {side: make_team(t, sc.key) if isinstance(t, str) else t for side, t in (("red", red), ("blue", blue))}
-    async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
+    async with ArenaServer(log_path=run_dir / "server.log", clock=clock, idle_limit_s=idle_limit_s) as server:
         match = Match(
             server,
             sc,

@@ -8,6 +8,9 @@ whistle cut short, in the next game."""
 
 from __future__ import annotations
 
+import asyncio
+
+from pillagerbench.teams.base import Team
 from pillagerbench.teams.mushroom_war import Passive
 from tests.teams.conftest import play_series
 
@@ -61,6 +64,28 @@ async def test_a_rest_the_whistle_cut_short_gives_nothing_back_in_the_next_game(
     assert [r.status for r in recs] == ["ok", "ok"], [r.error for r in recs]
     assert all(r.runs for r in recs), [r.runs for r in recs]
     assert_no_wall_clock_waits(tmp_path / "server.log")
+
+
+class WaitsOnTheWall(Team):
+    """Runs one player once, then waits on the wall clock: neither runs nor rests its players."""
+
+    name = "waits_on_the_wall"
+
+    async def play(self, ctx) -> None:
+        await next(iter(ctx.players.values())).run("await bot.waitForTicks(5)")
+        await asyncio.sleep(3600)
+
+
+async def test_a_world_that_went_on_without_an_idle_player_is_in_the_record(tmp_path):
+    (rec,) = await play_series(
+        "mushroom_war", WaitsOnTheWall(), "do_nothing", tmp_path, length=5, clock="lockstep", idle_limit_s=0.5
+    )
+    assert rec.status == "ok", rec.error
+    went_on = [p for p in rec.problems.get("red", []) if p.startswith("lockstep: ")]
+    assert len(went_on) == 2, rec.problems  # both players: one after its run, one never run
+    assert all("went on without it" in p and "(1x)" in p for p in went_on), went_on
+    assert "blue" not in rec.problems
+    assert "let go after 500 ms" in (tmp_path / "server.log").read_text()
 
 
 def assert_no_wall_clock_waits(server_log) -> None:

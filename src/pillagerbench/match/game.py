@@ -100,7 +100,7 @@ async def play_game(
 async def _play(game: Game, ctx: TeamContext, over: asyncio.Event) -> None:
     """A team's play; once it is over (returned or failed) before the game is, its players rest to the
     game's end: on the lockstep clock an idle bot of a team that will never run it again would hold the
-    world until the server lets go of it (5 s of wall time; scoring=upstream plays on past the whistle)."""
+    world until the server lets go of it (30 s of wall time; scoring=upstream plays on past the whistle)."""
     try:
         await game.teams[ctx.side.key].play(ctx)
     finally:

@@ -290,3 +290,10 @@ class Match:
         for key, team in self.teams.items():
             if team.problems:
                 rec.problems.setdefault(key, []).extend(team.problems)
+        went_on: dict[str, int] = self.clock.went_on if isinstance(self.clock, LockstepClock) else {}
+        for side in self.scenario.sides:
+            for name in (n for n in side.player_names if went_on.get(n)):
+                rec.problems.setdefault(side.key, []).append(
+                    f"lockstep: {name} idle, neither run nor rested, and the world went on without it after the "
+                    f"server's wall-clock limit ({went_on[name]}x): this game may not repeat under its seed"
+                )

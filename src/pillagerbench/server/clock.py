@@ -112,6 +112,9 @@ class LockstepClock:
         self.over = False  # after the whistle thinking holds the world no more
         self._held: dict[str, int] = {}  # who -> holds of thinking() still on
         self._stepping: set[str] = set()  # who holds the world since its last at(), until its next
+        # player -> how many times in the last game the server let go of its idle bot (its team neither ran
+        # nor rested it within the server's wall-clock limit): that game may not repeat under its seed
+        self.went_on: dict[str, int] = {}
         self._queue: asyncio.Queue | None = None
         self._follow: asyncio.Task | None = None
 
@@ -222,12 +225,15 @@ class LockstepClock:
         self.over = True
         self._held.clear()
         self._stepping.clear()
-        await self.server.clock(drop_holds=True, game=False)  # a step cancelled at the whistle may still be due a hold
+        state = await self.server.clock(
+            drop_holds=True, game=False
+        )  # a step cancelled at the whistle may still be due a hold
+        self.went_on = {who.removeprefix("idle:"): n for who, n in state.get("let_go", {}).items()}
 
     async def begin(self, bystanders: Sequence[str] = ()) -> None:
         """A new game: thinking holds the world again, and so does a bot whose run has ended.
         `bystanders`: players no team plays (Dash & Dine's servers), whose bots never run: they hold
-        nothing (held, each would stop the world for the 5 s of wall time the server allows)."""
+        nothing (held, each would stop the world for the 30 s of wall time the server allows)."""
         self.over = False
         self._stepping.clear()
         self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held

@@ -75,6 +75,7 @@ class ArenaServer(Control):
         operators: list[str] | None = None,
         watch: int | None = None,
         clock: str = "real",
+        idle_limit_s: float | None = None,
     ):
         self.host = host
         self.clock_mode = clock  # "real" or "lockstep" (js/server/plugins/lockstep.js)
@@ -90,6 +91,8 @@ class ArenaServer(Control):
             "operators": list(operators or []),
             "clock": clock,
         }
+        if idle_limit_s is not None:  # how long an idle bot may hold the lockstep clock (plugins/lockstep.js)
+            self.settings["idleLimitMs"] = round(idle_limit_s * 1000)
         if watch is not None:  # the live view (js/server/plugins/watch.js) on this port, 0 = a free one
             self.settings["watch"] = {"host": host, "port": int(watch)}
         self.watch_url: str | None = None

@@ -92,6 +92,7 @@ class ClockState(TypedDict):
     speed: float | None  # a multiple of real time; None: unpaced
     holds: list[str]
     bots: int
+    let_go: dict[str, int]  # idle:NAME -> times the server let go of it in the last game (lockstep)
 
 
 class OpSpec(NamedTuple):

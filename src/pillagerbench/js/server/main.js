@@ -39,7 +39,8 @@ function main () {
     'max-entities': settings.maxEntities ?? 1000,
     'player-list-text': { header: { text: 'PillagerBench' }, footer: { text: '' } },
     version: '1.16.5',
-    cropGrowthChance: settings.cropGrowthChance
+    cropGrowthChance: settings.cropGrowthChance,
+    idleLimitMs: settings.idleLimitMs // plugins/lockstep.js
   })
   serv.pb.tps = 20
   serv.pb.operators = settings.operators || []
