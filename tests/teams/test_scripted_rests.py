@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 
+from pillagerbench.scenarios.mushroom_war import MushroomWarMaster
 from pillagerbench.teams.base import Team
 from pillagerbench.teams.mushroom_war import Passive
 from tests.teams.conftest import play_series
@@ -86,6 +87,54 @@ async def test_a_world_that_went_on_without_an_idle_player_is_in_the_record(tmp_
     assert all("went on without it" in p and "(1x)" in p for p in went_on), went_on
     assert "blue" not in rec.problems
     assert "let go after 500 ms" in (tmp_path / "server.log").read_text()
+
+
+class OneRestsOneRuns(Team):
+    """One player rests to the whistle, its loop then over; the other runs on past it."""
+
+    name = "one_rests_one_runs"
+
+    async def play(self, ctx) -> None:
+        first, second = ctx.players.values()
+
+        async def rests():
+            await first.run("await bot.waitForTicks(5)")
+            await ctx.sleep(ctx.time_left(), first.name)
+
+        await asyncio.gather(rests(), second.run("while (true) await bot.waitForTicks(1)"))
+
+
+async def test_past_the_whistle_no_player_holds_the_world(tmp_path):
+    """With scoring=upstream the game plays on past the whistle; a player whose rest ended there (its
+    team's play not over: the other player runs on) held the world until the server let go of it."""
+    (rec,) = await play_series(
+        "mushroom_war", OneRestsOneRuns(), "do_nothing", tmp_path, length=5, clock="lockstep", scoring="upstream",
+        idle_limit_s=0.5,
+    )  # fmt: skip
+    assert rec.status == "ok", rec.error
+    assert rec.problems == {}, rec.problems
+    assert_no_wall_clock_waits(tmp_path / "server.log")
+
+
+async def test_the_score_at_the_whistle_is_taken_at_its_tick(tmp_path, monkeypatch):
+    """On the lockstep clock the world is held at the whistle's tick until its score is taken: taken while
+    the world went on, it counted what the ticks Python took on the wall clock brought. Both scorings."""
+    ticks: list[int] = []
+    stock = MushroomWarMaster.scores
+
+    async def scores(self):
+        ticks.append((await self.server.clock())["tick"])
+        return await stock(self)
+
+    monkeypatch.setattr(MushroomWarMaster, "scores", scores)
+    for scoring in ("clean", "upstream"):
+        ticks.clear()
+        (rec,) = await play_series(
+            "mushroom_war", "do_nothing", "balanced", tmp_path / scoring, length=4, clock="lockstep", scoring=scoring
+        )
+        assert rec.status == "ok", rec.error
+        # one sample a second from the game's first tick (0 to 3 s), then the whistle's at 4 s exactly
+        assert ticks[:5] == [ticks[0] + 20 * t for t in range(5)], (scoring, ticks)
 
 
 def assert_no_wall_clock_waits(server_log) -> None:

@@ -233,7 +233,7 @@ class LockstepClock:
     async def begin(self, bystanders: Sequence[str] = ()) -> None:
         """A new game: thinking holds the world again, and so does a bot whose run has ended.
         `bystanders`: players no team plays (Dash & Dine's servers), whose bots never run: they hold
-        nothing (held, each would stop the world for the 30 s of wall time the server allows)."""
+        nothing (held, each would stop the world for the 5 s of wall time the server allows)."""
         self.over = False
         self._stepping.clear()
         self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held

@@ -17,11 +17,9 @@ const { ControlError } = require('../util')
 
 const PUSH_EVERY = 4
 // A team that waits other than through its context (TeamContext.sleep) would hold the world for ever.
-// 30 s, not 5: the Python side may be starved of the CPU for seconds when many matches share the
-// cores, and a built-in team's answer, late by the wall clock, must not let the world go on without it
-// (1 in 80 episodes of the fidelity experiment at 4 matches on 2 cores with 5 s). Each let-go is counted
-// (`let_go` in the clock's state) and the match records it: that game may not repeat under its seed.
-const IDLE_LIMIT_MS = 30000
+// Each let-go is counted (`let_go` in the clock's state) and the match records it: the world went on at
+// a tick the wall clock chose, so that game may not repeat under its seed.
+const IDLE_LIMIT_MS = 5000
 
 module.exports.server = function (serv, settings = {}) {
   const idleLimitMs = settings.idleLimitMs ?? IDLE_LIMIT_MS
@@ -38,6 +36,7 @@ module.exports.server = function (serv, settings = {}) {
   // reach the server before the bot's IDLE for the run that just ended (its game connection): that late
   // IDLE must not hold the world again until the rest is over.
   const resting = new Set()
+  const retired = new Set() // idle:NAME of the players that hold nothing more this game (see retire)
   const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
 
   const answers = [] // the answers of waits whose tick has come, until every bot has done that tick
@@ -135,6 +134,7 @@ module.exports.server = function (serv, settings = {}) {
         state.holdsOf++
         holds.clear()
         resting.clear()
+        retired.clear()
         for (const w of waiters) w[2] = null
         for (const t of idleTimers.values()) clock.real.clearTimeout(t)
         idleTimers.clear()
@@ -211,13 +211,14 @@ module.exports.server = function (serv, settings = {}) {
       if (ticks <= 0) answerDue()
       return back
     },
-    // Their team's play is over: they rest to the game's end (the whistle's drop_holds forgets it). Held
-    // idle until then, each would stop the world for IDLE_LIMIT_MS of wall time (with scoring=upstream
-    // the game plays on past the whistle to upstream's last sample: do_nothing's players stopped every
-    // such game for 5 s).
+    // Their team's play is over, or the game's time is (with scoring=upstream the game plays on past the
+    // whistle to upstream's last sample): they hold nothing more until the game ends (the whistle's
+    // drop_holds forgets it), not even as a run or a rest of theirs ends. Held idle, each would stop the
+    // world until the server let go (do_nothing's players, every such game; aggressive's player whose
+    // last rest ended at the whistle).
     retire (players) {
       lockstepOnly('retire')
-      for (const who of players.map(name => `idle:${name}`)) { resting.add(who); this.releaseAll(who) }
+      for (const who of players.map(name => `idle:${name}`)) { retired.add(who); this.releaseAll(who) }
       return state.tick
     },
     idle (client) {
@@ -226,7 +227,7 @@ module.exports.server = function (serv, settings = {}) {
       this.holdIdle(`idle:${client.username}`)
     },
     holdIdle (who) { // held until its next run or a rest; after IDLE_LIMIT_MS of wall time it lets go
-      if (holds.has(who)) return
+      if (holds.has(who) || retired.has(who)) return
       holds.set(who, 1)
       idleTimers.set(who, clock.real.setTimeout(() => {
         idleTimers.delete(who)
