@@ -69,8 +69,7 @@ async def play_game(
             async with lock:
                 await gm.step()
                 final = await gm.scores()
-        if late:  # upstream: play on to upstream's sample; no player holds the world any more
-            await clock.retire(list(game.players))
+        if late:  # upstream: play on to upstream's sample
             await clock.let_go("whistle")
             done, _ = await asyncio.wait([late, background[0]], return_when=asyncio.FIRST_COMPLETED)
             _raise_first(done)

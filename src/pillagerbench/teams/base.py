@@ -67,9 +67,16 @@ class TeamContext:
     async def sleep(self, seconds: float, player: str | None = None) -> None:
         """Wait `seconds` of game time, or to the whistle if that comes first. `player`: the player
         whose loop waits (on the lockstep clock its bot, idle since its last run, holds the world until
-        its team says what next: this is what next)."""
+        its team says what next: this is what next). A player's wait that reaches the whistle ends its
+        game: it holds the world no more (with scoring=upstream the game plays on past the whistle, and
+        it held the world there until the server let go of it; a run begun after is not waited for)."""
         wait = min(seconds, self.time_left())
-        await (self.clock.sleep(wait) if player is None else self.clock.rest([player], wait))
+        if player is None:
+            await self.clock.sleep(wait)
+            return
+        await self.clock.rest([player], wait)
+        if self.time_left() < 1e-6:  # (game seconds are ticks x 0.05: not exact in floating point)
+            await self.clock.retire([player])
 
     @property
     def opponent(self) -> Side:
