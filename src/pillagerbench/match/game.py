@@ -10,6 +10,7 @@ import time
 
 from pillagerbench.match.parts import Game, Part
 from pillagerbench.match.scoring import CleanScoring, UpstreamScoring
+from pillagerbench.scenarios.base import GameMaster
 from pillagerbench.server.clock import GameClock
 from pillagerbench.teams.base import TeamContext
 
@@ -67,8 +68,7 @@ async def play_game(
         await _until(whistle, background + ([late] if late else []))
         if late or clock.mode == "lockstep":  # the score at the whistle (lockstep: at its tick, the world held)
             async with lock:
-                await gm.step()
-                final = await gm.scores()
+                final = await _score(gm)
         if late:  # upstream: play on to upstream's sample
             await clock.let_go("whistle")
             done, _ = await asyncio.wait([late, background[0]], return_when=asyncio.FIRST_COMPLETED)
@@ -85,8 +85,7 @@ async def play_game(
     for part in parts:
         await part.stopped(game)
     if final is None:
-        await gm.step()
-        final = await gm.scores()
+        final = await _score(gm)
     for part in parts:
         await part.whistle(game, final)
     clean.final(game.length, final)
@@ -98,6 +97,12 @@ async def play_game(
         upstream.write(game.out)
     (game.out / "game_master.json").write_text(json.dumps(gm.log))
     return clean, upstream
+
+
+async def _score(gm: GameMaster) -> dict:
+    """The score after one more step of the game master's."""
+    await gm.step()
+    return await gm.scores()
 
 
 async def _whistle(clock: GameClock, deadline: float) -> None:
