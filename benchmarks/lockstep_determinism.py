@@ -111,7 +111,9 @@ def main() -> None:
     repeats = [play(base / f"r{i}", args) for i in range(args.repeats)]
     out = {"repeats": args.repeats, "load": args.load, "episodes": [compare(list(e)) for e in zip(*repeats)]}
     out["runs"] = str(base)
-    print(json.dumps(out if args.episodes > 1 else {**out, **out.pop("episodes")[0]}, indent=1))
+    if args.episodes == 1:  # as before --episodes: the one episode's comparison at the top level
+        out = {**{k: v for k, v in out.items() if k != "episodes"}, **out["episodes"][0]}
+    print(json.dumps(out, indent=1))
 
 
 def compare(plays: list[dict]) -> dict:
