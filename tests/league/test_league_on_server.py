@@ -14,6 +14,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+from pillagerbench.rundir import EpisodeRecord, spoiled
 from tests.support.cli import run_cli, start_cli
 
 PLAY = ["play", "budget.episodes=6", "episodes_per_match=2", "episode_length=10", "parallel=2", "display=plain"]
@@ -66,11 +67,20 @@ def played(tmp_path_factory):
     return root, before, out
 
 
+def used(recs: list[dict]) -> list[dict]:
+    """The records that are results: an episode spoiled on our side (e.g. played under lag on a
+    loaded machine) is kept, replayed, and counted in the budget, never on the board."""
+    return [r for r in recs if not spoiled(EpisodeRecord.from_dict(r))]
+
+
 def test_the_killed_round_is_finished_and_the_budget_stops_the_league(played):
     root, before, out = played
-    assert "finishing round_000" in out and "league stopped: budget spent (episodes 6/6)" in out
     finished = {s: lines(s / "episodes.jsonl") for s in all_series(root)}
-    assert sum(len(v) for v in finished.values()) == 6
+    played_here = sum(len(v) for v in finished.values())
+    assert "finishing round_000" in out and f"league stopped: budget spent (episodes {played_here}/6)" in out
+    # the last round was begun with budget left, and its replays of spoiled episodes may take it over
+    last_round = sorted({s.parent.parent for s in finished})[-1]
+    assert played_here - sum(len(v) for s, v in finished.items() if s.parent.parent == last_round) < 6 <= played_here
     for s, recs in finished.items():
         assert [r["episode"] for r in recs] == list(range(len(recs))), s
         assert recs[: len(before.get(s, []))] == before.get(s, [])  # nothing finished was lost or replayed
@@ -83,7 +93,7 @@ def test_the_board_matches_the_episodes_and_is_reproducible(played):
     episodes = {}
     for s in all_series(root):
         spec = json.loads((s / "series.json").read_text())
-        for _ in lines(s / "episodes.jsonl"):
+        for _ in used(lines(s / "episodes.jsonl")):
             for side in ("red", "blue"):
                 episodes[spec[side]] = episodes.get(spec[side], 0) + 1
     assert dict(zip(board["entrant"], board["episodes"])) == {n: episodes.get(n, 0) for n in board["entrant"]}
