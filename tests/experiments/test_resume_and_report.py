@@ -26,6 +26,7 @@ ARGS = [
     "experiment.blue_teams=[balanced]",
     f"experiment.episodes={EPISODES}",
     "episode_length=10",
+    "clock=lockstep",  # no episode lost to lag on a loaded machine (and faster)
     "parallel=2",
     "display=plain",
 ]

@@ -17,7 +17,15 @@ import pytest
 from pillagerbench.rundir import EpisodeRecord, spoiled
 from tests.support.cli import run_cli, start_cli
 
-PLAY = ["play", "budget.episodes=6", "episodes_per_match=2", "episode_length=10", "parallel=2", "display=plain"]
+PLAY = [
+    "play",
+    "budget.episodes=6",
+    "episodes_per_match=2",
+    "episode_length=10",
+    "clock=lockstep",
+    "parallel=2",
+    "display=plain",
+]
 
 
 def league(*args: str, **kw):
