@@ -65,8 +65,8 @@ SEEN_FACING_AWAY = (
 # begun off the ground 5 times as long, as vanilla does. Once in CI a lockstep dig counted 75 ticks,
 # 5 x 15: the bot was off the ground as it began. Outside a game the world runs on while Python is
 # between two calls, and a position packet from the server sets onGround false until the bot's next
-# physics step (most likely flying-squid's re-sent position once it has sent the chunks around a
-# teleport, at a tick the wall clock chooses).
+# physics step (which packet it was is not known: flying-squid re-sends the position once after a
+# login, and a movement correction teleports).
 DIG = (
     "for (let i = 0; !bot.entity.onGround; i++) {"
     " if (i > 100) throw new Error('not on the ground'); await bot.waitForTicks(1) }"
