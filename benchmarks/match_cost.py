@@ -10,9 +10,14 @@ so it is meaningful on a shared machine even when wall-clock figures are not; th
 is recorded beside it.
 
     python benchmarks/match_cost.py [--episodes 2] [--length 30] [--only mushroom_war]
+        [--clock lockstep] [--red aggressive --blue do_nothing]
 
 `implied_parallel` is how many such matches fit in HEADROOM of the machine's cores;
 `episodes_per_hour` is that many matches playing 120-s episodes with the measured reset overhead.
+With `--clock lockstep` a match is not paced by the wall clock, so what bounds episodes per hour is
+the CPU a 120-s episode costs: `lockstep_bound.episodes_per_hour` is every core of the machine busy
+with such episodes (CPU of play and resets alike, measured between the first episode's start and the
+last one's end), and `cpu_ms_per_tick` splits a game tick's CPU by process kind (bots per bot).
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from pathlib import Path
 import psutil
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+from pillagerbench.config.schema import ClockConfig
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.server import ArenaServer
@@ -40,6 +46,7 @@ MATCHES = {
 }
 HEADROOM = 0.8  # share of the cores matches may use (the rest: the OS, bursts, the runner)
 PAPER_LENGTH_S = 120.0
+TICKS_PER_S = 20
 
 
 def kind_of(proc: psutil.Process) -> str:
@@ -104,17 +111,22 @@ class Meter:
             await asyncio.sleep(0.5)
 
 
-async def one_match(scenario: str, episodes: int, length: float) -> dict:
+async def one_match(scenario: str, episodes: int, length: float, clock: str, pair: tuple[str, str] | None) -> dict:
     red, blue, growth = MATCHES[scenario]
+    if pair:
+        red, blue = pair
     sc = make_scenario(scenario, crop_growth_chance=growth or 0.0)
     teams = {"red": make_team(red, sc.key), "blue": make_team(blue, sc.key)}
     run_dir = Path(tempfile.mkdtemp(prefix="pb-match-cost-"))
     meter = Meter()
     watcher = asyncio.create_task(meter.watch())
     try:
-        async with ArenaServer(log_path=run_dir / "server.log") as server:
-            match = Match(server, sc, teams, run_dir, episode_length=length, seed=0)
+        async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
+            match = Match(
+                server, sc, teams, run_dir, episode_length=length, seed=0, clock=ClockConfig(mode=clock, speed="max")
+            )
             await match.setup()
+            bots = len(match.players)
             meter.start()
             load_before, t0 = os.getloadavg(), time.monotonic()
             recs = [await match.play_episode(i) for i in range(episodes)]
@@ -128,8 +140,12 @@ async def one_match(scenario: str, episodes: int, length: float) -> dict:
     per_game_s = {k: round(cpu.get(k, 0.0) / game_s, 4) for k in ("bots", "server", "python")}
     cores = sum(per_game_s.values())
     overhead = max(0.0, wall / episodes - length)
+    ticks = game_s * TICKS_PER_S
+    per_tick = {k: round(cpu.get(k, 0.0) * 1000 / ticks, 3) for k in ("server", "python")}
+    per_tick["bot"] = round(cpu.get("bots", 0.0) * 1000 / ticks / max(1, bots), 3)
     return {
         "scenario": scenario,
+        "clock": clock,
         "red": red,
         "blue": blue,
         "episodes": episodes,
@@ -138,6 +154,9 @@ async def one_match(scenario: str, episodes: int, length: float) -> dict:
         "overhead_s_per_episode": round(overhead, 2),
         "cpu_s_per_game_s": per_game_s,
         "cores_per_match": round(cores, 3),
+        "bots": bots,
+        "cpu_ms_per_tick": per_tick,
+        "cpu_s_per_episode": round(sum(cpu.get(k, 0.0) for k in ("bots", "server", "python")) / episodes, 2),
         "rss_mb_per_match": {k: round(rss.get(k, 0.0)) for k in ("bots", "server", "python")},
         "rss_mb_total": round(sum(rss.get(k, 0.0) for k in ("bots", "server", "python"))),
         "load_avg_before": [round(x, 2) for x in load_before],
@@ -161,15 +180,29 @@ def implied(cores_per_match: float, overhead_s: float) -> dict:
     }
 
 
+def lockstep_bound(cpu_s_per_episode: float, length: float) -> dict:
+    """Episodes per hour with every core busy, scaled to 120-s episodes (the reset's CPU scaled too:
+    an upper bound on what parallel lockstep matches can reach on this machine)."""
+    cpus = psutil.cpu_count() or 1
+    per_paper_episode = cpu_s_per_episode * PAPER_LENGTH_S / length
+    return {"cpus": cpus, "cpu_s_per_120s_episode": round(per_paper_episode, 1),
+            "episodes_per_hour": round(cpus * 3600.0 / per_paper_episode, 1)}  # fmt: skip
+
+
 async def main(a) -> dict:
-    results = [await one_match(s, a.episodes, a.length) for s in (a.only or list(MATCHES))]
+    pair = (a.red, a.blue) if a.red else None
+    results = [await one_match(s, a.episodes, a.length, a.clock, pair) for s in (a.only or list(MATCHES))]
     worst = max(r["cores_per_match"] for r in results)
     overhead = max(r["overhead_s_per_episode"] for r in results)
+    bound = {} if a.clock == "real" else {
+        "lockstep_bound": lockstep_bound(max(r["cpu_s_per_episode"] for r in results), a.length)
+    }  # fmt: skip
     return {
         "matches": results,
         "worst_cores_per_match": worst,
         "worst_rss_mb_per_match": max(r["rss_mb_total"] for r in results),
         **implied(worst, overhead),
+        **bound,
     }
 
 
@@ -178,4 +211,10 @@ if __name__ == "__main__":
     ap.add_argument("--episodes", type=int, default=2)
     ap.add_argument("--length", type=float, default=30)
     ap.add_argument("--only", nargs="*", choices=list(MATCHES))
-    print(json.dumps(asyncio.run(main(ap.parse_args())), indent=1))
+    ap.add_argument("--clock", choices=["real", "lockstep"], default="real")
+    ap.add_argument("--red", help="the red team (with --blue): instead of the scenario's default pair")
+    ap.add_argument("--blue")
+    args = ap.parse_args()
+    if bool(args.red) != bool(args.blue):
+        ap.error("--red and --blue go together")
+    print(json.dumps(asyncio.run(main(args)), indent=1))
