@@ -1,5 +1,9 @@
 """Every mistake at the command line: one line per problem, exit code 2, no run directory; a team
-whose model never answered is stopped by the preflight, or recorded when the preflight is off."""
+whose model never answered is stopped by the preflight, or recorded when the preflight is off.
+
+The refusals are checked in-process (`cli.main`, as `python -m pillagerbench.cli` calls it): a
+subprocess per case paid 1-3 s of imports for the same answer. Two refusals still go through the real
+command, end to end (`test_the_command_refuses_in_one_line_with_exit_2`, `test_a_port_in_use_is_one_line`)."""
 
 from __future__ import annotations
 
@@ -9,6 +13,7 @@ import sys
 
 import pytest
 
+from pillagerbench.cli import commands as cli
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from tests.support.cli import run_cli
 
@@ -18,6 +23,7 @@ def pb(tmp_path, *args, env=None, timeout=120):
 
 
 def one_line_refusal(tmp_path, *args, lines=1):
+    """The real command, in a subprocess: exit 2, `lines` lines on stderr, no traceback, no run directory."""
     proc = pb(tmp_path, *args)
     assert proc.returncode == 2, proc.stderr
     err = proc.stderr.strip().splitlines()
@@ -25,6 +31,33 @@ def one_line_refusal(tmp_path, *args, lines=1):
     assert "Traceback" not in proc.stderr and proc.stdout == ""
     assert not (tmp_path / "runs").exists(), "a refused run must not leave a run directory"
     return err
+
+
+@pytest.fixture
+def refuse(tmp_path, monkeypatch, capsys):
+    """refuse(*argv, lines=1): cli.main(argv) in-process, in tmp_path and without a provider key (as
+    `run_cli` runs the command), refuses: exit 2, `lines` lines on stderr, nothing on stdout, no
+    traceback, no run directory; those lines."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+
+    def refuse_(*argv: str, lines: int = 1) -> list[str]:
+        code = cli.main(list(argv))
+        out, err = capsys.readouterr()
+        assert code == 2, (code, out, err)
+        lines_ = err.strip().splitlines()
+        assert len(lines_) == lines, err
+        assert "Traceback" not in err and out == ""
+        assert not (tmp_path / "runs").exists(), "a refused run must not leave a run directory"
+        return lines_
+
+    return refuse_
+
+
+def test_the_command_refuses_in_one_line_with_exit_2(tmp_path):
+    """End to end, through `python -m pillagerbench.cli`: what the in-process checks below take for given."""
+    (line,) = one_line_refusal(tmp_path, "run", "episode_length=abc")
+    assert line.startswith("pillagerbench run: episode_length='abc': input should be a valid number"), line
 
 
 @pytest.mark.parametrize(
@@ -61,43 +94,41 @@ def one_line_refusal(tmp_path, *args, lines=1):
         (["clock=lockstep", "server.tps=40"], "pillagerbench run: server.tps=40: clock=lockstep plays 20 ticks"),
     ],
 )
-def test_a_bad_value_is_one_line_naming_key_value_and_choices(tmp_path, args, expected):
-    (line,) = one_line_refusal(tmp_path, "run", *args)
+def test_a_bad_value_is_one_line_naming_key_value_and_choices(refuse, args, expected):
+    (line,) = refuse("run", *args)
     assert line.startswith(expected), line
 
 
-def test_a_team_that_cannot_play_the_scenario_leaves_no_run_directory(tmp_path):
-    err = one_line_refusal(tmp_path, "run", "scenario=dash_and_dine", "red=passive", "blue=berries")
+def test_a_team_that_cannot_play_the_scenario_leaves_no_run_directory(refuse):
+    err = refuse("run", "scenario=dash_and_dine", "red=passive", "blue=berries")
     assert err[0].startswith(
         "pillagerbench run: red=passive: plays only mushroom_war, not dash_and_dine; "
         "teams for dash_and_dine: do_nothing, berries"
     )
 
 
-def test_every_problem_is_reported_at_once(tmp_path):
-    err = one_line_refusal(
-        tmp_path, "run", "episodes=0", "episode_length=-5", "display=x", "red=cot", "llm.temperature=9", lines=4
-    )
+def test_every_problem_is_reported_at_once(refuse):
+    err = refuse("run", "episodes=0", "episode_length=-5", "display=x", "red=cot", "llm.temperature=9", lines=4)
     keys = [line.split(": ")[1].split("=")[0] for line in err]
     assert sorted(keys) == ["display", "episode_length", "episodes", "llm.temperature"]
 
 
-def test_a_missing_key_stops_the_run_before_anything_starts(tmp_path):
-    (line,) = one_line_refusal(tmp_path, "run", "red=cot", "llm=openai")
+def test_a_missing_key_stops_the_run_before_anything_starts(refuse):
+    (line,) = refuse("run", "red=cot", "llm=openai")
     assert "LLM preflight failed for openai model gpt-4o-mini at https://api.openai.com/v1" in line
     assert "OPENAI_API_KEY is not set" in line and "llm.preflight=false" in line
 
 
-def test_an_unreachable_provider_stops_the_run_before_episode_0(tmp_path):
-    (line,) = one_line_refusal(tmp_path, "run", "red=cot", "llm=fake", "llm.base_url=http://127.0.0.1:9/v1")
+def test_an_unreachable_provider_stops_the_run_before_episode_0(refuse):
+    (line,) = refuse("run", "red=cot", "llm=fake", "llm.base_url=http://127.0.0.1:9/v1")
     assert "LLM preflight failed for fake model fake-model at http://127.0.0.1:9/v1" in line
     assert "nothing answers there" in line
 
 
-def test_an_unknown_model_is_named_by_the_preflight(tmp_path):
+def test_an_unknown_model_is_named_by_the_preflight(refuse):
     with FakeLLMServer() as fake:
         fake.add(Rule(status=404, message="model not found"))
-        (line,) = one_line_refusal(tmp_path, "run", "red=cot", "llm=fake", f"llm.base_url={fake.url}")
+        (line,) = refuse("run", "red=cot", "llm=fake", f"llm.base_url={fake.url}")
     assert "fake model fake-model" in line and "check llm.model and llm.base_url" in line
 
 
@@ -125,6 +156,7 @@ def test_without_preflight_a_team_without_its_model_is_recorded_and_shown(tmp_pa
         "episode_length=4",
         "display=plain",
         "run_dir=out",
+        "clock=lockstep",  # what a missing model does to the record, not to game time: faster than real time
         timeout=240,
     )
     assert proc.returncode == 1, proc.stdout + proc.stderr  # every episode of red went without its model
@@ -168,8 +200,8 @@ def test_an_internal_error_is_one_line_naming_the_traceback_file(tmp_path, monke
         (["nope"], "pillagerbench: unknown command 'nope'; valid commands: run, setup"),
     ],
 )
-def test_other_commands_refuse_bad_input_in_one_line(tmp_path, args, expected):
-    (line,) = one_line_refusal(tmp_path, *args)
+def test_other_commands_refuse_bad_input_in_one_line(refuse, args, expected):
+    (line,) = refuse(*args)
     assert line.startswith(expected), line
 
 
@@ -201,8 +233,8 @@ def test_a_port_in_use_is_one_line(tmp_path):
         ),
     ],
 )
-def test_an_experiment_checks_its_teams_and_providers_before_anything_starts(tmp_path, args, expected):
-    (line,) = one_line_refusal(tmp_path, "run", *args)
+def test_an_experiment_checks_its_teams_and_providers_before_anything_starts(refuse, args, expected):
+    (line,) = refuse("run", *args)
     assert expected in line, line
 
 

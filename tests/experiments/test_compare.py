@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from pillagerbench.cli import commands as cli
 from pillagerbench.experiments.compare import Comparison, pair_scores
 from pillagerbench.stats.sprt import Bounds
 from tests.metrics.fake_runs import write_run
@@ -28,10 +29,14 @@ WIDE = ["sprt.p1=0.9", "sprt.alpha=0.3", "sprt.beta=0.3", "cap=3"]
         (["passive", "nonexistent"], "unknown team 'nonexistent'; known: "),
     ],
 )
-def test_bad_input_is_one_line_and_nothing_is_played(tmp_path, args, said):
-    res = run_cli(tmp_path, "compare", *args, f"run_dir={tmp_path / 'run'}")
-    assert res.returncode == 2 and res.stderr.count("\n") == 1, res.stderr
-    assert res.stderr.startswith("pillagerbench compare: ") and said in res.stderr, res.stderr
+def test_bad_input_is_one_line_and_nothing_is_played(tmp_path, monkeypatch, capsys, args, said):
+    # in-process (cli.main, as the command calls it): a subprocess per case paid seconds of imports; the
+    # command's refusal end to end (exit 2, one line, no traceback) is tests/test_cli_errors.py's
+    monkeypatch.chdir(tmp_path)
+    code = cli.main(["compare", *args, f"run_dir={tmp_path / 'run'}"])
+    out, err = capsys.readouterr()
+    assert code == 2 and err.count("\n") == 1 and out == "", (code, out, err)
+    assert err.startswith("pillagerbench compare: ") and said in err, err
     assert not (tmp_path / "run").exists() and not (tmp_path / "runs").exists()
 
 

@@ -1,4 +1,5 @@
-"""One arena server per test module; each test gets its own patch of ground and its own players."""
+"""One arena server per test module; each test gets its own patch of ground and its own players
+(`make_player`; a module may share players between tests that leave them as they were: `start_player`)."""
 
 from __future__ import annotations
 
@@ -48,13 +49,24 @@ async def make_player(server, tmp_path):
     made: list[Player] = []
 
     async def make(area: Area, dx: float = 0, dz: float = 0, inventory: dict | None = None, **kw) -> Player:
-        p = Player(f"t{next(_names)}", server.port, server=server, log_dir=tmp_path / "logs", **kw)
-        await p.start()
-        made.append(p)
-        await p.reset(position=area.at(dx, 4, dz), inventory=inventory or {})
-        return p
+        return await start_player(server, area, tmp_path / "logs", made, dx, dz, inventory, **kw)
 
     yield make
+    await close_players(server, made)
+
+
+async def start_player(
+    server: ArenaServer, area: Area, log_dir, made: list[Player], dx: float = 0, dz: float = 0, inventory=None, **kw
+) -> Player:
+    """A started Player (a new name) standing at (dx, dz) of `area` with `inventory`, added to `made`."""
+    p = Player(f"t{next(_names)}", server.port, server=server, log_dir=log_dir, **kw)
+    await p.start()
+    made.append(p)
+    await p.reset(position=area.at(dx, 4, dz), inventory=inventory or {})
+    return p
+
+
+async def close_players(server: ArenaServer, made: list[Player]) -> None:
     for p in made:
         await p.close()
     # Mobs left in the world make later logins fail (server bug, see docs/players.md): remove them.

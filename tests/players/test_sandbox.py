@@ -10,20 +10,43 @@ import signal
 import time
 
 import pytest
+import pytest_asyncio
 
 from pillagerbench.agents.code import SANDBOX_NAMES
 from pillagerbench.players import primitives as prim
 from pillagerbench.players.events import chat_log, chats_by, errors, last_observation
-from tests.players.conftest import count
+from tests.players.conftest import Area, close_players, count, start_player
 from tests.support.node_script import run_node_script
 
 
 @pytest.fixture
 async def pair(server, area, make_player):
-    """A player for the bad code and a bystander running ordinary code at the same time."""
+    """A player for the bad code and a bystander running ordinary code at the same time: fresh ones, for
+    the tests that restart or kill the bot, or fill its chat limit."""
     bad = await make_player(area, 0, 0, {"bread": 1})
     other = await make_player(area, 6, 0, {"bread": 5})
     return bad, other
+
+
+@pytest_asyncio.fixture(scope="module", loop_scope="session")
+async def calm_pair(server, tmp_path_factory):
+    """As `pair`, one for the whole module: the tests whose bad code gets an error, not a restart, share
+    it (every run has a fresh sandbox context; starting two bots per test cost 3-4 s). Each such test
+    checks that its own code restarted nothing."""
+    area, made = Area(server), []
+    log_dir = tmp_path_factory.mktemp("calm_pair")
+    bad = await start_player(server, area, log_dir, made, 0, 0, {"bread": 1})
+    other = await start_player(server, area, log_dir, made, 6, 0, {"bread": 5})
+    yield bad, other
+    await close_players(server, made)
+
+
+@pytest.fixture
+def shared(calm_pair):
+    """The module's pair; fails the test if its code restarted either bot."""
+    restarts = [p.restarts for p in calm_pair]
+    yield calm_pair
+    assert [p.restarts for p in calm_pair] == restarts and all(p.alive for p in calm_pair)
 
 
 async def _bystander_ok(other):
@@ -32,8 +55,8 @@ async def _bystander_ok(other):
     assert "still here" in chats_by(events, other.name)
 
 
-async def test_syntax_error_points_at_line(pair):
-    bad, other = pair
+async def test_syntax_error_points_at_line(shared):
+    bad, other = shared
     events = await bad.run("const a = 1\nconst b = ;\n")
     assert events[-1][0] == "observe"
     (err,) = errors(events)
@@ -41,8 +64,8 @@ async def test_syntax_error_points_at_line(pair):
     await _bystander_ok(other)
 
 
-async def test_thrown_exception_points_at_line(pair):
-    bad, _ = pair
+async def test_thrown_exception_points_at_line(shared):
+    bad, _ = shared
     events = await bad.run("async function f() {\n  throw new Error('boom')\n}\nawait f()")
     (err,) = errors(events)
     assert err == "Error: boom\nat line 2: throw new Error('boom')"
@@ -80,8 +103,8 @@ async def test_async_endless_loop_restarts_the_bot(server, pair):
     assert "blocked the bot" in errors(events)[0] and bad.restarts == 2
 
 
-async def test_unhandled_rejection(pair):
-    bad, _ = pair
+async def test_unhandled_rejection(shared):
+    bad, _ = shared
     events = await bad.run("Promise.reject(new Error('lost promise'))\nawait bot.waitForTicks(5)")
     assert any("lost promise" in e for e in errors(events))
     events = await bad.run("setTimeout(() => { throw new Error('in a timer') }, 10)\nawait bot.waitForTicks(10)")
@@ -108,12 +131,13 @@ async def test_unhandled_rejection(pair):
         ("await import('fs')", "TypeError"),
     ],
 )
-async def test_escape_attempts(pair, code, expected):
-    bad, other = pair
+async def test_escape_attempts(shared, code, expected):
+    bad, other = shared
+    restarts = bad.restarts
     events = await bad.run(code)
     errs = errors(events)
     assert errs and errs[0].startswith(expected), errs
-    assert bad.restarts == 0 and bad.alive
+    assert bad.restarts == restarts and bad.alive
 
 
 async def test_a_bot_process_that_exits_mid_run_is_reported_and_restarted(pair):
@@ -179,8 +203,8 @@ async def test_chat_rate_limit(pair):
     await _bystander_ok(other)
 
 
-async def test_timers_and_listeners_end_with_the_run(pair):
-    bad, _ = pair
+async def test_timers_and_listeners_end_with_the_run(shared):
+    bad, _ = shared
     events = await bad.run("setInterval(() => bot.chat('tick'), 100)\nbot.on('chat', () => bot.chat('echo'))\nreturn 1")
     assert errors(events) == []
     await asyncio.sleep(0.6)
@@ -188,8 +212,8 @@ async def test_timers_and_listeners_end_with_the_run(pair):
     assert "tick" not in chats_by(events, bad.name) and "echo" not in chats_by(events, bad.name)
 
 
-async def test_bot_process_runs_under_the_permission_model(pair):
-    bad, _ = pair
+async def test_bot_process_runs_under_the_permission_model(shared):
+    bad, _ = shared
     perms = await bad._request("permissions")
     assert perms == {
         "enabled": True,
@@ -296,14 +320,14 @@ async def _returned(player, code):
     return json.loads(next(e[1]["onSave"] for e in events if e[0] == "onSave"))
 
 
-async def test_stack_frames_do_not_hand_out_the_bot(pair):
-    bad, other = pair
+async def test_stack_frames_do_not_hand_out_the_bot(shared):
+    bad, other = shared
     assert await _returned(bad, STACK_FRAMES) == []
     await _bystander_ok(other)
 
 
-async def test_host_prototypes_cannot_be_replaced(pair):
-    bad, other = pair
+async def test_host_prototypes_cannot_be_replaced(shared):
+    bad, other = shared
     out = await _returned(bad, PROTOTYPES)
     assert out["replaced"] == []
     events = await bad.run(
@@ -313,13 +337,13 @@ async def test_host_prototypes_cannot_be_replaced(pair):
     await _bystander_ok(other)
 
 
-async def test_caller_chains_do_not_reach_the_bot(pair):
-    bad, _ = pair
+async def test_caller_chains_do_not_reach_the_bot(shared):
+    bad, _ = shared
     assert await _returned(bad, CALLER_CHAINS) == []
 
 
-async def test_no_property_path_reaches_the_bot_process_or_require(pair):
-    bad, _ = pair
+async def test_no_property_path_reaches_the_bot_process_or_require(shared):
+    bad, _ = shared
     out = await _returned(bad, GRAPH_WALK)
     assert out["found"] == [] and out["walked"] > 10000, out
 
@@ -339,10 +363,10 @@ console.log(JSON.stringify(vm.runInContext(
 """
 
 
-async def test_agent_globals_are_the_documented_names_only(pair):
+async def test_agent_globals_are_the_documented_names_only(shared):
     """The documented list (docs/security.md): the language's built-ins, sandbox_globals.json and
     the primitives of modules.json; nothing else, not even non-enumerable (no `env`, no `process`)."""
-    bad, _ = pair
+    bad, _ = shared
     found = await _returned(bad, GLOBAL_NAMES)
     builtins = run_node_script(EMPTY_CONTEXT)
     assert set(found["names"]) == set(builtins["names"]) | SANDBOX_NAMES | set(prim.functions())
@@ -350,8 +374,8 @@ async def test_agent_globals_are_the_documented_names_only(pair):
     assert not {"env", "process", "require", "global", "module"} & set(found["names"])
 
 
-async def test_env_is_nowhere_in_reach(pair):
-    bad, _ = pair
+async def test_env_is_nowhere_in_reach(shared):
+    bad, _ = shared
     found = await _returned(
         bad,
         "return [typeof env, 'env' in globalThis, Reflect.has(globalThis, 'env'), typeof bot.env,"

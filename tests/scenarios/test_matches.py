@@ -158,11 +158,17 @@ async def test_a_dead_server_fails_the_episode_and_the_series_goes_on(tmp_path):
     teams = {"red": make_team("passive", sc.key), "blue": make_team("do_nothing", sc.key)}
     server = ArenaServer(log_path=tmp_path / "server.log")
     await server.start()
-    match = Match(server, sc, teams, tmp_path, episode_length=20, seed=1)
+    playing = asyncio.Event()  # episode 0's game has run 2 s: the kill comes mid-game, whatever the reset took
+
+    def on_tick(status: dict) -> None:
+        if status["episode"] == 0 and status["t"] >= 2:
+            playing.set()
+
+    match = Match(server, sc, teams, tmp_path, episode_length=6, seed=1, on_tick=on_tick)
     records = []
 
     async def kill_during_first_episode():
-        await asyncio.sleep(8)
+        await playing.wait()
         os.killpg(server.process.pid, signal.SIGKILL)
 
     try:

@@ -177,7 +177,8 @@ async def test_provider_errors_and_budgets_fail_the_episode_not_the_team(tmp_pat
 async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
     """Two matches at once: (1) the scripted answer mines slime and harvests mushrooms and scores;
     (2) a series whose first answer has no code (both players idle) and whose second has a syntax
-    error for Raze (Ryn plays, Raze idles) goes on."""
+    error for Raze (Ryn plays, Raze idles) goes on. On the lockstep clock: what the team does with its
+    answers, not game time (which a loaded machine's lag would shrink), and faster than real time."""
     fake_llm.add(
         Rule(role="cot", regex=r"Your code was not used", reply=answer(RYN, SYNTAX_ERROR)),
         Rule(role="cot", model="scorer", reply=answer(RYN, RAZE)),
@@ -192,6 +193,7 @@ async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
             tmp_path / "good",
             length=30,
             llms={"red": good},
+            clock="lockstep",
         ),
         play_series(
             "mushroom_war",
@@ -201,6 +203,7 @@ async def test_cot_episodes_on_the_real_server(tmp_path, fake_llm, llm_client):
             episodes=2,
             length=12,
             llms={"red": series},
+            clock="lockstep",
         ),
     )
 

@@ -4,6 +4,7 @@ team server that misbehaves in every way the protocol allows (the match plays on
 from __future__ import annotations
 
 import json
+import sys
 import threading
 import time
 from contextlib import contextmanager
@@ -12,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from pillagerbench.cli import commands as cli
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.teams import find_team
 from pillagerbench.teams.remote import RemoteTeam
@@ -79,16 +81,28 @@ def test_teams_lists_entry_points_with_options(outside, tmp_path):
         (["red=remote", "red.url=http://127.0.0.1:9"], "remote team at http://127.0.0.1:9 does not answer"),
     ],
 )
-def test_bad_outside_teams_are_one_line_before_anything_starts(outside, tmp_path, args, expected):
-    assert_refused_in_one_line(pb(tmp_path, outside, "run", *args), expected, tmp_path)
+def test_bad_outside_teams_are_one_line_before_anything_starts(outside, monkeypatch, capsys, args, expected):
+    # in-process (cli.main), the folder on sys.path as PYTHONPATH puts it on the command's: a subprocess per
+    # case paid seconds of imports; `teams` above and the command's refusal end to end
+    # (tests/test_cli_errors.py) still go through the real command
+    monkeypatch.syspath_prepend(str(outside))
+    try:
+        refused_in_process(monkeypatch, capsys, expected, outside, "run", *args)
+    finally:
+        sys.modules.pop("my_teams", None)  # each test's folder imports its own
 
 
-def assert_refused_in_one_line(proc, expected: str, cwd: Path) -> None:
-    """Exit 2, one line on stderr saying `expected`, no traceback, no run directory."""
-    assert proc.returncode == 2, proc.stdout + proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and expected in lines[0], proc.stderr
-    assert "Traceback" not in proc.stderr and not (cwd / "runs").exists()
+def refused_in_process(monkeypatch, capsys, expected: str, cwd: Path, *argv: str) -> None:
+    """cli.main(argv) in `cwd` without a provider key: exit 2, one line on stderr saying `expected`, nothing
+    on stdout, no traceback, no run directory."""
+    monkeypatch.chdir(cwd)
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+    code = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    assert code == 2, (code, out, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and expected in lines[0] and out == "", err
+    assert "Traceback" not in err and not (cwd / "runs").exists()
 
 
 def test_an_import_path_and_an_entry_point_reach_the_same_class(outside, monkeypatch):
@@ -220,10 +234,11 @@ class FromTheFuture(TeamServer):
     protocol = 2
 
 
-def test_a_team_server_speaking_another_protocol_is_refused_in_one_line(tmp_path):
+def test_a_team_server_speaking_another_protocol_is_refused_in_one_line(tmp_path, monkeypatch, capsys):
     with team_server(FromTheFuture) as url:
-        proc = run_cli(tmp_path, "run", "red=remote", f"red.url={url}", "blue=do_nothing", "episode_length=10")
-    assert_refused_in_one_line(proc, f"remote team at {url} speaks protocol 2, the benchmark speaks 1", tmp_path)
+        expected = f"remote team at {url} speaks protocol 2, the benchmark speaks 1"
+        argv = ("run", "red=remote", f"red.url={url}", "blue=do_nothing", "episode_length=10")
+        refused_in_process(monkeypatch, capsys, expected, tmp_path, *argv)
     assert FromTheFuture.calls == []  # asked GET / only: no episode began
 
 
