@@ -38,6 +38,7 @@ from pillagerbench.config.schema import ClockConfig
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.server import ArenaServer
+from pillagerbench.server.clock import TICK_S
 from pillagerbench.teams import make_team
 
 MATCHES = {
@@ -46,7 +47,6 @@ MATCHES = {
 }
 HEADROOM = 0.8  # share of the cores matches may use (the rest: the OS, bursts, the runner)
 PAPER_LENGTH_S = 120.0
-TICKS_PER_S = 20
 
 
 def kind_of(proc: psutil.Process) -> str:
@@ -77,6 +77,7 @@ class Meter:
         for child in self.me.children(recursive=True):
             if child.pid not in self.procs:
                 self.procs[child.pid] = child
+            if self.kinds.get(child.pid, "other") == "other":  # a child seen before its exec reads as Python's
                 self.kinds[child.pid] = kind_of(child)
         rss: dict[str, float] = {}
         for pid, p in self.procs.items():
@@ -123,7 +124,13 @@ async def one_match(scenario: str, episodes: int, length: float, clock: str, pai
     try:
         async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
             match = Match(
-                server, sc, teams, run_dir, episode_length=length, seed=0, clock=ClockConfig(mode=clock, speed="max")
+                server,
+                sc,
+                teams,
+                run_dir,
+                episode_length=length,
+                seed=0,
+                clock=ClockConfig(mode=clock, speed="max" if clock == "lockstep" else 1.0),
             )
             await match.setup()
             bots = len(match.players)
@@ -140,7 +147,7 @@ async def one_match(scenario: str, episodes: int, length: float, clock: str, pai
     per_game_s = {k: round(cpu.get(k, 0.0) / game_s, 4) for k in ("bots", "server", "python")}
     cores = sum(per_game_s.values())
     overhead = max(0.0, wall / episodes - length)
-    ticks = game_s * TICKS_PER_S
+    ticks = game_s / TICK_S
     per_tick = {k: round(cpu.get(k, 0.0) * 1000 / ticks, 3) for k in ("server", "python")}
     per_tick["bot"] = round(cpu.get("bots", 0.0) * 1000 / ticks / max(1, bots), 3)
     return {
