@@ -13,9 +13,8 @@ import sys
 
 import pytest
 
-from pillagerbench.cli import commands as cli
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
-from tests.support.cli import run_cli
+from tests.support.cli import refused_in_process, run_cli
 
 
 def pb(tmp_path, *args, env=None, timeout=120):
@@ -35,23 +34,9 @@ def one_line_refusal(tmp_path, *args, lines=1):
 
 @pytest.fixture
 def refuse(tmp_path, monkeypatch, capsys):
-    """refuse(*argv, lines=1): cli.main(argv) in-process, in tmp_path and without a provider key (as
-    `run_cli` runs the command), refuses: exit 2, `lines` lines on stderr, nothing on stdout, no
-    traceback, no run directory; those lines."""
-    monkeypatch.chdir(tmp_path)
-    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
-
-    def refuse_(*argv: str, lines: int = 1) -> list[str]:
-        code = cli.main(list(argv))
-        out, err = capsys.readouterr()
-        assert code == 2, (code, out, err)
-        lines_ = err.strip().splitlines()
-        assert len(lines_) == lines, err
-        assert "Traceback" not in err and out == ""
-        assert not (tmp_path / "runs").exists(), "a refused run must not leave a run directory"
-        return lines_
-
-    return refuse_
+    """refuse(*argv, lines=1): the command refuses in-process in tmp_path (tests/support/cli.py's
+    `refused_in_process`); those lines."""
+    return lambda *argv, lines=1: refused_in_process(monkeypatch, capsys, tmp_path, *argv, lines=lines)
 
 
 def test_the_command_refuses_in_one_line_with_exit_2(tmp_path):

@@ -9,11 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.cli import commands as cli
 from pillagerbench.experiments.compare import Comparison, pair_scores
 from pillagerbench.stats.sprt import Bounds
 from tests.metrics.fake_runs import write_run
-from tests.support.cli import run_cli
+from tests.support.cli import refused_in_process, run_cli
 
 WIDE = ["sprt.p1=0.9", "sprt.alpha=0.3", "sprt.beta=0.3", "cap=3"]
 
@@ -32,11 +31,8 @@ WIDE = ["sprt.p1=0.9", "sprt.alpha=0.3", "sprt.beta=0.3", "cap=3"]
 def test_bad_input_is_one_line_and_nothing_is_played(tmp_path, monkeypatch, capsys, args, said):
     # in-process (cli.main, as the command calls it): a subprocess per case paid seconds of imports; the
     # command's refusal end to end (exit 2, one line, no traceback) is tests/test_cli_errors.py's
-    monkeypatch.chdir(tmp_path)
-    code = cli.main(["compare", *args, f"run_dir={tmp_path / 'run'}"])
-    out, err = capsys.readouterr()
-    assert code == 2 and err.count("\n") == 1 and out == "", (code, out, err)
-    assert err.startswith("pillagerbench compare: ") and said in err, err
+    (line,) = refused_in_process(monkeypatch, capsys, tmp_path, "compare", *args, f"run_dir={tmp_path / 'run'}")
+    assert line.startswith("pillagerbench compare: ") and said in line, line
     assert not (tmp_path / "run").exists() and not (tmp_path / "runs").exists()
 
 

@@ -36,3 +36,21 @@ def kill_run(proc: subprocess.Popen) -> None:
     proc.wait()
     _, alive = psutil.wait_procs(children, timeout=15)
     assert not alive, f"processes outlived the killed run: {[p.pid for p in alive]}"
+
+
+def refused_in_process(monkeypatch, capsys, cwd: Path, *argv: str, lines: int = 1) -> list[str]:
+    """`cli.main(argv)` in-process (what `python -m pillagerbench.cli` exits with), in `cwd` and without a
+    provider key, as `run_cli` runs the command, refuses: exit 2, `lines` lines on stderr, nothing on
+    stdout, no traceback, no run directory in `cwd`. Returns those lines. (Imports of the command cost a
+    subprocess seconds; tests/test_cli_errors.py checks the refusal end to end through the real command.)"""
+    from pillagerbench.cli import commands as cli
+
+    monkeypatch.chdir(cwd)
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+    code = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    assert code == 2, (code, out, err)
+    said = err.strip().splitlines()
+    assert len(said) == lines and out == "", err
+    assert "Traceback" not in err and not (cwd / "runs").exists(), err
+    return said

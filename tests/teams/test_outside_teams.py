@@ -13,12 +13,11 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.cli import commands as cli
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.teams import find_team
 from pillagerbench.teams.remote import RemoteTeam
 from pillagerbench.teams.remote.wire import schemas
-from tests.support.cli import run_cli
+from tests.support.cli import refused_in_process, run_cli
 from tests.teams.conftest import play_series
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -87,22 +86,15 @@ def test_bad_outside_teams_are_one_line_before_anything_starts(outside, monkeypa
     # (tests/test_cli_errors.py) still go through the real command
     monkeypatch.syspath_prepend(str(outside))
     try:
-        refused_in_process(monkeypatch, capsys, expected, outside, "run", *args)
+        refused(monkeypatch, capsys, expected, outside, "run", *args)
     finally:
         sys.modules.pop("my_teams", None)  # each test's folder imports its own
 
 
-def refused_in_process(monkeypatch, capsys, expected: str, cwd: Path, *argv: str) -> None:
-    """cli.main(argv) in `cwd` without a provider key: exit 2, one line on stderr saying `expected`, nothing
-    on stdout, no traceback, no run directory."""
-    monkeypatch.chdir(cwd)
-    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
-    code = cli.main(list(argv))
-    out, err = capsys.readouterr()
-    assert code == 2, (code, out, err)
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and expected in lines[0] and out == "", err
-    assert "Traceback" not in err and not (cwd / "runs").exists()
+def refused(monkeypatch, capsys, expected: str, cwd: Path, *argv: str) -> None:
+    """The command refuses in-process in `cwd` (tests/support/cli.py) in one line saying `expected`."""
+    (line,) = refused_in_process(monkeypatch, capsys, cwd, *argv)
+    assert expected in line, line
 
 
 def test_an_import_path_and_an_entry_point_reach_the_same_class(outside, monkeypatch):
@@ -238,7 +230,7 @@ def test_a_team_server_speaking_another_protocol_is_refused_in_one_line(tmp_path
     with team_server(FromTheFuture) as url:
         expected = f"remote team at {url} speaks protocol 2, the benchmark speaks 1"
         argv = ("run", "red=remote", f"red.url={url}", "blue=do_nothing", "episode_length=10")
-        refused_in_process(monkeypatch, capsys, expected, tmp_path, *argv)
+        refused(monkeypatch, capsys, expected, tmp_path, *argv)
     assert FromTheFuture.calls == []  # asked GET / only: no episode began
 
 
