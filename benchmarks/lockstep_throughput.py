@@ -8,6 +8,8 @@ do_nothing) played on each clock, and the wall time of the whole run. Prints JSO
 `--episodes 10` is the suite's reference run (80 episodes). Each run is `pillagerbench run
 experiment=fidelity scoring=upstream protocol=upstream` (as scripts/reference_figures.py's), in a
 subprocess; the episodes counted are those recorded, failed or flagged ones reported apart.
+`machine_us_per_node` is this machine's speed per core before and after the run (`machine_speed`):
+lockstep's figure moves with it, the real clock's does not.
 """
 
 from __future__ import annotations
@@ -22,6 +24,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 CLI = [sys.executable, "-m", "pillagerbench.cli"]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from path_search import measure  # noqa: E402  (a sibling script)
 
 
 def play(clock: str, parallel: int, episodes: int, length: float, run_dir: Path) -> dict:
@@ -48,6 +52,14 @@ def play(clock: str, parallel: int, episodes: int, length: float, run_dir: Path)
     }
 
 
+def machine_speed() -> float:
+    """This machine's speed per core this hour: the path search's fixed work (benchmarks/path_search.py),
+    microseconds per node. The real clock's episodes per hour do not depend on it (they are bound by
+    wall time); lockstep's do, so a speedup is this machine's, at this hour, and two runs compare only
+    at like figures (this 2-core machine has read from 18 to 39 within a day)."""
+    return measure(3)["ours"]["us_per_node"]
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--episodes", type=int, default=1, help="per opponent (10 = the reference run)")
@@ -58,11 +70,12 @@ def main() -> None:
     ap.add_argument("--keep", type=Path, help="write the run directories here (default: a temporary directory)")
     args = ap.parse_args()
     base = args.keep or Path(tempfile.mkdtemp(prefix="lockstep-bench-"))
-    out = {}
+    out: dict = {"machine_us_per_node": {"before": machine_speed()}}
     for clock, parallel in (("lockstep", args.lockstep_parallel), ("real", args.real_parallel)):
         if args.only in (None, clock):
             out[clock] = play(clock, parallel, args.episodes, args.length, base / clock)
-    if len(out) == 2:
+    out["machine_us_per_node"]["after"] = machine_speed()
+    if "real" in out and "lockstep" in out:
         out["speedup"] = round(out["lockstep"]["episodes_per_hour"] / out["real"]["episodes_per_hour"], 2)
     print(json.dumps(out, indent=1))
 

@@ -76,16 +76,21 @@ console.log(JSON.stringify(out))
 """
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=9)
-    args = ap.parse_args()
-    cmd = [str(node_binary()), "-e", SCRIPT, str(JS_DIR), str(args.repeats)]
+def measure(repeats: int) -> dict:
+    """Microseconds per node visited for each kind of Movements, the median of `repeats` searches."""
+    cmd = [str(node_binary()), "-e", SCRIPT, str(JS_DIR), str(repeats)]
     proc = subprocess.run(cmd, capture_output=True, text=True, env=node_env(), check=True)
     figures = json.loads(proc.stdout)
     ours, before = figures["ours"]["us_per_node"], figures["block_lookup_only"]["us_per_node"]
     figures["ours_vs_block_lookup_only"] = round(before / ours, 2)
-    print(json.dumps(figures, indent=1))
+    return figures
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=9)
+    args = ap.parse_args()
+    print(json.dumps(measure(args.repeats), indent=1))
 
 
 if __name__ == "__main__":
