@@ -4,9 +4,9 @@ episode is kept on disk, listed in the report's Failures table, in no score, and
 next index so the series has its planned episodes; with the retries spent the series ends with fewer
 used episodes and the report says so; a team's own budget spent stays its own (scored, not replayed).
 
-A lagged episode is spoiled too and played again, and this machine is shared with other test runs:
-the `calm` fixture sets the lag thresholds (pillagerbench.host.machine) beyond reach, so that only the
-provider's outage spoils an episode here and the counts are exact (tests/report/test_lagged.py and
+The series play on the lockstep clock (docs/clock.md): what is tested is which episodes count, not
+real time, and there lag cannot spoil an episode, so only the provider's outage spoils one here and the
+counts are exact (a lagged episode is spoiled too and played again: tests/report/test_lagged.py and
 tests/metrics/test_spoiled.py cover lag).
 """
 
@@ -15,12 +15,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pandas as pd
-import pytest
 
 from pillagerbench.config.compose import load_config
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.series import run_series
-from pillagerbench.host import machine
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
@@ -29,13 +27,6 @@ from pillagerbench.rundir import RunDir, SeriesSpec, faults, progress, spoiled
 WAIT = "async function main(bot) {\n  await bot.waitForTicks(20)\n}"
 ANSWER = "Plan: wait.\n" + "\n".join(f"Code for bot {i}:\n```javascript\n{WAIT}\n```" for i in range(2))
 PROVIDER = "provider unreachable"
-
-
-@pytest.fixture(autouse=True)
-def calm(monkeypatch):
-    for name, value in (("SERVER_TPS_MIN", 0), ("BOT_TICK_RATE_MIN", 0), ("BOT_LATE_MEAN_MS_MAX", 1e9)):
-        monkeypatch.setattr(machine, name, value)
-    monkeypatch.setattr(machine, "BOT_LATE_PCT_MAX", 101)
 
 
 def outage() -> Rule:
@@ -53,6 +44,7 @@ def spec_of(fake: FakeLLMServer, episodes: int, retries: int, *extra: str) -> Se
             "llm.max_retries=0",
             "llm.timeout=10",
             "episode_length=6",
+            "clock=lockstep",
             f"episodes={episodes}",
             f"retries={retries}",
             *extra,
