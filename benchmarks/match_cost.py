@@ -112,6 +112,12 @@ class Meter:
             await asyncio.sleep(0.5)
 
 
+def bench_match(server, sc, teams, run_dir: Path, length: float, clock: str) -> Match:
+    """A seed-0 match on `clock`: lockstep unpaced (speed max), the real clock as it comes."""
+    pace = "max" if clock == "lockstep" else 1.0
+    return Match(server, sc, teams, run_dir, episode_length=length, seed=0, clock=ClockConfig(mode=clock, speed=pace))
+
+
 async def one_match(scenario: str, episodes: int, length: float, clock: str, pair: tuple[str, str] | None) -> dict:
     red, blue, growth = MATCHES[scenario]
     if pair:
@@ -123,15 +129,7 @@ async def one_match(scenario: str, episodes: int, length: float, clock: str, pai
     watcher = asyncio.create_task(meter.watch())
     try:
         async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
-            match = Match(
-                server,
-                sc,
-                teams,
-                run_dir,
-                episode_length=length,
-                seed=0,
-                clock=ClockConfig(mode=clock, speed="max" if clock == "lockstep" else 1.0),
-            )
+            match = bench_match(server, sc, teams, run_dir, length, clock)
             await match.setup()
             bots = len(match.players)
             meter.start()

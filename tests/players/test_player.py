@@ -9,6 +9,7 @@ import subprocess
 import sys
 import time
 
+from pillagerbench.players import Player
 from pillagerbench.players import primitives as prim_docs
 from pillagerbench.players.events import chats_by, errors, last_observation
 from pillagerbench.scenarios import make_scenario
@@ -37,6 +38,23 @@ STATUS_KEYS = {
     "inventoryUsed",
     "elapsedTime",
 }
+
+
+async def test_a_launched_bot_logs_in_only_at_its_start_and_ends_if_closed_before(server, tmp_path):
+    # Match.setup launches every bot at once (each loads its libraries meanwhile) and logs them in one
+    # at a time: a launched bot waits for its cue
+    waiting, closed = (Player(f"cue{i}", server.port, server=server, log_dir=tmp_path) for i in (1, 2))
+    await asyncio.gather(waiting.launch(), closed.launch())
+    await asyncio.sleep(3)  # time enough to load and log in, had it not waited
+    online = {p["name"] for p in await server.players()}
+    assert not {"cue1", "cue2"} & online and waiting.proc.returncode is None
+    await closed.close()  # never cued: its process ends
+    assert await asyncio.wait_for(closed.proc.wait(), 5) == 0
+    await waiting.start()
+    try:
+        assert "cue1" in {p["name"] for p in await server.players()} and waiting.alive
+    finally:
+        await waiting.close()
 
 
 async def test_observation_fields(server, area, make_player):

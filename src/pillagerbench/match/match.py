@@ -84,14 +84,14 @@ class Match:
         return names + [p.name for p in self.scenario.extra_players]
 
     async def setup(self) -> None:
-        """Log every player in (one at a time: the server handles logins best that way), sides
-        interleaved."""
+        """Launch every player's bot at once, then log them in one at a time (the server handles logins
+        best that way), sides interleaved."""
         if self.server.port is None:
             raise RuntimeError("the arena server is not running (start it before the match's setup)")
         port, log_dir = self.server.port, self.rundir.logs_dir()
         specs = {p.name: p for p in self.scenario.all_players()}
-        for spec in (specs[n] for n in self.player_order(0)):
-            player = Player(
+        players = [
+            Player(
                 spec.name,
                 port,
                 server=self.server,
@@ -99,8 +99,16 @@ class Match:
                 primitives=list(self.scenario.primitives),
                 clock=self.clock_config.mode,
             )
-            await player.start()
-            self.players[spec.name] = player
+            for spec in (specs[n] for n in self.player_order(0))
+        ]
+        try:
+            await asyncio.gather(*(p.launch() for p in players))
+            for player in players:
+                await player.start()
+                self.players[player.name] = player
+        except BaseException:
+            await asyncio.gather(*(p.close() for p in players if p.name not in self.players), return_exceptions=True)
+            raise
         await self.clock.end()
         if self.clock_config.mode == "lockstep":
             per_1k = self.clock_config.ticks_per_1k_tokens

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import collections
+import contextlib
 import itertools
 import json
 import os
@@ -162,6 +163,12 @@ class BotChannel:
             await self.proc.stdin.drain()
         except (ConnectionResetError, BrokenPipeError) as exc:
             raise PlayerError(f"{self.name}: bot process is not running ({exc})") from None
+
+    async def cue(self) -> None:
+        """Tell the bot, launched with `"cue": true`, to log in now (js/bot/main.js). A process that has
+        ended already is no error here: its reader says why."""
+        with contextlib.suppress(PlayerError):
+            await self.send({"op": "login"})
 
     async def request(self, op: str, wait: float = 10.0, **args: object) -> object:
         """Send request `op` with `args` (JSON values); wait up to `wait` seconds for the answer (the

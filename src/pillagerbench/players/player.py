@@ -79,6 +79,7 @@ class Player:
         self._run_lock = asyncio.Lock()
         self._recover_lock = asyncio.Lock()
         self._spawned: asyncio.Future | None = None
+        self._awaits_cue = False  # a process is launched and not yet cued to log in
         self._tasks: list[asyncio.Task] = []
         self._recoveries: set[asyncio.Task] = set()  # held so a running recovery is not garbage-collected
         self._fatal: str | None = None
@@ -104,46 +105,47 @@ class Player:
         )
 
     async def start(self) -> None:
-        """Spawn the bot process, log in and wait until it has spawned."""
-        key = (self.host, self.server_port)
-        lock = _login_locks.setdefault(key, asyncio.Lock())
-        async with lock:
-            await self._spawn()
+        """Spawn the bot process (unless `launch` has), log in and wait until it has spawned."""
+        if not self._awaits_cue:
+            await self.launch()
+        async with _login_locks.setdefault((self.host, self.server_port), asyncio.Lock()):
+            await self._login()
             await asyncio.sleep(LOGIN_GAP_S)
 
-    async def _spawn(self) -> None:
-        settings = {
-            "host": self.host,
-            "port": self.server_port,
-            "username": self.name,
-            "primitives": self.primitives,
-            "heartbeatMs": 200,
-            "clock": self.clock,
-        }
+    async def launch(self) -> None:
+        """Start the bot process: it loads its libraries, then waits for its cue to log in (`start`).
+        A match launches all its players at once, so that this overlaps the logins, one at a time."""
+        settings = {"host": self.host, "port": self.server_port, "username": self.name, "primitives": self.primitives}
+        settings |= {"heartbeatMs": 200, "clock": self.clock, "cue": True}  # cue: it logs in at _login's
         loop = asyncio.get_running_loop()
         self._generation += 1
         self._spawned = loop.create_future()
         self._fatal = None
         proc = await self.channel.spawn(settings)
+        self._awaits_cue = True
         gen = self._generation
         self._tasks = [t for t in self._tasks if not t.done()]
         self._tasks.append(asyncio.create_task(self._read_stdout(proc, gen)))
         self._tasks.append(asyncio.create_task(self.channel.read_stderr(proc)))
         if not any(t.get_name() == f"watchdog-{self.name}" and not t.done() for t in self._tasks):
             self._tasks.append(asyncio.create_task(self._watchdog(), name=f"watchdog-{self.name}"))
+
+    async def _login(self) -> None:
+        """Cue the launched bot to connect; wait until it has spawned."""
+        if self._spawned is None:
+            raise PlayerError(f"{self.name}: no bot process to log in (launch() first)")
+        self._awaits_cue = False
+        await self.channel.cue()
         try:
             await asyncio.wait_for(asyncio.shield(self._spawned), self.login_timeout)
         except asyncio.TimeoutError:
             await self.channel.kill()
             raise PlayerError(
-                f"{self.name}: bot did not spawn within {self.login_timeout} s\n{self.stderr_tail()}"
+                f"{self.name}: bot did not spawn within {self.login_timeout} s\n{self.channel.stderr_tail()}"
             ) from None
         except PlayerError:
             await self.channel.kill()
             raise
-
-    def stderr_tail(self) -> str:
-        return self.channel.stderr_tail()
 
     async def _read_stdout(self, proc: asyncio.subprocess.Process, gen: int) -> None:
         try:
@@ -186,13 +188,9 @@ class Player:
             return
         self.channel.answer(msg)
 
-    async def _request(self, op: str, wait: float = 10.0, **args: object) -> object:
-        """Send request `op` with `args` to the bot; wait up to `wait` seconds for the answer."""
-        return await self.channel.request(op, wait, **args)
-
     async def _observe(self) -> Observation:
         """The bot's observation now (the `observe` request), kept as the last one seen."""
-        self._last_obs = observation(await self._request("observe"))
+        self._last_obs = observation(await self.channel.request("observe"))
         return self._last_obs
 
     # ---- watchdog and recovery -------------------------------------------------------------
@@ -238,7 +236,8 @@ class Player:
             try:
                 lock = _login_locks.setdefault((self.host, self.server_port), asyncio.Lock())
                 async with lock:
-                    await self._spawn()
+                    await self.launch()
+                    await self._login()
                 return
             except PlayerError as exc:
                 last = exc
@@ -302,7 +301,7 @@ class Player:
     async def lag(self, *, reset: bool = False) -> dict:
         """How late this bot's 50 ms physics ticks were since the last `lag(reset=True)`, measured in
         the bot process (js/bot/lag.js): ticks, wall_s, tick_rate, late_mean_ms, late_max_ms, late_pct."""
-        found = await self._request("lag", reset=reset)
+        found = await self.channel.request("lag", reset=reset)
         return found if isinstance(found, dict) else {}
 
     async def reset(
@@ -331,8 +330,8 @@ class Player:
                 await placement.reset_to(self._control(), self.channel, self.name, position, self.clock)
             if equipment is not None:
                 await placement.wait_inventory(self._observe, inventory or {}, equipment)
-                await self._request("equip", equipment=equipment, wait=15)
-            await self._request("clear", **({} if seed is None else {"seed": seed}))
+                await self.channel.request("equip", equipment=equipment, wait=15)
+            await self.channel.request("clear", **({} if seed is None else {"seed": seed}))
             return await self.observe()
 
     async def close(self) -> None:

@@ -42,9 +42,21 @@ const CHAT_WINDOW_TICKS = 100
 const CHAT_PIECE = 256
 const EVENT_BUFFER = 200
 
+// settings.cue: connect only once Python says so (a line on stdin, `Player.start`). A match launches its
+// bots' processes all at once, so each loads its libraries and sets itself up meanwhile, and still logs
+// them in one at a time. Without it, at once.
+function cued (connect) {
+  if (!settings.cue) return connect()
+  const rl = readline.createInterface({ input: process.stdin })
+  let go = false
+  rl.once('line', () => { go = true; rl.close(); connect() })
+  rl.once('close', () => { if (!go) process.exit(0) }) // closed before its cue: nothing to play
+}
+const net = require('net')
 const bot = mineflayer.createBot({
   host: settings.host || '127.0.0.1',
   port: settings.port,
+  connect: (client) => cued(() => client.setSocket(net.connect(settings.port, settings.host || '127.0.0.1'))),
   username: settings.username,
   version: '1.16.5',
   auth: 'offline',

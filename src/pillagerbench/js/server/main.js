@@ -39,6 +39,10 @@ function main () {
     'max-entities': settings.maxEntities ?? 1000,
     'player-list-text': { header: { text: 'PillagerBench' }, footer: { text: '' } },
     version: '1.16.5',
+    // minecraft-protocol checks the type definitions of each login's plugin channels with ajv, compiled
+    // afresh per login: about 0.2 s of the server's CPU each (profiles of a match's setup). The types are
+    // the library's own; mineflayer turns the same check off on the bots' side.
+    validateChannelProtocol: false,
     cropGrowthChance: settings.cropGrowthChance,
     idleLimitMs: settings.idleLimitMs // plugins/lockstep.js
   })
