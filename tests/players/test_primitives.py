@@ -1,14 +1,49 @@
 """Every control primitive against the real server, in the situations the scenarios use.
 
 Assertions read the server's own state (inventory, blocks, chests) through the control channel.
+The module's tests share two players (`make_player` here): each test gets them reset into its own
+area with its own inventory, as a match resets its players before each episode.
 """
 
 from __future__ import annotations
 
 import asyncio
 
+import pytest_asyncio
+
+from pillagerbench.players import Player
 from pillagerbench.players.events import chats_by, errors, last_observation, saves
-from tests.players.conftest import count
+from tests.players.conftest import Area, close_players, count, start_player
+
+
+@pytest_asyncio.fixture(scope="module", loop_scope="session")
+async def pool(server, tmp_path_factory):
+    """The module's two players, logged in once (a login cost a test 1-1.5 s)."""
+    area, made = Area(server), []
+    log_dir = tmp_path_factory.mktemp("primitives")
+    for dx in (0, 4):
+        await start_player(server, area, log_dir, made, dx, 0)
+    yield made
+    await close_players(server, made)
+
+
+@pytest_asyncio.fixture(loop_scope="session")
+async def make_player(server, pool):
+    """As conftest's, on the module's players: make_player(area, dx, dz, inventory) -> the next one,
+    reset (its code stopped, its inventory set) to stand at (dx, dz) of the test's area. Fails the test
+    if its code restarted a player; the mobs it left are removed."""
+    given: list[Player] = []
+    restarts = [p.restarts for p in pool]
+
+    async def make(area: Area, dx: float = 0, dz: float = 0, inventory: dict | None = None) -> Player:
+        p = pool[len(given)]
+        given.append(p)
+        await p.reset(position=area.at(dx, 4, dz), inventory=inventory or {})
+        return p
+
+    yield make
+    await server.remove_entities()
+    assert [p.restarts for p in pool] == restarts and all(p.alive for p in pool)
 
 
 async def test_mine_slime_and_mushroom_blocks(server, area, make_player):

@@ -1,5 +1,6 @@
 """Short real episodes: every built-in opponent scores against do_nothing (on the lockstep clock: these
-test the rules, and game time does not shrink on a loaded machine); the real clock's lag verdict; a
+test the rules, and game time does not shrink on a loaded machine; each opponent's match on its
+scenario's warm server, whose players logged in once for the module); the real clock's lag verdict; a
 dying server fails one episode, not the series."""
 
 from __future__ import annotations
@@ -10,9 +11,11 @@ import os
 import signal
 
 import pytest
+import pytest_asyncio
 
 from pillagerbench.host.machine import SERVER_TPS_MIN
 from pillagerbench.match import Match
+from pillagerbench.rundir import EpisodeRecord
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.server import ArenaServer
 from pillagerbench.teams import TEAMS, make_team
@@ -43,13 +46,55 @@ async def one_episode(
         match = Match(server, sc, teams, run_dir, episode_length=length, seed=1, clock=clock_of(clock), **match_options)
         try:
             await match.setup()
-            rec = await match.play_episode(0)
-            modes = {p["name"]: p["gamemode"] for p in await server.players()}
-            # Dash & Dine's servers are creative (unkillable), every team player survival
-            assert modes == {p.name: 1 if p.gamemode == "creative" else 0 for p in sc.all_players()}
-            return rec
+            return await first_episode(match)
         finally:
             await match.close()
+
+
+async def first_episode(match: Match) -> EpisodeRecord:
+    """The match's episode 0, and every player's game mode after it."""
+    rec = await match.play_episode(0)
+    modes = {p["name"]: p["gamemode"] for p in await match.server.players()}
+    # Dash & Dine's servers are creative (unkillable), every team player survival
+    assert modes == {p.name: 1 if p.gamemode == "creative" else 0 for p in match.scenario.all_players()}
+    return rec
+
+
+@pytest_asyncio.fixture(scope="module", loop_scope="session")
+async def warm(tmp_path_factory):
+    """Scenario key -> a match on its own lockstep server, its players logged in (`setup`), never
+    played: the opponents' matches below play on its server and players, one after another, as a
+    series' episodes do (each episode builds the arena again and resets every player)."""
+    root = tmp_path_factory.mktemp("warm")
+    hosts: dict[str, Match] = {}
+
+    async def host(key: str) -> None:
+        server = ArenaServer(log_path=root / key / "server.log", clock="lockstep")
+        teams = {side: make_team("do_nothing", key) for side in ("red", "blue")}
+        hosts[key] = Match(server, make_scenario(key), teams, root / key, clock=clock_of("lockstep"))
+        await server.start()
+        await hosts[key].setup()
+
+    try:
+        await asyncio.gather(*(host(key) for key in sorted(set(OPPONENTS.values()))))
+        yield hosts
+    finally:
+        for match in hosts.values():
+            await match.close()
+            await match.server.stop()
+
+
+async def warm_episode(
+    warm: dict[str, Match], red: str, run_dir, length: float, layout: str | int = "paper"
+) -> EpisodeRecord:
+    """Episode 0 of `red` against do_nothing on the lockstep clock, a match of its own on the warm
+    server and players of its scenario."""
+    host = warm[OPPONENTS[red]]
+    sc = make_scenario(host.scenario.key, layout=layout)
+    teams = {"red": make_team(red, sc.key), "blue": make_team("do_nothing", sc.key)}
+    match = Match(host.server, sc, teams, run_dir, episode_length=length, seed=1, clock=clock_of("lockstep"))
+    match.players, match.clock = host.players, host.clock  # the host closes them
+    return await first_episode(match)
 
 
 def sc_red0(key):
@@ -82,15 +127,10 @@ def test_every_builtin_opponent_has_a_scenario():
         ("slimy", "potato_cookie"),
     ],
 )
-async def test_builtin_opponents_score_against_do_nothing(tmp_path, pair):
-    # two matches at once (one per scenario), each on its own server, on the lockstep clock
+async def test_builtin_opponents_score_against_do_nothing(tmp_path, warm, pair):
+    # two matches at once (one per scenario), each on its scenario's warm server, on the lockstep clock
     recs = await asyncio.gather(
-        *(
-            one_episode(
-                OPPONENTS[name], name, "do_nothing", tmp_path / name, LENGTH.get(name, EPISODE_S), clock="lockstep"
-            )
-            for name in pair
-        )
+        *(warm_episode(warm, name, tmp_path / name, LENGTH.get(name, EPISODE_S)) for name in pair)
     )
     for name, rec in zip(pair, recs):
         assert rec.status == "ok", rec.error
@@ -120,16 +160,11 @@ async def test_on_the_real_clock_a_starved_server_flags_the_episode(tmp_path):
 
 
 @pytest.mark.parametrize("pair", [(("aggressive", 1), ("melon_pumpkin", 2))])
-async def test_builtin_opponents_score_on_generated_layouts(tmp_path, pair):
-    """30 s on a generated layout of each scenario (two matches at once, on the lockstep clock: layouts
-    under game time, issue 38's item 6): the opponents play the layout's places, not the paper's, and
-    nothing they do is refused."""
-    recs = await asyncio.gather(
-        *(
-            one_episode(OPPONENTS[name], name, "do_nothing", tmp_path / name, 30, layout=seed, clock="lockstep")
-            for name, seed in pair
-        )
-    )
+async def test_builtin_opponents_score_on_generated_layouts(tmp_path, warm, pair):
+    """30 s on a generated layout of each scenario (two matches at once, on the warm servers, on the
+    lockstep clock: layouts under game time, issue 38's item 6): the opponents play the layout's places,
+    not the paper's, and nothing they do is refused."""
+    recs = await asyncio.gather(*(warm_episode(warm, name, tmp_path / name, 30, layout=seed) for name, seed in pair))
     for (name, seed), rec in zip(pair, recs):
         assert rec.status == "ok", rec.error
         assert (rec.layout, rec.split) == (seed, "dev")

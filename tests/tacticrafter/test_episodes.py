@@ -35,7 +35,11 @@ async def test_two_episode_series_learns_and_checkpoints(tmp_path, fake_llm, llm
     fake_llm.add(*good_rules())
     team = make_team("tacticrafter", "mushroom_war", iterations=4)
     run = tmp_path / "series"
-    first, second = await play_series(team, "passive", run, episodes=2, length=20, llms={"red": llm_client()})
+    # on the lockstep clock: what the team learns and keeps, not game time (the two tests below, with
+    # their wall-clock LLM timeouts and upstream's protocol, play on the real clock)
+    first, second = await play_series(
+        team, "passive", run, episodes=2, length=20, llms={"red": llm_client()}, clock="lockstep"
+    )
     assert first.status == "ok" and second.status == "ok", (first.error, second.error)
 
     # episode 0: graph and tactics generated, opponent unknown, code iterated in the game

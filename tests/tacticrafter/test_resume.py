@@ -42,6 +42,7 @@ def args(fake_url: str) -> list[str]:
         "experiment.repetitions=1",
         "experiment.team_options.iterations=2",
         "episode_length=12",
+        "clock=lockstep",  # what the resumed team asks, not game time: the game's seconds, fast
         "llm=fake",
         f"llm.base_url={fake_url}",
         "llm.timeout=10",
