@@ -102,7 +102,11 @@ def test_episodes_jsonl_carries_the_lag_fields(tmp_path):
         timeout=240,
     )
     assert res.returncode == 0, res.stdout + res.stderr
-    (rec,) = [json.loads(line) for line in (run_dir / "episodes.jsonl").read_text().splitlines()]
+    recs = [json.loads(line) for line in (run_dir / "episodes.jsonl").read_text().splitlines()]
+    rec = recs[0]
+    # this machine is shared (with the other test worker's unpaced lockstep games too): an episode played
+    # under lag is spoiled and played again, so a second record follows only a lagged first one
+    assert len(recs) == 1 or (rec["lagged"] and recs[-1]["episode"] == len(recs) - 1), recs
     assert rec["status"] == "ok", rec["error"]
     assert 10 < rec["server_tps"] < 25
     assert set(rec["bot_lag"]) == {"Ryn", "Byte", "Blink", "Raze"}
