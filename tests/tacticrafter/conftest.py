@@ -7,12 +7,10 @@ import json
 from pathlib import Path
 
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
-from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
-from pillagerbench.server import ArenaServer
-from pillagerbench.teams import TeamContext, make_team
+from pillagerbench.teams import TeamContext
 from tests.support.llm import fake_llm, llm_client_fixture  # noqa: F401 - fixtures
-from tests.support.server_clock import clock_of
+from tests.teams.conftest import play_series as play_on_server
 
 # --- scripted answers (Mushroom War, red team) ---------------------------------------------------
 
@@ -111,35 +109,7 @@ def requests_of(server: FakeLLMServer, role: str) -> list:
     return [r for r in server.requests if r.role == role]
 
 
-async def play_series(
-    red,
-    blue,
-    run_dir: Path,
-    *,
-    episodes: int = 1,
-    length: float = 20,
-    llms=None,
-    seed: int = 1,
-    clock: str = "real",
-    **match_options,
-):
-    """Play `episodes` episodes of Mushroom War on a fresh server, on `clock`."""
-    sc = make_scenario("mushroom_war")
-    teams = {side: make_team(t, sc.key) if isinstance(t, str) else t for side, t in (("red", red), ("blue", blue))}
-    async with ArenaServer(log_path=run_dir / "server.log", clock=clock) as server:
-        match = Match(
-            server,
-            sc,
-            teams,
-            run_dir,
-            episode_length=length,
-            seed=seed,
-            llms=llms or {},
-            clock=clock_of(clock),
-            **match_options,
-        )
-        try:
-            await match.setup()
-            return [await match.play_episode(e) for e in range(episodes)]
-        finally:
-            await match.close()
+async def play_series(red, blue, run_dir: Path, **options):
+    """Play Mushroom War episodes on a fresh server (tests/teams/conftest.py's play_series: `episodes`,
+    `length`, `llms`, `seed`, `clock`, and Match's options)."""
+    return await play_on_server("mushroom_war", red, blue, run_dir, **options)
