@@ -47,7 +47,7 @@ def test_the_kinds_hold_what_the_configuration_chooses():
 
 
 def test_a_team_name_that_is_nowhere_says_what_else_a_name_may_be():
-    with pytest.raises(ConfigError, match=r"^unknown team 'cott'; known: aggressive, .* \(or an import path"):
+    with pytest.raises(ConfigError, match=r"^unknown team 'cott'; known: agent, aggressive, .* \(or an import path"):
         find_team("cott")
 
 

@@ -52,10 +52,40 @@ class LLMResponse:
     model: str
     sample: int
     cache_key: str
+    tool_calls: tuple[dict[str, Any], ...] = ()  # as the provider sent them (OpenAI shape); read by tool_calls.py
 
     @property
     def truncated(self) -> bool:
         return self.finish_reason == "length"
+
+    @classmethod
+    def of(
+        cls,
+        response: Mapping[str, Any],
+        *,
+        text: str,
+        latency_s: float,
+        retries: int,
+        cache_hit: bool,
+        model: str,
+        sample: int,
+        cache_key: str,
+    ) -> LLMResponse:
+        """The answer in the cacheable response (provider.send's shape); `model` when it names none."""
+        return cls(
+            text=text,
+            raw_text=response.get("raw_text") or "",
+            finish_reason=response.get("finish_reason"),
+            input_tokens=response.get("input_tokens"),
+            output_tokens=response.get("output_tokens"),
+            latency_s=latency_s,
+            retries=retries,
+            cache_hit=cache_hit,
+            model=response.get("model") or model,
+            sample=sample,
+            cache_key=cache_key,
+            tool_calls=tuple(response.get("tool_calls") or ()),
+        )
 
 
 class LLMClient:
@@ -276,16 +306,13 @@ class LLMClient:
         self._log(
             role, request, response, start, retries, cache_hit, key, sample, None, latency=latency, cost=cost, **extra
         )
-        return LLMResponse(
+        return LLMResponse.of(
+            response,
             text=text,
-            raw_text=raw,
-            finish_reason=response.get("finish_reason"),
-            input_tokens=tin,
-            output_tokens=tout,
             latency_s=latency,
             retries=retries,
             cache_hit=cache_hit,
-            model=response.get("model") or self.settings.model,
+            model=self.settings.model,
             sample=sample,
             cache_key=key,
         )

@@ -17,6 +17,14 @@ a timeout), `malformed` (200 with a body that is not JSON), `empty` (an empty an
 `finish_reason`. Answers longer than the request's max_tokens are cut and get
 finish_reason="length", as a real server does. `usage` counts about 4 characters per token.
 
+Tool calls (function calling): `Rule(tool_calls=[{"name": "mineBlock", "arguments": {"name": "oak_log"}}])`
+answers one assistant message with those calls (ids generated unless a call gives "id"; `arguments`
+a JSON value, or a string sent as it is, e.g. malformed JSON), content null unless `reply` is given,
+finish_reason "tool_calls"; `tool_calls` may also be a function of the request body. A sequence
+across calls is rules with `times`: `Rule(tool_calls=[...], times=1)` then `Rule(reply="done")`.
+The request's `tools` (and its messages, tool results included) are in `server.requests[i].tools`
+(`.messages`, `.body`).
+
 Auth: with `api_key` set, a request without `Authorization: Bearer <api_key>` gets a 401 whose
 message quotes the key it received, like some providers do (so tests can check redaction).
 Models: with `models` set, any other model gets a 404.
@@ -54,6 +62,7 @@ class Rule:
     malformed: bool = False
     empty: bool = False
     finish_reason: str | None = None
+    tool_calls: list[dict] | Callable[[dict], list[dict]] | None = None  # answer with these calls (see above)
     times: int | None = None  # how many requests this rule answers; None = unlimited
     used: int = 0
 
@@ -91,8 +100,13 @@ class Received:
         return list(self.body.get("messages") or [])
 
     @property
+    def tools(self) -> list[dict]:
+        """The tools the request offered (OpenAI shape), none: []."""
+        return list(self.body.get("tools") or [])
+
+    @property
     def prompt(self) -> str:
-        return "\n".join(str(m.get("content", "")) for m in self.messages)
+        return "\n".join(str(m.get("content") or "") for m in self.messages)
 
 
 @dataclass
@@ -173,26 +187,43 @@ class FakeLLMServer:
     # -- answers ---------------------------------------------------------------------------------
     def completion(self, req: Received, rule: Rule | None) -> dict:
         rule = rule or Rule()
-        reply = rule.reply if rule.reply is not None else self.default_reply
+        scripted = rule.tool_calls(req.body) if callable(rule.tool_calls) else rule.tool_calls
+        calls = _wire_calls(scripted or [], self._next_id)
+        reply = rule.reply if rule.reply is not None else ("" if calls else self.default_reply)
         text = "" if rule.empty else (reply(req.body) if callable(reply) else str(reply))
-        finish = rule.finish_reason or "stop"
+        finish = rule.finish_reason or ("tool_calls" if calls else "stop")
         limit = req.body.get("max_tokens") or req.body.get("max_completion_tokens")
         if limit and count_tokens(text) > int(limit):
             text, finish = text[: int(limit) * 4], "length"
-        prompt_tokens = sum(count_tokens(str(m.get("content", ""))) + 4 for m in req.messages)
-        completion_tokens = count_tokens(text)
+        message: dict[str, Any] = {"role": "assistant", "content": text if text or not calls else None}
+        if calls:
+            message["tool_calls"] = calls
+        prompt_tokens = sum(count_tokens(str(m.get("content") or "")) + 4 for m in req.messages)
+        prompt_tokens += count_tokens(json.dumps(req.tools)) if req.tools else 0
+        completion_tokens = count_tokens(text) + sum(count_tokens(json.dumps(c["function"])) for c in calls)
         return {
             "id": f"chatcmpl-fake-{self._next_id}",
             "object": "chat.completion",
             "created": int(time.time()),
             "model": req.body.get("model", "fake"),
-            "choices": [{"index": 0, "finish_reason": finish, "message": {"role": "assistant", "content": text}}],
+            "choices": [{"index": 0, "finish_reason": finish, "message": message}],
             "usage": {
                 "prompt_tokens": prompt_tokens,
                 "completion_tokens": completion_tokens,
                 "total_tokens": prompt_tokens + completion_tokens,
             },
         }
+
+
+def _wire_calls(calls: list[dict], request_id: int) -> list[dict]:
+    """Scripted calls ({"name", "arguments": a JSON value or the raw string to send, "id"?}) in the wire shape."""
+    wire = []
+    for i, call in enumerate(calls):
+        arguments = call.get("arguments", {})
+        raw = arguments if isinstance(arguments, str) else json.dumps(arguments)
+        call_id = call.get("id") or f"call_fake_{request_id}_{i}"
+        wire.append({"id": call_id, "type": "function", "function": {"name": call["name"], "arguments": raw}})
+    return wire
 
 
 def _error(status: int, message: str, kind: str) -> dict:

@@ -58,16 +58,26 @@ def read(completion: Any, s: LLMSettings, ctx: dict) -> dict:
         raise E.MalformedResponse(f"answer without choices: {str(completion)[:200]}", **ctx)
     raw = choices[0].message.content or ""
     text = strip_think(raw) if s.strip_think else raw
-    if not text.strip():
+    calls = tool_calls_of(choices[0].message)
+    if not text.strip() and not calls:  # an answer of tool calls only is not empty
         raise E.EmptyResponse(f"empty answer (finish_reason={choices[0].finish_reason})", **ctx)
     usage = getattr(completion, "usage", None)
-    return {
+    answer = {
         "raw_text": raw,
         "finish_reason": choices[0].finish_reason,
         "input_tokens": getattr(usage, "prompt_tokens", None),
         "output_tokens": getattr(usage, "completion_tokens", None),
         "model": getattr(completion, "model", None),
     }
+    if calls:  # only then, so an answer without calls is cached and hashed as before
+        answer["tool_calls"] = calls
+    return answer
+
+
+def tool_calls_of(message: Any) -> list[dict]:
+    """The message's tool calls in the OpenAI wire shape ({"id", "type", "function": {"name", "arguments"}}),
+    as JSON values (the cache stores them; tool_calls.py reads them)."""
+    return [call.model_dump(mode="json", exclude_none=True) for call in getattr(message, "tool_calls", None) or []]
 
 
 def map_error(exc: Exception, ctx: dict) -> tuple[E.LLMError, float | None]:

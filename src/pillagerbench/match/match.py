@@ -22,7 +22,7 @@ from typing import Any
 from pillagerbench.config.schema import ClockConfig, default
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
-from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay
+from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay, Scoreboard
 from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.players import Player
@@ -244,6 +244,7 @@ class Match:
         for team in self.teams.values():
             team.problems = []
         contexts = self._contexts(rec, out, sink, replay, observations)
+        parts = [*parts, Scoreboard(contexts)]
 
         async def timed_pre_game(key):
             t = time.monotonic()

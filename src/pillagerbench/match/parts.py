@@ -236,6 +236,21 @@ class Progress(Part):
         self.on_tick({"episode": game.rec.episode, "t": game.length, "length": game.length, **final})
 
 
+class Scoreboard(Part):
+    """The scoreboard every team may read (`TeamContext.scores`): each side's score at each second, and the
+    final score."""
+
+    def __init__(self, contexts: dict):
+        self.contexts = contexts  # side -> its TeamContext this episode
+
+    def second(self, game: Game, t: int, scores: dict[str, float]) -> None:
+        for ctx in self.contexts.values():
+            ctx.scores = {k: scores[k] for k in ("red", "blue") if k in scores}
+
+    async def whistle(self, game: Game, final: dict[str, float]) -> None:
+        self.second(game, int(game.length), final)
+
+
 # the parts that follow every game, in the order their hooks run (a game shown on a terminal adds
 # Progress after them: it needs the display's callback)
 PARTS: Registry[type[Part]] = Registry(

@@ -39,6 +39,10 @@ class RecordedPlayer:
         if self._on_program is not None:
             self._on_program(self._player.name, what, message)
 
+    def note(self, event: list) -> None:
+        """An event of the player's that no run made (a tool call refused: teams/tools/seat.py), in its log."""
+        self._sink(self._player.name, event)
+
     async def run(self, code: str, *, timeout: float | None = None, on_event=None) -> list:
         def both(event):
             self._sink(self._player.name, event)

@@ -48,6 +48,10 @@ class GameClock(Protocol):
 
     async def retire(self, players: list[str]) -> None: ...
 
+    async def hold_idle(self, player: str) -> None: ...
+
+    async def free_idle(self, players: list[str]) -> None: ...
+
     async def end(self) -> None: ...
 
     def saw(self, tick: int | None) -> None: ...
@@ -90,6 +94,12 @@ class RealClock:
         return None
 
     async def retire(self, players: list[str]) -> None:
+        return None
+
+    async def hold_idle(self, player: str) -> None:
+        return None
+
+    async def free_idle(self, players: list[str]) -> None:
         return None
 
     async def end(self) -> None:
@@ -215,6 +225,19 @@ class LockstepClock:
         no more, not even as a run of theirs ends, until the whistle."""
         if not self.over:
             self._seen(await self.server.retire(players))
+
+    async def hold_idle(self, player: str) -> None:
+        """`player`'s bot holds the world as if idle until its next run (or rest) begins: a run started from
+        now on starts on this tick, however long its request takes to reach the bot (the seat's tool calls)."""
+        if not self.over:
+            self._seen(await self.server.hold(f"idle:{player}"))
+
+    async def free_idle(self, players: list[str]) -> None:
+        """These players' bots, whose runs have ended, hold the world no more until their next run ends (a
+        seat's team holds it instead while its agent thinks, or its other players act); the server ignores
+        an ended run's IDLE that reaches it after this."""
+        if not self.over:
+            self._seen(await self.server.free(players))
 
     async def charge(self, tokens: int, players: list[str]) -> None:
         """Thinking charged in game time: the team's players wait it out."""

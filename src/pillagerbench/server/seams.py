@@ -279,6 +279,9 @@ class Control(Protocol):
     async def retire(self, players: Sequence[str]) -> int:
         return await self.send("retire", players=players)
 
+    async def free(self, players: Sequence[str]) -> int:
+        return await self.send("free", players=players)
+
     async def seed(self, seed: int) -> bool:
         return await self.send("seed", seed=seed)
 

@@ -20,6 +20,7 @@ from pillagerbench.teams.registry import (
 )
 from pillagerbench.teams.remote import RemoteTeam
 from pillagerbench.teams.tacticrafter import TactiCrafter
+from pillagerbench.teams.tools import AgentTeam
 
 BUILT_IN: tuple[type[Team], ...] = (
     DoNothing,
@@ -35,6 +36,7 @@ BUILT_IN: tuple[type[Team], ...] = (
     RandomTeam,  # the paper's baselines
     TactiCrafter,  # the paper's own system
     RemoteTeam,  # a team in any language behind HTTP (docs/remote-teams.md)
+    AgentTeam,  # a team an outside agent plays through the game's tools (docs/any-agent.md)
 )
 for _cls in BUILT_IN:
     register(_cls)

@@ -29,6 +29,8 @@ class PlayerHandle(Protocol):
 
     async def stop(self) -> None: ...
 
+    async def observe(self) -> list: ...
+
 
 @dataclass
 class TeamContext:
@@ -50,6 +52,8 @@ class TeamContext:
     protocol: str = "pillagerbench"
     # game time (config `clock`; server/clock.py): the wall clock, or the arena's lockstep ticks
     clock: GameClock = field(default_factory=RealClock)
+    # the scoreboard: each side's score at the last whole second of the game (the match's sample)
+    scores: dict[str, float] = field(default_factory=dict)
 
     @property
     def upstream_protocol(self) -> bool:

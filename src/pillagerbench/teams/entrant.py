@@ -33,6 +33,7 @@ from pillagerbench.teams.registry import TEAMS
 # options that change nothing the team does in the game (they only choose what is written to files)
 NOT_PLAY: dict[str, tuple[str, ...]] = {
     "tacticrafter": ("keep_messages",),
+    "agent": ("seat", "think_limit_s"),
 }
 
 # an option spelled two ways: alias -> the option it sets when not null
@@ -46,6 +47,10 @@ WORDS: dict[tuple[str, bool], str] = {
     ("opponent", False): "no opponent",
     ("update_tactics", False): "fixed tactics",
 }
+
+# a team played by an agent from outside (teams/tools/agent.py): it is named by the agent's declared name and
+# version, and its model when given (options: name, version, model), not by the team's own name
+IDENTITY: dict[str, tuple[str, str, str]] = {"agent": ("agent", "agent_version", "agent_model")}
 
 ROLES_OPTION = "roles"  # an option of per-role settings, each of which may name its own model
 LONG = 24  # a string value longer than this reads as `key=#` and 6 hex digits of its hash
@@ -122,11 +127,27 @@ def label_of(team: str, models: dict[str, str], options: dict[str, Any]) -> str:
     return f"{team}{at}" + (f"({', '.join(words)})" if words else "")
 
 
+def _agent(team: str, node: dict, options: dict[str, Any]) -> tuple[str, dict[str, str]]:
+    """An outside agent's name for the label (`agent:NAME/VERSION`) and its model; the identity's options
+    leave `options` but stay in it as the agent's name and version (two agents never share an entrant)."""
+    name_key, version_key, model_key = IDENTITY[team]
+    options.pop(model_key, None)
+    model = node.get(model_key)
+    name, version = node.get(name_key) or "unknown", node.get(version_key) or "0"
+    options[name_key], options[version_key] = str(name), str(version)
+    return f"{team}:{name}/{version}", ({"team": str(model)} if model else {})
+
+
 def entrant_of(config: dict, side: str) -> dict[str, Any]:
     """The entrant playing `side` ("red" or "blue") under a run's resolved config (a plain dict)."""
     node = dict(config.get(side) or {})
     team = str(node.get("name"))
     options = _options(team, node)
+    if team in IDENTITY:
+        shown, models = _agent(team, node, options)
+        words = {k: v for k, v in options.items() if k not in IDENTITY[team]}
+        canonical = {"team": team, "models": models, "options": options}
+        return {"label": label_of(shown, models, words), "id": _digest(canonical, 12), **canonical}
     models = _models(config, node, options) if _uses_llm(team, node) else {}
     canonical = {"team": team, "models": models, "options": options}
     return {"label": label_of(team, models, options), "id": _digest(canonical, 12), **canonical}

@@ -165,6 +165,7 @@ const OPS = {
   wait_tick: async (serv, { tick, hold, release }) => serv.pb.clock.waitTick(tick, hold, release),
   rest: async (serv, { players, ticks }) => serv.pb.clock.rest(players, ticks),
   retire: async (serv, { players }) => serv.pb.clock.retire(players),
+  free: async (serv, { players }) => serv.pb.clock.free(players),
   seed: async (serv, { seed }) => { serv.pb.seedRandom(seed); return true },
   // The order in which the server visits its players (packets, block updates, anything that loops
   // over serv.players): the online players named in `names` first, in that order, then the rest as

@@ -37,6 +37,7 @@ module.exports.server = function (serv, settings = {}) {
   // IDLE must not hold the world again until the rest is over.
   const resting = new Set()
   const retired = new Set() // idle:NAME of the players that hold nothing more this game (see retire)
+  const freed = new Set() // idle:NAME freed before the IDLE of its ended run came (see free): that IDLE is ignored
   const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
 
   const answers = [] // the answers of waits whose tick has come, until every bot has done that tick
@@ -135,6 +136,7 @@ module.exports.server = function (serv, settings = {}) {
         holds.clear()
         resting.clear()
         retired.clear()
+        freed.clear()
         for (const w of waiters) w[2] = null
         for (const t of idleTimers.values()) clock.real.clearTimeout(t)
         idleTimers.clear()
@@ -221,8 +223,20 @@ module.exports.server = function (serv, settings = {}) {
       for (const who of players.map(name => `idle:${name}`)) { retired.add(who); this.releaseAll(who) }
       return state.tick
     },
+    // Players whose last run has ended hold the world no more (an outside agent's seat: its team holds the
+    // world itself while the agent thinks, or lets it go on for its other players): a hold is released now;
+    // one still to come (the run's IDLE, on the bot's own connection, may come after this op) is ignored.
+    free (players) {
+      lockstepOnly('free')
+      for (const who of players.map(name => `idle:${name}`)) {
+        if (holds.has(who)) this.releaseAll(who)
+        else freed.add(who)
+      }
+      return state.tick
+    },
     idle (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} idle ${client.username} game=${state.game}`)
+      if (freed.delete(`idle:${client.username}`)) return
       if (!state.game || !members.has(client) || resting.has(`idle:${client.username}`)) return
       this.holdIdle(`idle:${client.username}`)
     },
@@ -238,6 +252,7 @@ module.exports.server = function (serv, settings = {}) {
     },
     busy (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} busy ${client.username}`)
+      freed.delete(`idle:${client.username}`) // (an IDLE before this BUSY has come: the connection keeps order)
       this.releaseAll(`idle:${client.username}`)
     },
     releaseAll (who) {

@@ -1,0 +1,92 @@
+"""`agent`: the team whose players an agent outside the benchmark plays through the game's tools, from a
+seat (`seat.py`) that a front opened in this process: `pillagerbench mcp` (the MCP client's team) or
+Inspect's `-T team=agent` (the Inspect agent's). Its identity is the agent's (teams/entrant.py): the
+name and version the agent declares and, when given, its model.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from pydantic import Field
+
+from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.options import TeamOptions
+from pillagerbench.teams.tools.seat import Seat
+
+# the seats the fronts of this process opened (`open_seat`), by id: how the team a config names finds its agent
+SEATS: dict[str, Seat] = {}
+
+
+def open_seat(seat: Seat) -> str:
+    key = f"seat-{len(SEATS) + 1}-{id(seat):x}"
+    SEATS[key] = seat
+    return key
+
+
+class AgentOptions(TeamOptions):
+    """agent's options: who the agent is (set by the front that seats it), and its seat's timings."""
+
+    agent: str = Field(default="unknown", description="the agent's declared name (MCP clientInfo, the solver's)")
+    agent_version: str = Field(default="0", description="the agent's declared version")
+    agent_model: str | None = Field(default=None, description="the model behind the agent, when known")
+    seat: str | None = Field(default=None, description="the seat a front of this process opened (not play)")
+    pregame_timeout_s: float = Field(default=60.0, gt=0, description="the pre-game ends without an acting call")
+    window_ms: float = Field(default=50.0, ge=0, description="lockstep: acting calls this close start on one tick")
+    think_limit_s: float = Field(default=300.0, gt=0, description="lockstep: the world waits this long at most")
+
+
+class AgentTeam(Team):
+    name = "agent"
+    Options = AgentOptions
+
+    def __init__(self, **options: object):
+        super().__init__(**options)
+        self.settings = AgentOptions.model_validate(options)
+
+    @classmethod
+    def check_options(cls, options: dict[str, Any]) -> list[str]:
+        seat = options.get("seat")
+        if seat is None or seat not in SEATS:
+            return [
+                "the agent team is played by an agent through the game's tools: start it with `pillagerbench mcp` "
+                "or Inspect's `-T team=agent` (docs/any-agent.md), not with red=agent"
+            ]
+        return []
+
+    @property
+    def seat(self) -> Seat:
+        found = SEATS.get(self.settings.seat or "")
+        if found is None:
+            raise RuntimeError(f"no seat {self.settings.seat!r} in this process (docs/any-agent.md)")
+        return found
+
+    async def pre_game(self, ctx: TeamContext) -> None:
+        seat, o = self.seat, self.settings
+        seat.pregame_timeout_s, seat.window_s, seat.think_limit_s = (
+            o.pregame_timeout_s,
+            o.window_ms / 1000,
+            o.think_limit_s,
+        )
+        await seat.pre_game(ctx)
+
+    async def play(self, ctx: TeamContext) -> None:
+        await self.seat.play(ctx)
+
+    async def post_game(self, ctx: TeamContext) -> None:
+        seat = self.seat
+        acted = [c.get("arguments", {}).get("player") for c in seat.calls if "tick_start" in c]
+        self.iterations = [acted.count(name) for name in seat.players]  # the paper's I: actions per player
+        self.problems.extend(seat.problems)
+        seat.problems.clear()
+        write_calls(ctx, seat)
+
+
+def write_calls(ctx: TeamContext, seat: Seat) -> None:
+    """The episode's tool calls, one JSON line each (the team's artefact `tools.jsonl`), and the clock they
+    played on."""
+    ctx.out_dir.mkdir(parents=True, exist_ok=True)
+    lines = [json.dumps({"clock": ctx.clock.mode, "window_s": seat.window_s})]
+    lines += [json.dumps(c, default=str) for c in seat.calls]
+    (ctx.out_dir / "tools.jsonl").write_text("\n".join(lines) + "\n")

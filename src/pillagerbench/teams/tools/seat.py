@@ -1,0 +1,326 @@
+"""A seat at a team: where an agent outside the team's own code (an MCP client, an Inspect agent, our
+`tools` team's model) sits, its tool calls becoming its players' actions under the same rules as code.
+
+The seat lives for a whole run; the team sitting in it (`AgentTeam`, or the `tools` team) opens each
+episode's pre-game (`pre_game`) and game (`play`) on it. Phases, as `status` says them: `pre_game`
+(from the run's start, and again after each whistle, until the next game begins), `play`, `over`
+(after the last episode, or once the agent has left). An episode's pre-game ends at the agent's first
+acting call, or after `pregame_timeout_s`; an acting call made in the pre-game waits for the game and
+starts on its first tick.
+
+Game time (docs/any-agent.md). On the real clock the world runs on, as for every team. On the lockstep
+clock the world waits while the agent thinks: while none of the team's acting calls is in flight the
+team holds the world (`tools:<side>`), and it goes on only while one is. A call that ends stops the world
+on the tick it ended (its bot's idle hold), so the next call starts there however long the agent took;
+the acting calls that arrive within `window_s` of wall time while the world is held (one model turn's
+parallel calls) start on the same tick. An agent that neither acts nor answers for `think_limit_s` of
+wall time lets the world go on without it (a problem of the team's, on its record).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+from collections.abc import Callable
+from contextlib import AsyncExitStack
+from typing import Any
+
+import jsonschema
+
+from pillagerbench.players import events as ev
+from pillagerbench.scenarios import Scenario
+from pillagerbench.server.clock import TICK_S
+from pillagerbench.teams.base import TeamContext
+from pillagerbench.teams.tools.spec import ToolResult, ToolSpec
+from pillagerbench.teams.tools.surface import RETURNED, call_code, primitives_of, tools_of
+
+PHASES = ("pre_game", "play", "over")
+
+
+class Refused(Exception):
+    """A tool call that cannot be taken; the message names the problem (a tool error, the game goes on)."""
+
+
+class Seat:
+    def __init__(
+        self,
+        scenario: Scenario,
+        side: str,
+        *,
+        pregame_timeout_s: float = 60.0,
+        window_s: float = 0.05,
+        think_limit_s: float = 300.0,
+    ):
+        self.scenario, self.side = scenario, side
+        self.players = list(scenario.side(side).player_names)
+        self.specs = {t.name: t for t in tools_of(scenario, side)}
+        self._checks = {n: jsonschema.Draft202012Validator(t.parameters) for n, t in self.specs.items()}
+        self._primitives = {p.name: p for p in primitives_of(list(scenario.primitives))}
+        self.pregame_timeout_s, self.window_s, self.think_limit_s = pregame_timeout_s, window_s, think_limit_s
+        self.phase, self.episode = "pre_game", 0
+        self.ctx: TeamContext | None = None
+        self.calls: list[dict[str, Any]] = []  # this episode's calls (the team's artefact tools.jsonl)
+        self.problems: list[str] = []
+        self.left = False  # the agent has gone (a client that disconnected)
+        self._ready = asyncio.Event()  # an episode's context is here (pre-game begun)
+        self._acted = asyncio.Event()  # the pre-game's first acting call
+        self._game = asyncio.Event()  # the game is on
+        self._changed = asyncio.Event()  # any change of phase (wakes those waiting for one)
+        self._lock = asyncio.Lock()  # one change of the world's holds at a time
+        self._busy: dict[str, int] = {}  # player -> its acting calls in flight
+        self._hold: AsyncExitStack | None = None  # the team's hold while nothing acts (lockstep)
+        self._go: asyncio.Task | None = None  # lets the world go once the turn's window has passed
+        self._t0 = time.monotonic()
+
+    @property
+    def tools(self) -> list[ToolSpec]:
+        return list(self.specs.values())
+
+    # --- the team's side: the episode's phases --------------------------------------------------------
+    async def pre_game(self, ctx: TeamContext) -> None:
+        """An episode's pre-game: its context is the agent's until the whistle; returns at the agent's first
+        acting call (or after pregame_timeout_s, or at once once the agent has left)."""
+        self.ctx, self.episode, self.calls = ctx, ctx.episode, []
+        self._acted.clear()
+        self._ready.set()
+        self._set_phase("pre_game")
+        if self.left:
+            return
+        try:
+            await asyncio.wait_for(self._acted.wait(), self.pregame_timeout_s)
+        except asyncio.TimeoutError:
+            self.problems.append(f"no acting call within pregame_timeout_s={self.pregame_timeout_s:g}: the game began")
+
+    async def play(self, ctx: TeamContext) -> None:
+        """The game: the agent's calls act until the whistle cancels this."""
+        if self.left:
+            await ctx.clock.rest(self.players, ctx.time_left())
+            return
+        async with self._lock:
+            await self._hold_world(ctx)
+        self._set_phase("play")
+        self._game.set()
+        watcher = asyncio.create_task(self._watch_thinking(ctx))
+        try:
+            await asyncio.Event().wait()  # the whistle cancels the team's play
+        finally:
+            watcher.cancel()
+            self._game.clear()
+            self._ready.clear()
+            await self._let_world_go()
+            self._set_phase("pre_game")
+
+    def finish(self) -> None:
+        """The run is over: every call from now on is told so."""
+        self._set_phase("over")
+
+    def leave(self) -> None:
+        """The agent has gone: its players do nothing for the rest of the episode (the world goes on)."""
+        if not self.left:
+            self.left = True
+            self.problems.append("the agent left: its players did nothing for the rest of the episode")
+            self._acted.set()
+            if self._hold is not None and self.ctx is not None:
+                asyncio.get_running_loop().create_task(self._release_for_good(self.ctx))
+
+    async def _release_for_good(self, ctx: TeamContext) -> None:
+        async with self._lock:
+            await self._let_world_go()
+            await ctx.clock.retire(self.players)
+
+    def _set_phase(self, phase: str) -> None:
+        self.phase = phase
+        self._changed.set()
+        self._changed = asyncio.Event()
+
+    # --- the agent's side: one tool call ------------------------------------------------------------
+    async def call(self, name: str, arguments: dict[str, Any] | None = None) -> ToolResult:
+        """One tool call: its result, or a tool error naming the problem (never an exception)."""
+        await asyncio.sleep(0)  # every call lets the match's own tasks run (a tight loop of calls cannot starve it)
+        t0 = time.monotonic()
+        args = dict(arguments or {})
+        entry: dict[str, Any] = {"tool": name, "arguments": args, "at_s": round(t0 - self._t0, 3)}
+        try:
+            data = await self._dispatch(name, args, entry)
+            result = ToolResult(json.dumps(data, default=str), data=data)
+        except Refused as exc:
+            entry["refused"] = str(exc)
+            self._note_refusal(args.get("player"), name, str(exc))
+            result = ToolResult(str(exc), error=True)
+        entry["wall_s"] = round(time.monotonic() - t0, 4)
+        self.calls.append(entry)
+        return result
+
+    def _check(self, name: str, args: dict[str, Any]) -> ToolSpec:
+        spec = self.specs.get(name)
+        if spec is None:
+            raise Refused(f"unknown tool {name!r}; the tools: {', '.join(self.specs)}")
+        player = args.get("player")
+        if "player" in spec.parameters["properties"] and player is not None and player not in self.players:
+            raise Refused(
+                f"{name}: player {player!r} is not on the {self.side} team (its players: {', '.join(self.players)})"
+            )
+        problem = next(iter(sorted(self._checks[name].iter_errors(args), key=lambda e: e.path)), None)
+        if problem is not None:
+            where = ".".join(map(str, problem.path))
+            raise Refused(f"{name}: bad arguments: {where + ': ' if where else ''}{problem.message}")
+        return spec
+
+    async def _dispatch(self, name: str, args: dict[str, Any], entry: dict[str, Any]) -> dict[str, Any]:
+        spec = self._check(name, args)
+        if name == "status":
+            return self.status()
+        if self.phase == "over":
+            raise Refused(f"{name}: the run is over (status says so); nothing more can be done")
+        if not spec.acting:
+            return await self._observe(args["player"])
+        return await self._act(name, args, entry)
+
+    def status(self) -> dict[str, Any]:
+        ctx = self.ctx
+        playing = self.phase == "play" and ctx is not None
+        return {
+            "phase": self.phase,
+            "episode": self.episode,
+            "players": self.players,
+            "time_left_s": round(ctx.time_left(), 2) if playing and ctx is not None else None,
+            "scores": {k: (ctx.scores.get(k, 0) if ctx else 0) for k in ("red", "blue")},
+        }
+
+    async def _context(self) -> TeamContext:
+        while True:
+            if self.phase == "over":
+                raise Refused("the run is over (status says so); nothing more can be done")
+            if self._ready.is_set() and self.ctx is not None:
+                return self.ctx
+            await self._changed.wait()
+
+    async def _observe(self, player: str) -> dict[str, Any]:
+        ctx = await self._context()
+        events = await ctx.players[player].observe()
+        return {"player": player, "observation": ev.last_observation(events)}
+
+    # --- acting -------------------------------------------------------------------------------------
+    async def _act(self, name: str, args: dict[str, Any], entry: dict[str, Any]) -> dict[str, Any]:
+        ctx = await self._game_on()
+        player = args["player"]
+        entry["episode"], entry["tick_start"] = ctx.episode, _tick(ctx)
+        await self._begin(ctx, player)
+        try:
+            result = await self._perform(ctx, name, args)
+        finally:
+            await self._end(ctx, player)
+        entry["tick_end"] = _tick(ctx)
+        if ctx.time_left() <= 0:
+            result["ended"] = "the episode ended (the whistle) while this call was in flight"
+        return result
+
+    async def _game_on(self) -> TeamContext:
+        """The context of a game in play, waited for: an acting call in a pre-game ends it and starts on the
+        game's first tick; one made after a whistle waits for the next game."""
+        while True:
+            if self.phase == "over":
+                raise Refused("the run is over (status says so); nothing more can be done")
+            ctx = self.ctx
+            if self._game.is_set() and ctx is not None and ctx.time_left() > 0:
+                return ctx
+            if self._ready.is_set() and not self._game.is_set():
+                self._acted.set()  # the pre-game ends at the first acting call
+            await self._changed.wait()
+
+    async def _perform(self, ctx: TeamContext, name: str, args: dict[str, Any]) -> dict[str, Any]:
+        player = args["player"]
+        handle = ctx.players[player]
+        if name == "wait":
+            await ctx.sleep(args["ticks"] * TICK_S, player=player)
+            return {"player": player, "waited_ticks": args["ticks"]}
+        if name == "run_code":
+            ticks = args.get("max_ticks")
+            events = await handle.run(args["code"], timeout=ticks * TICK_S if ticks else None)
+        elif name == "chat":
+            events = await handle.run(f"chat({json.dumps(args['text'])})")
+        else:
+            code = call_code(self._primitives[name], {k: v for k, v in args.items() if k != "player"})
+            events = await handle.run(code)
+        return _outcome(player, events)
+
+    # --- the world's holds (lockstep; no-ops on the real clock) -------------------------------------
+    async def _begin(self, ctx: TeamContext, player: str) -> None:
+        async with self._lock:
+            first = not any(self._busy.values())
+            self._busy[player] = self._busy.get(player, 0) + 1
+            await ctx.clock.hold_idle(player)  # until its run (or wait) begins: it starts on this tick
+            if first and self._hold is not None and self._go is None:
+                self._go = asyncio.create_task(self._go_after_window())
+
+    async def _go_after_window(self) -> None:
+        await asyncio.sleep(self.window_s)  # the turn's other calls start on the same tick
+        async with self._lock:
+            self._go = None
+            if any(self._busy.values()):
+                await self._let_world_go()
+
+    async def _end(self, ctx: TeamContext, player: str) -> None:
+        async with self._lock:
+            self._busy[player] -= 1
+            if self._busy[player] == 0 and any(self._busy.values()):
+                await ctx.clock.free_idle([player])  # the others still act: the world goes on for them
+            elif not any(self._busy.values()) and ctx.time_left() > 0 and not self.left:
+                await self._hold_world(ctx)  # stopped on the tick this call ended; held while the agent thinks
+
+    async def _hold_world(self, ctx: TeamContext) -> None:
+        if ctx.clock.mode != "lockstep" or self._hold is not None:
+            return
+        stack = AsyncExitStack()
+        await stack.enter_async_context(ctx.clock.thinking(f"tools:{self.side}"))
+        self._hold = stack
+        await ctx.clock.free_idle(self.players)  # the team's hold has no wall-clock limit; idle holds do
+
+    async def _let_world_go(self) -> None:
+        stack, self._hold = self._hold, None
+        if stack is not None:
+            await stack.aclose()
+
+    async def _watch_thinking(self, ctx: TeamContext) -> None:
+        """An agent that neither acts nor answers for think_limit_s of wall time: the world goes on."""
+        while True:
+            await asyncio.sleep(min(1.0, self.think_limit_s))
+            last = max([self._t0 + c["at_s"] + c.get("wall_s", 0.0) for c in self.calls] or [self._t0])
+            if self._hold is not None and not any(self._busy.values()) and time.monotonic() - last > self.think_limit_s:
+                self.problems.append(
+                    f"no call for think_limit_s={self.think_limit_s:g} s of wall time: the world went on"
+                )
+                async with self._lock:
+                    await self._let_world_go()
+                    await ctx.clock.retire(self.players)
+                return
+
+    def _note_refusal(self, player: Any, tool: str, message: str) -> None:
+        ctx = self.ctx  # (an episode's event log is open from its pre-game to its whistle)
+        if ctx is not None and self._ready.is_set() and isinstance(player, str) and player in ctx.players:
+            note: Callable[[list], None] | None = getattr(ctx.players[player], "note", None)
+            if note is not None:
+                note(["onToolRefused", {"onToolRefused": message, "tool": tool}])
+
+
+def _tick(ctx: TeamContext) -> int:
+    """The game's tick now, counted from its first (on the real clock, wall time in ticks)."""
+    start = (ctx.deadline or 0.0) - ctx.episode_length
+    return round((ctx.clock.now() - start) / TICK_S)
+
+
+def _outcome(player: str, events: list) -> dict[str, Any]:
+    """A run's events as the agent reads them: each event's own message, what a primitive returned, the
+    final observation."""
+    returned: list[Any] = []
+    shown: list[list] = []
+    for kind, message in ((e[0], e[1].get(e[0])) for e in events if e and e[0] != "observe"):
+        if kind == "onSave" and isinstance(message, str) and message.startswith(RETURNED):
+            returned.append(json.loads(message.removeprefix(RETURNED)))
+        else:
+            shown.append([kind, message])
+    out: dict[str, Any] = {"player": player, "events": shown, "observation": ev.last_observation(events)}
+    if returned:
+        out["returned"] = returned[-1]
+    return out
