@@ -26,6 +26,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "pillagerbench.experiments.compare:main",
         "is entrant A better than B? paired play and a sequential test that stops when the answer is clear",
     ),
+    "mcp": (
+        "pillagerbench.mcp_front.play:main",
+        "a run in which an MCP client plays a team through the game's tools (docs/any-agent.md)",
+    ),
     "layout": ("pillagerbench.cli.layout_show:main", "show a layout's map (a page), or write the layout as JSON"),
     "report": ("pillagerbench.report.build:main", "tables, figures and an HTML page from run directories"),
     "symmetry": (

@@ -7,6 +7,7 @@ name and version the agent declares and, when given, its model.
 from __future__ import annotations
 
 import json
+import secrets
 from typing import Any
 
 from pydantic import Field
@@ -16,11 +17,18 @@ from pillagerbench.teams.options import TeamOptions
 from pillagerbench.teams.tools.seat import Seat
 
 # the seats the fronts of this process opened (`open_seat`), by id: how the team a config names finds its agent
-SEATS: dict[str, Seat] = {}
+# (None: reserved, so a config naming it can be checked before the seat, which needs the config's scenario)
+SEATS: dict[str, Seat | None] = {}
 
 
-def open_seat(seat: Seat) -> str:
-    key = f"seat-{len(SEATS) + 1}-{id(seat):x}"
+def reserve_seat() -> str:
+    key = f"seat-{len(SEATS) + 1}-{secrets.token_hex(4)}"
+    SEATS[key] = None
+    return key
+
+
+def open_seat(seat: Seat, key: str | None = None) -> str:
+    key = key or reserve_seat()
     SEATS[key] = seat
     return key
 
@@ -72,12 +80,14 @@ class AgentTeam(Team):
         await seat.pre_game(ctx)
 
     async def play(self, ctx: TeamContext) -> None:
-        await self.seat.play(ctx)
+        try:
+            await self.seat.play(ctx)
+        finally:  # (the match records the iterations at the whistle, before the post-game)
+            acted = [c.get("arguments", {}).get("player") for c in self.seat.calls if "tick_start" in c]
+            self.iterations = [acted.count(name) for name in self.seat.players]  # the paper's I: actions
 
     async def post_game(self, ctx: TeamContext) -> None:
         seat = self.seat
-        acted = [c.get("arguments", {}).get("player") for c in seat.calls if "tick_start" in c]
-        self.iterations = [acted.count(name) for name in seat.players]  # the paper's I: actions per player
         self.problems.extend(seat.problems)
         seat.problems.clear()
         write_calls(ctx, seat)
@@ -88,5 +98,5 @@ def write_calls(ctx: TeamContext, seat: Seat) -> None:
     played on."""
     ctx.out_dir.mkdir(parents=True, exist_ok=True)
     lines = [json.dumps({"clock": ctx.clock.mode, "window_s": seat.window_s})]
-    lines += [json.dumps(c, default=str) for c in seat.calls]
+    lines += [json.dumps(c, default=str) for c in seat.take_calls()]
     (ctx.out_dir / "tools.jsonl").write_text("\n".join(lines) + "\n")

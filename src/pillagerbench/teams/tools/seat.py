@@ -60,7 +60,10 @@ class Seat:
         self.pregame_timeout_s, self.window_s, self.think_limit_s = pregame_timeout_s, window_s, think_limit_s
         self.phase, self.episode = "pre_game", 0
         self.ctx: TeamContext | None = None
-        self.calls: list[dict[str, Any]] = []  # this episode's calls (the team's artefact tools.jsonl)
+        # the calls since the last episode's were written (`take_calls`): the next episode's, made from its
+        # pre-game on, or before it (the team's artefact tools.jsonl)
+        self.calls: list[dict[str, Any]] = []
+        self._unlogged: list[tuple[Any, str, str]] = []  # refusals before an episode's event log was open
         self.problems: list[str] = []
         self.left = False  # the agent has gone (a client that disconnected)
         self._ready = asyncio.Event()  # an episode's context is here (pre-game begun)
@@ -71,7 +74,7 @@ class Seat:
         self._busy: dict[str, int] = {}  # player -> its acting calls in flight
         self._hold: AsyncExitStack | None = None  # the team's hold while nothing acts (lockstep)
         self._go: asyncio.Task | None = None  # lets the world go once the turn's window has passed
-        self._t0 = time.monotonic()
+        self._t0 = self._last_call = time.monotonic()  # (the last call's start or end)
 
     @property
     def tools(self) -> list[ToolSpec]:
@@ -81,10 +84,13 @@ class Seat:
     async def pre_game(self, ctx: TeamContext) -> None:
         """An episode's pre-game: its context is the agent's until the whistle; returns at the agent's first
         acting call (or after pregame_timeout_s, or at once once the agent has left)."""
-        self.ctx, self.episode, self.calls = ctx, ctx.episode, []
+        self.ctx, self.episode = ctx, ctx.episode
         self._acted.clear()
         self._ready.set()
         self._set_phase("pre_game")
+        for player, tool, message in self._unlogged:  # refused before the episode's log was open
+            self._note_refusal(player, tool, message)
+        self._unlogged.clear()
         if self.left:
             return
         try:
@@ -138,7 +144,7 @@ class Seat:
     async def call(self, name: str, arguments: dict[str, Any] | None = None) -> ToolResult:
         """One tool call: its result, or a tool error naming the problem (never an exception)."""
         await asyncio.sleep(0)  # every call lets the match's own tasks run (a tight loop of calls cannot starve it)
-        t0 = time.monotonic()
+        t0 = self._last_call = time.monotonic()
         args = dict(arguments or {})
         entry: dict[str, Any] = {"tool": name, "arguments": args, "at_s": round(t0 - self._t0, 3)}
         try:
@@ -148,7 +154,8 @@ class Seat:
             entry["refused"] = str(exc)
             self._note_refusal(args.get("player"), name, str(exc))
             result = ToolResult(str(exc), error=True)
-        entry["wall_s"] = round(time.monotonic() - t0, 4)
+        self._last_call = time.monotonic()
+        entry["wall_s"] = round(self._last_call - t0, 4)
         self.calls.append(entry)
         return result
 
@@ -211,7 +218,7 @@ class Seat:
             result = await self._perform(ctx, name, args)
         finally:
             await self._end(ctx, player)
-        entry["tick_end"] = _tick(ctx)
+        entry["tick_end"] = min(_tick(ctx), round(ctx.episode_length / TICK_S))  # (the whistle's, at most)
         if ctx.time_left() <= 0:
             result["ended"] = "the episode ended (the whistle) while this call was in flight"
         return result
@@ -286,8 +293,8 @@ class Seat:
         """An agent that neither acts nor answers for think_limit_s of wall time: the world goes on."""
         while True:
             await asyncio.sleep(min(1.0, self.think_limit_s))
-            last = max([self._t0 + c["at_s"] + c.get("wall_s", 0.0) for c in self.calls] or [self._t0])
-            if self._hold is not None and not any(self._busy.values()) and time.monotonic() - last > self.think_limit_s:
+            quiet = time.monotonic() - self._last_call
+            if self._hold is not None and not any(self._busy.values()) and quiet > self.think_limit_s:
                 self.problems.append(
                     f"no call for think_limit_s={self.think_limit_s:g} s of wall time: the world went on"
                 )
@@ -298,10 +305,17 @@ class Seat:
 
     def _note_refusal(self, player: Any, tool: str, message: str) -> None:
         ctx = self.ctx  # (an episode's event log is open from its pre-game to its whistle)
-        if ctx is not None and self._ready.is_set() and isinstance(player, str) and player in ctx.players:
+        if ctx is None or not self._ready.is_set():
+            self._unlogged.append((player, tool, message))
+        elif isinstance(player, str) and player in ctx.players:
             note: Callable[[list], None] | None = getattr(ctx.players[player], "note", None)
             if note is not None:
                 note(["onToolRefused", {"onToolRefused": message, "tool": tool}])
+
+    def take_calls(self) -> list[dict[str, Any]]:
+        """The calls since the last take (an episode's, written in its post-game), forgotten here."""
+        calls, self.calls = self.calls, []
+        return calls
 
 
 def _tick(ctx: TeamContext) -> int:
