@@ -118,8 +118,7 @@ async def mcp_http(n: int) -> dict[str, float]:
         proc.wait()
 
 
-def _game_wall(run_dir: Path) -> dict[str, Any]:
-    rec = json.loads((run_dir / "episodes.jsonl").read_text().splitlines()[0])
+def _game_wall(rec: dict[str, Any]) -> dict[str, Any]:
     game = rec["duration_s"] - rec["reset_s"] - max(rec["pre_game_s"].values())
     return {"game_wall_s": round(game, 2), "red_score": rec["red_score"]}
 
@@ -144,8 +143,10 @@ class SameActions(Team):
 
 async def scripted_episode(length: float) -> dict[str, Any]:
     run_dir = Path(tempfile.mkdtemp(prefix="pb-tools-"))
-    await play_series("mushroom_war", SameActions(), "do_nothing", run_dir, length=length, clock="lockstep", seed=4)
-    return _game_wall(run_dir)
+    recs = await play_series(
+        "mushroom_war", SameActions(), "do_nothing", run_dir, length=length, clock="lockstep", seed=4
+    )
+    return _game_wall(recs[0].to_dict())
 
 
 async def mcp_episode(length: float) -> dict[str, Any]:
@@ -164,7 +165,7 @@ async def mcp_episode(length: float) -> dict[str, Any]:
                     await session.call_tool("wait", {"player": player, "ticks": 20})
 
             await asyncio.gather(*(keep_harvesting(p) for p in ("Ryn", "Raze")))
-    return _game_wall(run_dir)
+    return _game_wall(json.loads((run_dir / "episodes.jsonl").read_text().splitlines()[0]))
 
 
 async def main() -> None:
@@ -173,15 +174,15 @@ async def main() -> None:
     parser.add_argument("--episode-length", type=float, default=30.0)
     args = parser.parse_args()
     out: dict[str, Any] = {"calls": args.calls}
-    out["per_call_ms"] = {
-        "in_process": await in_process(args.calls),
-        "mcp_stdio": await mcp_stdio(args.calls),
-        "mcp_http": await mcp_http(args.calls),
-    }
     out["lockstep_episode"] = {
         "episode_length_s": args.episode_length,
         "python_team": await scripted_episode(args.episode_length),
         "mcp_stdio_agent": await mcp_episode(args.episode_length),
+    }
+    out["per_call_ms"] = {
+        "in_process": await in_process(args.calls),
+        "mcp_stdio": await mcp_stdio(args.calls),
+        "mcp_http": await mcp_http(args.calls),
     }
     print(json.dumps(out, indent=1))
 

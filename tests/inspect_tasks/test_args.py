@@ -75,3 +75,10 @@ def test_the_clock_argument_picks_the_runs_clock_and_a_bad_one_names_the_clocks(
     assert default.config.clock.mode == "real"
     with pytest.raises(TaskArgumentError, match="clock 'fast'.*lockstep, real"):
         series("mushroom_war", parse("mushroom_war", ("mushroom_war",), {"clock": "fast"}), roles=[])
+
+
+def test_the_agent_team_plays_each_side_asked_from_a_seat_opened_per_sample() -> None:
+    args = parse("mushroom_war", ("mushroom_war",), {"team": "agent", "sides": "red,blue", "opponents": "passive"})
+    specs = series("mushroom_war", args, roles=[])
+    assert [(s.red, s.blue, side_of(s)) for s in specs] == [("agent", "passive", "red"), ("passive", "agent", "blue")]
+    assert all(s.config.side(side_of(s)).model_dump().get("seat") is None for s in specs)  # opened by the setup step

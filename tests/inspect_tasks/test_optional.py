@@ -61,6 +61,8 @@ def test_llm_inspect_without_the_extra_is_one_line(tmp_path: Path) -> None:
             "model role 'blue' given, but blue plays passive, which is not an LLM team",
         ),
         ({"team": "balanced"}, {"red": True}, "red plays balanced, which is not an LLM team"),
+        ({"team": "agent", "opponents": "agent"}, {}, "opponents=agent: only the task's team is played by the"),
+        ({"team": "agent"}, {"red": True, "blue": True}, "team=agent with model roles for both sides: the Inspect"),
     ],
 )
 def test_bad_task_arguments_are_one_line_and_start_nothing(tmp_path: Path, task_args, roles, says) -> None:

@@ -115,34 +115,45 @@ async def test_the_same_seed_plays_the_same_game_however_long_the_agent_pauses(t
     assert len(quick[1]) >= 3
 
 
-async def test_a_client_over_http_plays_and_the_run_is_written(tmp_path):
+async def test_a_client_over_http_plays_then_leaves_and_its_episode_in_play_is_finished_as_its_own(tmp_path):
     run_dir = tmp_path / "run"
     proc = subprocess.Popen(
-        [*MCP, "transport=http", "port=0", *LOCKSTEP, "episode_length=6", f"run_dir={run_dir}"],
+        [*MCP, "transport=http", "port=0", *LOCKSTEP, "episodes=3", f"run_dir={run_dir}"],
         cwd=tmp_path,
         env=_env(),
         stderr=subprocess.PIPE,
         text=True,
     )
+    said: list[str] = []
     try:
-        url = await asyncio.to_thread(_served_url, proc)
+        reader = asyncio.create_task(asyncio.to_thread(_read, proc, said))
+        while not any("serving on http" in line for line in said):
+            await asyncio.sleep(0.1)
+            assert proc.poll() is None, said
+        url = next(line for line in said if "serving on http" in line).rsplit(" ", 1)[1].strip()
         async with streamable_http_client(url) as (read, write, *_):
             async with ClientSession(read, write, client_info=ME) as session:
                 await session.initialize()
-                assert await harvest(session) >= 1
-        assert [r["status"] for r in records(run_dir)] == ["ok"]
-        assert records(run_dir)[0]["red_entrant"]["label"] == "agent:scripted/1.0"
+                while json.loads((await call(session, "status", {}))[1])["episode"] == 0:
+                    await call(session, "mineBlock", {"player": "Ryn", "name": "red_mushroom_block", "count": 2})
+                assert not (await call(session, "wait", {"player": "Ryn", "ticks": 10}))[0]  # episode 1's game
+        assert await asyncio.to_thread(proc.wait, 60) == 0  # the run ended after episode 1, by itself
+        await reader
     finally:
-        proc.terminate()
-        proc.wait(timeout=30)
+        if proc.poll() is None:
+            proc.kill()
+    recs = records(run_dir)
+    assert [(r["episode"], r["status"]) for r in recs] == [(0, "ok"), (1, "ok")]
+    assert recs[0]["red_score"] > 0 == recs[0]["blue_score"]
+    assert recs[0]["red_entrant"]["label"] == "agent:scripted/1.0"
+    assert any("the agent left" in p for p in recs[1]["problems"]["red"])
+    assert any("2 of 3 episode(s) played" in line for line in said)
 
 
-def _served_url(proc: subprocess.Popen) -> str:
+def _read(proc: subprocess.Popen, said: list[str]) -> None:
     assert proc.stderr is not None
-    for line in proc.stderr:
-        if "serving on http" in line:
-            return line.rsplit(" ", 1)[1].strip()
-    raise AssertionError(f"the server never said where it serves (exit {proc.wait()})")
+    for line in iter(proc.stderr.readline, ""):
+        said.append(line)
 
 
 async def test_a_client_that_leaves_mid_series_ends_the_run_cleanly_keeping_what_it_finished(tmp_path):

@@ -2,7 +2,8 @@
 and the series they make: our generalization design (experiments/spec.py) with the task's scenarios,
 team, opponents, sides and arenas, so a sample is one series (opponent, side, arena) built exactly
 as `pillagerbench run experiment=generalization` builds it. With model roles for both sides
-(`--model-role red=... --model-role blue=...`) the team plays itself: model against model.
+(`--model-role red=... --model-role blue=...`) the team plays itself: model against model. With
+`team=agent` the Inspect agent plays the team from a seat each sample opens (seated.py).
 
 A bad argument is one line naming it and what is accepted (`TaskArgumentError`, which Inspect prints
 without a traceback); nothing is started and no run directory is written.
@@ -25,8 +26,10 @@ from pillagerbench.match.validate import check_run_config, layout_problems, team
 from pillagerbench.rundir import SeriesSpec
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 from pillagerbench.teams import TEAMS, find_team
+from pillagerbench.teams.tools import AgentTeam
 
 SIDES = ("red", "blue")
+AGENT = AgentTeam.name  # -T team=agent: the Inspect agent plays the team through the game's tools (seated.py)
 ARGS = (
     "team",
     "opponents",
@@ -149,6 +152,9 @@ def overrides(args: TaskArgs, roles: Iterable[str]) -> list[str]:
 def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
     """The series of the task (one per sample), every team and the model roles checked."""
     roles = [r for r in roles if r in SIDES]
+    refused = agent_problem(args, roles)
+    if refused:
+        raise TaskArgumentError(task, refused)
     argv = overrides(args, roles)
     try:
         cfg = check_run_config(to_dict(load_config(argv)), teams=False)
@@ -159,6 +165,7 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
         specs = [on_layout(task, spec, args.layout) for spec in specs]
     for spec in specs:
         problems = team_problems(spec.config.stored())  # each series' teams, their options and LLM settings, as a run's
+        problems = [p for p in problems if p not in UNSEATED]  # the agent's seat is opened per sample (seated.py)
         if problems:
             raise TaskArgumentError(task, problems[0])
         for side in roles:
@@ -171,6 +178,23 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
                     f"(LLM teams: {llm_teams}; roles: red, blue)",
                 )
     return specs
+
+
+# what the agent team says before its sample's seat is opened (by the setup step, seated.py)
+UNSEATED = {f"{side}.{problem}" for side in SIDES for problem in AgentTeam.check_options({})}
+
+
+def agent_problem(args: TaskArgs, roles: list[str]) -> str | None:
+    """Why the agent team cannot play as asked: it plays from the seat of a sample, which only the task's
+    team has, one agent against the opponents."""
+    if AGENT in args.opponents:
+        return f"opponents={AGENT}: only the task's team is played by the Inspect agent (-T team={AGENT})"
+    if args.team == AGENT and set(SIDES) <= set(roles):
+        return (
+            f"team={AGENT} with model roles for both sides: the Inspect agent plays one side against the "
+            "opponents, not model against model (give --model, or an LLM team as team=)"
+        )
+    return None
 
 
 def on_layout(task: str, spec: SeriesSpec, layout: str | int) -> SeriesSpec:

@@ -33,6 +33,8 @@ from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import pairing
 from pillagerbench.metrics.runs import read_runs
 
+from .seated import finished
+
 NAMES = {"W": "win", "P": "points", "S": "sabotage", "D": "dominance"}
 
 
@@ -89,6 +91,7 @@ METRICS["sabotage"] = [known_mean(), known_stderr()]
 @scorer(metrics=METRICS)
 def series_score() -> Scorer:
     async def score(state: TaskState, target: Target) -> Score:
+        await finished(state)  # an agent's series (-T team=agent) played to its end without the agent
         side = state.metadata["side"]
         values, used = series_scores(Path(state.metadata["run_dir"]), side)
         summary = state.metadata.get("summary", {})

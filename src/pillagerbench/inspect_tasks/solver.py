@@ -23,6 +23,7 @@ from . import transcript
 from .experiment_dir import add_series
 
 EPOCH_SEED = 100_003  # a later epoch plays the same series on other seeds (a replicate, not a copy)
+MATCHES = "pillagerbench-matches"  # Inspect's concurrency name for the matches played at once
 
 
 def epoch_spec(spec: SeriesSpec, epoch: int) -> SeriesSpec:
@@ -47,7 +48,7 @@ def play_series(root: str, task: str) -> Solver:
         spec = epoch_spec(SeriesSpec.from_dict(state.metadata["series"]), state.epoch)
         spec, where = add_series(Path(root), spec, task)
         state.metadata["run_dir"] = str(where.resolve())  # a series cut by --time-limit scores what it finished
-        async with concurrency("pillagerbench-matches", choose_parallel().parallel):
+        async with concurrency(MATCHES, choose_parallel().parallel):
             summary: dict[str, Any] = await run_series(spec, where, Path(root), say=transcript.say)
         state.metadata["summary"] = summary
         transcript.episodes(where)

@@ -59,8 +59,11 @@ async def serve(
     name: str = "pillagerbench",
     on_ready: Callable[[str], None] | None = None,
     stop: asyncio.Event | None = None,
+    on_session_end: Callable[[], None] | None = None,
 ) -> None:
     """Serve `tools` over MCP, answering each call with `call(caller, tool name, arguments)`.
+    `on_session_end`: called when an HTTP client's session ends (it closed it, or its connection went);
+    on stdio the client's leaving is this function's return.
 
     transport="stdio": on this process's stdin/stdout until the client disconnects (`host`, `port`,
     `token` and `stop` are not used; `on_ready` gets "stdio"). transport="http": streamable HTTP at
@@ -78,7 +81,22 @@ async def serve(
                 on_ready("stdio")
             await server.run(read, write, server.create_initialization_options())
         return
-    await _serve_http(server, host, port, token, on_ready, stop)
+    await _serve_http(server, host, port, token, on_ready, stop, on_session_end)
+
+
+class _Sessions(StreamableHTTPSessionManager):
+    """The SDK's HTTP session manager, saying when a session has ended (a client's DELETE, its connection
+    gone, a crash): the one place every session's end passes (the SDK's pinned 2.3.0)."""
+
+    def __init__(self, *args: Any, on_end: Callable[[], None] | None = None, **kwargs: Any):
+        super().__init__(*args, **kwargs)
+        self._on_end = on_end
+
+    async def _discard_session(self, session_id: str, transport: Any) -> None:
+        known = session_id in self._server_instances
+        await super()._discard_session(session_id, transport)
+        if known and self._on_end is not None:
+            self._on_end()
 
 
 def _check_host(host: str, token: str | None) -> None:
@@ -203,11 +221,12 @@ async def _serve_http(
     token: str | None,
     on_ready: Callable[[str], None] | None,
     stop: asyncio.Event | None,
+    on_session_end: Callable[[], None] | None = None,
 ) -> None:
     """uvicorn serving the SDK's streamable HTTP session manager. On `stop` the manager is closed first
     (ending every MCP session and its open streams), then uvicorn, so the shutdown does not wait on a
     client's open SSE stream."""
-    manager = StreamableHTTPSessionManager(app=server, security_settings=_security(host))
+    manager = _Sessions(app=server, security_settings=_security(host), on_end=on_session_end)
     gate = _Gate(Starlette(routes=[Route(MCP_PATH, endpoint=StreamableHTTPASGIApp(manager))]), token)
     config = uvicorn.Config(
         gate,

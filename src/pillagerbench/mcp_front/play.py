@@ -41,8 +41,12 @@ from pillagerbench.teams.tools.agent import open_seat, reserve_seat
 SIDES = ("red", "blue")
 TRANSPORTS = ("stdio", "http")
 TOKEN_ENV = "PILLAGERBENCH_MCP_TOKEN"
-LINGER_S = 10.0  # http: after the run, the server answers this long (the client reads that it is over)
+LINGER_S = 3.0  # http: after the run, the server answers this long (the client reads that it is over)
 NOT_HERE = ("red", "blue", "experiment", "resume", "plan")  # keys of `run` this command chooses itself
+
+
+class AgentLeft(Exception):
+    """The client has gone; raised once an episode is committed, so no other begins without it."""
 
 
 @dataclass(frozen=True)
@@ -120,6 +124,8 @@ class McpRun:
     async def _play(self, spec: SeriesSpec, run_dir: Path) -> None:
         try:
             await run_series(spec, run_dir, say=say, on_episode=self._done)
+        except AgentLeft:
+            say("the agent left: the run ended after its episode")
         except asyncio.CancelledError:
             say("the agent left: the run ends; its episode in play is not finished (not recorded), the rest is kept")
         finally:
@@ -128,6 +134,15 @@ class McpRun:
 
     def _done(self, rec: EpisodeRecord) -> None:
         say(f"episode {rec.episode}: {rec.status}, red {rec.red_score} - blue {rec.blue_score}")
+        if self.seat.left:  # (called once the episode is committed: the run ends here, beginning no other)
+            raise AgentLeft()
+
+    def left(self) -> None:
+        """The client's HTTP session has ended: its players idle to the end of the episode in play, which is
+        recorded as the team's, and the run ends."""
+        if self.task is not None and not self.task.done():
+            say("the agent's session ended: its players idle to the end of this episode, then the run ends")
+            self.seat.leave()
 
     async def end(self) -> None:
         """The client has gone (on stdio it closed our input, and kills our process group 2 s later, as MCP's
@@ -160,6 +175,7 @@ async def _serve(args: McpArgs, run: McpRun, token: str | None) -> None:
             token=token,
             on_ready=lambda where: say(f"serving on {where}"),
             stop=stop,
+            on_session_end=run.left,
         )
     )
     asyncio.get_running_loop().add_signal_handler(signal.SIGTERM, server.cancel)  # as a client that left

@@ -64,7 +64,10 @@ def test_an_outside_agent_is_its_declared_name_version_and_model():
     one = entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5")
     assert one["label"] == "agent:claude-code/2.1@claude-sonnet-4-5"
     assert one["models"] == {"team": "claude-sonnet-4-5"}
-    assert entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5", seat="other")["id"] == one["id"]
+    assert (
+        entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5", seat="other")["id"]
+        == one["id"]
+    )
     others = [
         entrant(agent="codex", agent_version="2.1", agent_model="claude-sonnet-4-5"),
         entrant(agent="claude-code", agent_version="2.2", agent_model="claude-sonnet-4-5"),
