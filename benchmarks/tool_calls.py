@@ -5,7 +5,9 @@
 1. One call's wall time, the median of --calls, on the real clock (no window: the world runs on), each
    an empty program on a player's bot (`run_code` with code ""), and `status` (no game action):
    - `code`: the same empty program run through the player's handle, as a built-in team runs code;
-   - `seat`: through the seat in process (the Inspect tools and our `tools` team call it so);
+   - `seat`: through the seat in process (our `tools` team calls it so);
+   - `inspect`: one model turn's call run by Inspect's `execute_tools` (as `react()` runs it) on the seat's
+     Inspect tools;
    - `mcp_stdio`, `mcp_http`: from the official SDK's client to `pillagerbench mcp`.
 2. A lockstep episode's wall time (the game only: the record's duration less its reset and pre-game):
    a Python team (both players harvest, each in a loop of one `mineBlock` program and a 1 s wait) and the
@@ -32,11 +34,14 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 sys.path.insert(0, str(ROOT))
 
+from inspect_ai.model import ChatMessageAssistant, execute_tools  # noqa: E402
+from inspect_ai.tool import ToolCall  # noqa: E402
 from mcp import ClientSession, StdioServerParameters  # noqa: E402
 from mcp.client.stdio import stdio_client  # noqa: E402
 from mcp.client.streamable_http import streamable_http_client  # noqa: E402
 from mcp.types import Implementation  # noqa: E402
 
+from pillagerbench.inspect_tasks.tools import seat_tools  # noqa: E402
 from pillagerbench.scenarios import make_scenario  # noqa: E402
 from pillagerbench.teams import Team, TeamContext  # noqa: E402
 from pillagerbench.teams.tools import AgentTeam, Seat  # noqa: E402
@@ -46,7 +51,13 @@ from tests.teams.conftest import play_series  # noqa: E402
 
 MCP = [sys.executable, "-m", "pillagerbench.cli", "mcp"]
 ME = Implementation(name="bench", version="1")
-HARVEST = {"name": "red_mushroom_block", "count": 4, "point": [-14, 4, 0], "maxDistance": 7}
+_RED = make_scenario("mushroom_war").placeholders("red")
+HARVEST = {  # what examples/scripted_team.py harvests: red's mushrooms, 4 a trip, within its area
+    "name": _RED["team_block"],
+    "count": 4,
+    "point": [int(v) for v in _RED["team_center"].split(",")],
+    "maxDistance": _RED["area_radius"],
+}
 
 
 def _median_ms(times: list[float]) -> float:
@@ -73,8 +84,16 @@ async def in_process(n: int) -> dict[str, float]:
         await seat.call("wait", {"player": "Ryn", "ticks": 1})  # the game is on
         handle = seat.ctx.players["Ryn"] if seat.ctx else None
         assert handle is not None
-        found["code"] = _median_ms(await _timed(n, lambda: handle.run("")))
-        found["seat"] = _median_ms(await _timed(n, lambda: seat.call("run_code", {"player": "Ryn", "code": ""})))
+        tools = seat_tools(seat)
+        turn = ChatMessageAssistant(
+            content="", tool_calls=[ToolCall(id="1", function="run_code", arguments={"player": "Ryn", "code": ""})]
+        )
+        code, seated, inspect = [], [], []
+        for _ in range(n):  # interleaved: none has the warm-up to itself
+            code += await _timed(1, lambda: handle.run(""))
+            seated += await _timed(1, lambda: seat.call("run_code", {"player": "Ryn", "code": ""}))
+            inspect += await _timed(1, lambda: execute_tools([turn], tools))  # as react() runs a turn's calls
+        found["code"], found["seat"], found["inspect"] = _median_ms(code), _median_ms(seated), _median_ms(inspect)
         found["seat_status"] = _median_ms(await _timed(n, lambda: seat.call("status")))
 
     task = asyncio.create_task(agent())

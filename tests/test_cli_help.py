@@ -25,6 +25,15 @@ CONF = ROOT / "src" / "pillagerbench" / "conf"
 MENTIONS = {
     "run": ["episodes=1", "scenario=mushroom_war", "red=balanced", "llm.model=local", "parallel=null", "experiment="],
     "setup": ["--watch"],
+    "mcp": [
+        "side=red",
+        "opponent=NAME",
+        "transport=stdio|http",
+        "clock=real",
+        "episodes=1",
+        "clientInfo",
+        "do_nothing",
+    ],
     "server": ["server.port=0", "server.operators=[]", "watch=null"],
     "try": ["scenario", "player", "code", "timeout", "inventory"],
     "llm-ping": ["llm=openai_compatible", "llm.base_url=", "llm.api_key_env=null", "llm.timeout=60"],

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from pillagerbench.config.schema import ClockConfig
 from pillagerbench.match import Match
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.server import ArenaServer
@@ -25,15 +26,16 @@ async def play_series(
     length: float = 20,
     llms: dict | None = None,
     seed: int = 1,
-    clock: str = "real",
+    clock: str | ClockConfig = "real",
     idle_limit_s: float | None = None,
     **match_options,
 ):
-    """Play `episodes` episodes on a fresh server (on `clock`); red/blue are team names or Team objects;
-    `match_options` go to Match (scoring=, protocol=)."""
+    """Play `episodes` episodes on a fresh server (on `clock`: a mode, or a whole ClockConfig); red/blue are
+    team names or Team objects; `match_options` go to Match (scoring=, protocol=)."""
+    config = clock_of(clock) if isinstance(clock, str) else clock
     sc = make_scenario(scenario_key, crop_growth_chance=0.3 if scenario_key == "dash_and_dine" else 0.0)
     teams = {side: make_team(t, sc.key) if isinstance(t, str) else t for side, t in (("red", red), ("blue", blue))}
-    async with ArenaServer(log_path=run_dir / "server.log", clock=clock, idle_limit_s=idle_limit_s) as server:
+    async with ArenaServer(log_path=run_dir / "server.log", clock=config.mode, idle_limit_s=idle_limit_s) as server:
         match = Match(
             server,
             sc,
@@ -42,7 +44,7 @@ async def play_series(
             episode_length=length,
             seed=seed,
             llms=llms or {},
-            clock=clock_of(clock),
+            clock=config,
             **match_options,
         )
         try:

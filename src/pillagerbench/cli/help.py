@@ -101,6 +101,19 @@ HELP: dict[str, CommandHelp] = {
             "pillagerbench compare cot tacticrafter llm=openai llm.model=gpt-4o sprt.p1=0.7",
         ),
     ),
+    "mcp": CommandHelp(
+        usage=(
+            "pillagerbench mcp [side=red] [opponent=NAME] [transport=stdio|http] [host=H] [port=P] [agent_model=M] [key=value ...]",
+        ),
+        keys=("episodes", "layout", "split", *GAME, "run_dir", "retries"),
+        groups=("scenario", "clock"),
+        choices=("scenarios", "teams"),
+        doc=True,
+        examples=(
+            "pillagerbench mcp clock=lockstep episodes=3",
+            "pillagerbench mcp side=blue opponent=balanced agent_model=gpt-4o transport=http port=8765",
+        ),
+    ),
     "teams": CommandHelp(
         usage=("pillagerbench teams",),
         doc=True,

@@ -20,7 +20,7 @@ from pillagerbench.teams.registry import (
 )
 from pillagerbench.teams.remote import RemoteTeam
 from pillagerbench.teams.tacticrafter import TactiCrafter
-from pillagerbench.teams.tools import AgentTeam
+from pillagerbench.teams.tools import AgentTeam, ToolsTeam
 
 BUILT_IN: tuple[type[Team], ...] = (
     DoNothing,
@@ -37,6 +37,7 @@ BUILT_IN: tuple[type[Team], ...] = (
     TactiCrafter,  # the paper's own system
     RemoteTeam,  # a team in any language behind HTTP (docs/remote-teams.md)
     AgentTeam,  # a team an outside agent plays through the game's tools (docs/any-agent.md)
+    ToolsTeam,  # an LLM team playing through the same tools by function calling (beyond the paper)
 )
 for _cls in BUILT_IN:
     register(_cls)

@@ -252,6 +252,21 @@ class Seat:
             events = await handle.run(code)
         return _outcome(player, events)
 
+    async def charge(self, tokens: int) -> None:
+        """Thinking charged in game time (`clock.ticks_per_1k_tokens`: the LLM client's charge after each of a
+        seated team's model calls): every player waits it out as one acting call, the world running (the
+        clock's own charge rests them while the team holds the world, which would then never go on)."""
+        ctx = self.ctx
+        if ctx is None or not self._game.is_set():
+            return
+        for player in self.players:
+            await self._begin(ctx, player)
+        try:
+            await ctx.clock.charge(tokens, self.players)
+        finally:
+            for player in self.players:
+                await self._end(ctx, player)
+
     # --- the world's holds (lockstep; no-ops on the real clock) -------------------------------------
     async def _begin(self, ctx: TeamContext, player: str) -> None:
         async with self._lock:
