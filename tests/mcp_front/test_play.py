@@ -48,10 +48,13 @@ async def call(session: ClientSession, name: str, arguments: dict[str, Any]) -> 
     return bool(result.is_error), result.content[0].text
 
 
-async def harvest(session: ClientSession, *, pause_s: float = 0.0, seed: int = 0) -> int:
+async def harvest(
+    session: ClientSession, *, pause_s: float = 0.0, seed: int = 0, whistles: list[int] | None = None
+) -> int:
     """Each player mines its team's mushrooms, one call at a time, until the run is over; returns the
-    number of actions. `pause_s`: a random pause of up to that many seconds before each call."""
-    rng, actions = random.Random(seed), 0
+    number of actions. `pause_s`: a random pause of up to that many seconds before each call; `whistles`:
+    the episodes in which a call was in flight at the whistle."""
+    rng, actions, whistles = random.Random(seed), 0, [] if whistles is None else whistles
     while True:
         error, text = await call(session, "status", {})
         status = json.loads(text)
@@ -61,7 +64,10 @@ async def harvest(session: ClientSession, *, pause_s: float = 0.0, seed: int = 0
             await asyncio.sleep(rng.uniform(0, pause_s))
             error, text = await call(session, "mineBlock", {"player": player, "name": "red_mushroom_block", "count": 2})
             actions += not error
-            assert not error or "over" in text or "ended" in text, text
+            assert not error or "the run is over" in text, text
+            if not error and "ended" in json.loads(text):  # in flight at the whistle: it says so
+                assert json.loads(text)["ended"].startswith("the episode ended (the whistle)")
+                whistles.append(status["episode"])
 
 
 def records(run_dir: Path) -> list[dict]:
@@ -84,7 +90,9 @@ async def test_a_client_on_stdio_plays_three_episodes_outscores_do_nothing_and_r
         assert "'Byte' is not on the red team" in refusals[2][1]
         seen = await call(session, "observe", {"player": "Ryn"})
         assert not seen[0] and "inventory" in json.loads(seen[1])["observation"]
-        assert await harvest(session) > 4
+        whistles: list[int] = []
+        assert await harvest(session, whistles=whistles) > 4
+        assert whistles  # (a call that keeps a player busy to the whistle returns then, saying so)
         late = await call(session, "wait", {"player": "Ryn", "ticks": 5})
         assert late[0] and "the run is over" in late[1]
     recs = records(run_dir)
@@ -99,6 +107,10 @@ async def test_a_client_on_stdio_plays_three_episodes_outscores_do_nothing_and_r
     report = run_cli(tmp_path, "report", str(run_dir), "--no-replays", "--out", str(tmp_path / "report"), timeout=180)
     assert report.returncode == 0, report.stderr
     assert "agent:scripted/1.0" in (tmp_path / "report" / "summary.md").read_text()
+    bundle = tmp_path / "results.tar.gz"
+    assert run_cli(tmp_path, "export", str(run_dir), "--out", str(bundle)).returncode == 0
+    verified = run_cli(tmp_path, "verify", str(bundle))
+    assert verified.returncode == 0, verified.stdout + verified.stderr
 
 
 async def test_the_same_seed_plays_the_same_game_however_long_the_agent_pauses(tmp_path):

@@ -13,8 +13,7 @@ from typing import Any
 from pydantic import Field
 
 from pillagerbench.teams.base import Team, TeamContext
-from pillagerbench.teams.options import TeamOptions
-from pillagerbench.teams.tools.seat import Seat
+from pillagerbench.teams.tools.seat import Seat, SeatOptions
 
 # the seats the fronts of this process opened (`open_seat`), by id: how the team a config names finds its agent
 # (None: reserved, so a config naming it can be checked before the seat, which needs the config's scenario)
@@ -33,16 +32,13 @@ def open_seat(seat: Seat, key: str | None = None) -> str:
     return key
 
 
-class AgentOptions(TeamOptions):
+class AgentOptions(SeatOptions):
     """agent's options: who the agent is (set by the front that seats it), and its seat's timings."""
 
     agent: str = Field(default="unknown", description="the agent's declared name (MCP clientInfo, the solver's)")
     agent_version: str = Field(default="0", description="the agent's declared version")
     agent_model: str | None = Field(default=None, description="the model behind the agent, when known")
     seat: str | None = Field(default=None, description="the seat a front of this process opened (not play)")
-    pregame_timeout_s: float = Field(default=60.0, gt=0, description="the pre-game ends without an acting call")
-    window_ms: float = Field(default=50.0, ge=0, description="lockstep: acting calls this close start on one tick")
-    think_limit_s: float = Field(default=300.0, gt=0, description="lockstep: the world waits this long at most")
 
 
 class AgentTeam(Team):
@@ -71,12 +67,8 @@ class AgentTeam(Team):
         return found
 
     async def pre_game(self, ctx: TeamContext) -> None:
-        seat, o = self.seat, self.settings
-        seat.pregame_timeout_s, seat.window_s, seat.think_limit_s = (
-            o.pregame_timeout_s,
-            o.window_ms / 1000,
-            o.think_limit_s,
-        )
+        seat = self.seat
+        seat.configure(self.settings)
         await seat.pre_game(ctx)
 
     async def play(self, ctx: TeamContext) -> None:

@@ -29,9 +29,8 @@ from pillagerbench.agents import context as C
 from pillagerbench.llm import LLMError
 from pillagerbench.llm.tool_calls import ToolAnswer, ToolCall, ask_with_tools, tool_result
 from pillagerbench.teams.base import Team, TeamContext
-from pillagerbench.teams.options import TeamOptions
 from pillagerbench.teams.tools.agent import write_calls
-from pillagerbench.teams.tools.seat import Seat
+from pillagerbench.teams.tools.seat import Seat, SeatOptions
 from pillagerbench.teams.tools.surface import briefing
 
 ROLE = "action"
@@ -46,7 +45,7 @@ CUT = " Your last answer was cut off: be shorter."
 DROPPED = "(observation dropped: see the latest results, or call observe)"
 
 
-class ToolsOptions(TeamOptions):
+class ToolsOptions(SeatOptions):
     """tools' options (`red.KEY=VALUE`; conf/team/tools.yaml repeats them)."""
 
     temperature: float | None = Field(default=None, ge=0, le=2, description="null = the llm preset's temperature")
@@ -59,9 +58,6 @@ class ToolsOptions(TeamOptions):
     history_turns: int = Field(
         default=12, ge=1, description="model turns kept in the conversation (only the latest keeps observations)"
     )
-    pregame_timeout_s: float = Field(default=60.0, gt=0, description="the pre-game ends without an acting call")
-    window_ms: float = Field(default=50.0, ge=0, description="lockstep: acting calls this close start on one tick")
-    think_limit_s: float = Field(default=300.0, gt=0, description="lockstep: the world waits this long at most")
 
 
 class Conversation:
@@ -268,14 +264,8 @@ class ToolsTeam(Team):
     # --- the seat -------------------------------------------------------------------------------------
     def _seat_for(self, ctx: TeamContext) -> Seat:
         if self.seat is None:
-            o = self.settings
-            self.seat = Seat(
-                ctx.scenario,
-                ctx.side.key,
-                pregame_timeout_s=o.pregame_timeout_s,
-                window_s=o.window_ms / 1000,
-                think_limit_s=o.think_limit_s,
-            )
+            self.seat = Seat(ctx.scenario, ctx.side.key)
+            self.seat.configure(self.settings)
         return self.seat
 
     def _seat(self) -> Seat:

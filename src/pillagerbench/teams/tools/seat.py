@@ -27,15 +27,25 @@ from contextlib import AsyncExitStack
 from typing import Any
 
 import jsonschema
+from pydantic import Field
 
 from pillagerbench.players import events as ev
 from pillagerbench.scenarios import Scenario
 from pillagerbench.server.clock import TICK_S
 from pillagerbench.teams.base import TeamContext
+from pillagerbench.teams.options import TeamOptions
 from pillagerbench.teams.tools.spec import ToolResult, ToolSpec
 from pillagerbench.teams.tools.surface import RETURNED, call_code, primitives_of, tools_of
 
 PHASES = ("pre_game", "play", "over")
+
+
+class SeatOptions(TeamOptions):
+    """The options of a team that sits in a seat (`agent`, `tools`): its game time's limits."""
+
+    pregame_timeout_s: float = Field(default=60.0, gt=0, description="the pre-game ends without an acting call")
+    window_ms: float = Field(default=50.0, ge=0, description="lockstep: acting calls this close start on one tick")
+    think_limit_s: float = Field(default=300.0, gt=0, description="lockstep: the world waits this long at most")
 
 
 class Refused(Exception):
@@ -75,6 +85,11 @@ class Seat:
         self._hold: AsyncExitStack | None = None  # the team's hold while nothing acts (lockstep)
         self._go: asyncio.Task | None = None  # lets the world go once the turn's window has passed
         self._t0 = self._last_call = time.monotonic()  # (the last call's start or end)
+
+    def configure(self, options: SeatOptions) -> None:
+        """The limits of the team sitting here."""
+        self.pregame_timeout_s, self.think_limit_s = options.pregame_timeout_s, options.think_limit_s
+        self.window_s = options.window_ms / 1000
 
     @property
     def tools(self) -> list[ToolSpec]:
