@@ -8,13 +8,9 @@ episode's pre-game (`pre_game`) and game (`play`) on it. Phases, as `status` say
 acting call, or after `pregame_timeout_s`; an acting call made in the pre-game waits for the game and
 starts on its first tick.
 
-Game time (docs/any-agent.md). On the real clock the world runs on, as for every team. On the lockstep
-clock the world waits while the agent thinks: while none of the team's acting calls is in flight the
-team holds the world (`tools:<side>`), and it goes on only while one is. A call that ends stops the world
-on the tick it ended (its bot's idle hold), so the next call starts there however long the agent took;
-the acting calls that arrive within `window_s` of wall time while the world is held (one model turn's
-parallel calls) start on the same tick. An agent that neither acts nor answers for `think_limit_s` of
-wall time lets the world go on without it (a problem of the team's, on its record).
+Game time: `world_hold.py` (on the lockstep clock the world waits while the agent thinks). An agent that
+neither acts nor calls for `think_limit_s` of wall time lets the world go on without it (a problem of the
+team's, on its record).
 """
 
 from __future__ import annotations
@@ -23,7 +19,6 @@ import asyncio
 import json
 import time
 from collections.abc import Callable
-from contextlib import AsyncExitStack
 from typing import Any
 
 import jsonschema
@@ -36,6 +31,7 @@ from pillagerbench.teams.base import TeamContext
 from pillagerbench.teams.options import TeamOptions
 from pillagerbench.teams.tools.spec import ToolResult, ToolSpec
 from pillagerbench.teams.tools.surface import RETURNED, call_code, primitives_of, tools_of
+from pillagerbench.teams.tools.world_hold import WorldHold
 
 PHASES = ("pre_game", "play", "over")
 
@@ -67,7 +63,7 @@ class Seat:
         self.specs = {t.name: t for t in tools_of(scenario, side)}
         self._checks = {n: jsonschema.Draft202012Validator(t.parameters) for n, t in self.specs.items()}
         self._primitives = {p.name: p for p in primitives_of(list(scenario.primitives))}
-        self.pregame_timeout_s, self.window_s, self.think_limit_s = pregame_timeout_s, window_s, think_limit_s
+        self.pregame_timeout_s, self.think_limit_s = pregame_timeout_s, think_limit_s
         self.phase, self.episode = "pre_game", 0
         self.ctx: TeamContext | None = None
         # the calls since the last episode's were written (`take_calls`): the next episode's, made from its
@@ -80,16 +76,19 @@ class Seat:
         self._acted = asyncio.Event()  # the pre-game's first acting call
         self._game = asyncio.Event()  # the game is on
         self._changed = asyncio.Event()  # any change of phase (wakes those waiting for one)
-        self._lock = asyncio.Lock()  # one change of the world's holds at a time
-        self._busy: dict[str, int] = {}  # player -> its acting calls in flight
-        self._hold: AsyncExitStack | None = None  # the team's hold while nothing acts (lockstep)
-        self._go: asyncio.Task | None = None  # lets the world go once the turn's window has passed
+        self.world = WorldHold(side, self.players, window_s)  # the world's holds while the agent plays
+        self._letting_go: asyncio.Task | None = None  # the world going on without an agent that left
         self._t0 = self._last_call = time.monotonic()  # (the last call's start or end)
 
     def configure(self, options: SeatOptions) -> None:
         """The limits of the team sitting here."""
         self.pregame_timeout_s, self.think_limit_s = options.pregame_timeout_s, options.think_limit_s
-        self.window_s = options.window_ms / 1000
+        self.world.window_s = options.window_ms / 1000
+
+    @property
+    def window_s(self) -> float:
+        """Acting calls arriving this close (wall time) while the world is held start on one tick."""
+        return self.world.window_s
 
     @property
     def tools(self) -> list[ToolSpec]:
@@ -118,8 +117,7 @@ class Seat:
         if self.left:
             await ctx.clock.rest(self.players, ctx.time_left())
             return
-        async with self._lock:
-            await self._hold_world(ctx)
+        await self.world.start(ctx)
         self._set_phase("play")
         self._game.set()
         watcher = asyncio.create_task(self._watch_thinking(ctx))
@@ -129,7 +127,7 @@ class Seat:
             watcher.cancel()
             self._game.clear()
             self._ready.clear()
-            await self._let_world_go()
+            await self.world.stop()
             self._set_phase("pre_game")
 
     def finish(self) -> None:
@@ -142,13 +140,8 @@ class Seat:
             self.left = True
             self.problems.append("the agent left: its players did nothing for the rest of the episode")
             self._acted.set()
-            if self._hold is not None and self.ctx is not None:
-                asyncio.get_running_loop().create_task(self._release_for_good(self.ctx))
-
-    async def _release_for_good(self, ctx: TeamContext) -> None:
-        async with self._lock:
-            await self._let_world_go()
-            await ctx.clock.retire(self.players)
+            if self._game.is_set() and self.ctx is not None:
+                self._letting_go = asyncio.get_running_loop().create_task(self.world.let_go(self.ctx))
 
     def _set_phase(self, phase: str) -> None:
         self.phase = phase
@@ -226,13 +219,9 @@ class Seat:
     # --- acting -------------------------------------------------------------------------------------
     async def _act(self, name: str, args: dict[str, Any], entry: dict[str, Any]) -> dict[str, Any]:
         ctx = await self._game_on()
-        player = args["player"]
         entry["episode"], entry["tick_start"] = ctx.episode, _tick(ctx)
-        await self._begin(ctx, player)
-        try:
+        async with self.world.acting(ctx, [args["player"]], again=not self.left):
             result = await self._perform(ctx, name, args)
-        finally:
-            await self._end(ctx, player)
         entry["tick_end"] = min(_tick(ctx), round(ctx.episode_length / TICK_S))  # (the whistle's, at most)
         if ctx.time_left() <= 0:
             result["ended"] = "the episode ended (the whistle) while this call was in flight"
@@ -274,63 +263,19 @@ class Seat:
         ctx = self.ctx
         if ctx is None or not self._game.is_set():
             return
-        for player in self.players:
-            await self._begin(ctx, player)
-        try:
+        async with self.world.acting(ctx, self.players, again=not self.left):
             await ctx.clock.charge(tokens, self.players)
-        finally:
-            for player in self.players:
-                await self._end(ctx, player)
-
-    # --- the world's holds (lockstep; no-ops on the real clock) -------------------------------------
-    async def _begin(self, ctx: TeamContext, player: str) -> None:
-        async with self._lock:
-            first = not any(self._busy.values())
-            self._busy[player] = self._busy.get(player, 0) + 1
-            await ctx.clock.hold_idle(player)  # until its run (or wait) begins: it starts on this tick
-            if first and self._hold is not None and self._go is None:
-                self._go = asyncio.create_task(self._go_after_window())
-
-    async def _go_after_window(self) -> None:
-        await asyncio.sleep(self.window_s)  # the turn's other calls start on the same tick
-        async with self._lock:
-            self._go = None
-            if any(self._busy.values()):
-                await self._let_world_go()
-
-    async def _end(self, ctx: TeamContext, player: str) -> None:
-        async with self._lock:
-            self._busy[player] -= 1
-            if self._busy[player] == 0 and any(self._busy.values()):
-                await ctx.clock.free_idle([player])  # the others still act: the world goes on for them
-            elif not any(self._busy.values()) and ctx.time_left() > 0 and not self.left:
-                await self._hold_world(ctx)  # stopped on the tick this call ended; held while the agent thinks
-
-    async def _hold_world(self, ctx: TeamContext) -> None:
-        if ctx.clock.mode != "lockstep" or self._hold is not None:
-            return
-        stack = AsyncExitStack()
-        await stack.enter_async_context(ctx.clock.thinking(f"tools:{self.side}"))
-        self._hold = stack
-        await ctx.clock.free_idle(self.players)  # the team's hold has no wall-clock limit; idle holds do
-
-    async def _let_world_go(self) -> None:
-        stack, self._hold = self._hold, None
-        if stack is not None:
-            await stack.aclose()
 
     async def _watch_thinking(self, ctx: TeamContext) -> None:
         """An agent that neither acts nor answers for think_limit_s of wall time: the world goes on."""
         while True:
             await asyncio.sleep(min(1.0, self.think_limit_s))
             quiet = time.monotonic() - self._last_call
-            if self._hold is not None and not any(self._busy.values()) and quiet > self.think_limit_s:
+            if self.world.thinking and quiet > self.think_limit_s:
                 self.problems.append(
                     f"no call for think_limit_s={self.think_limit_s:g} s of wall time: the world went on"
                 )
-                async with self._lock:
-                    await self._let_world_go()
-                    await ctx.clock.retire(self.players)
+                await self.world.let_go(ctx)
                 return
 
     def _note_refusal(self, player: Any, tool: str, message: str) -> None:
