@@ -66,7 +66,7 @@ def test_the_command_refuses_in_one_line_with_exit_2(tmp_path):
         (["blue=passive", "blue.llm.model=x"], "pillagerbench run: blue.llm.model: team passive uses no LLM"),
         (
             ["red=nonexistent"],
-            "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; known: aggressive",
+            "pillagerbench run: red=nonexistent: unknown team 'nonexistent'; known: agent, aggressive",
         ),
         (["scenario=foo"], "pillagerbench run: unknown scenario 'foo'; known: dash_and_dine, mushroom_war"),
         (["experiment=nope"], "pillagerbench run: unknown experiment 'nope'; known: ablation_models"),
@@ -274,7 +274,7 @@ def test_report_with_a_missing_calibration_file_names_it_and_reference(capsys, t
 def test_an_unknown_experiment_team_is_named_as_the_user_typed_it(capsys, monkeypatch, tmp_path):
     monkeypatch.chdir(tmp_path)
     line = refused(capsys, "run", "experiment=main_benchmark", "experiment.team=cott")
-    assert line.startswith("pillagerbench run: experiment.team=cott: unknown team 'cott'; known: aggressive")
+    assert line.startswith("pillagerbench run: experiment.team=cott: unknown team 'cott'; known: agent, aggressive")
     assert "red=" not in line and "cot," in line
     assert not (tmp_path / "runs").exists()
 
