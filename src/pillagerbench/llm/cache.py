@@ -107,8 +107,3 @@ class LLMCache:
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
-
-    def reset_samples(self) -> None:
-        """Start sample counting afresh (a new run sharing this cache object)."""
-        with self._lock:
-            self._samples.clear()

@@ -1,6 +1,6 @@
 """Play a match from a config: `play_match`, the one way, for every series (an experiment's, and the
 one series of a plain `pillagerbench run`: experiments/plain_run.py), and the scenario a config plays.
-Both take the typed configuration (config_schema.RunConfig).
+Both take the typed configuration (config/schema.py RunConfig).
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ The top-level keys are typed (config/schema.py); a team's options are checked ag
 model (`Team.Options`: keys, types, ranges; teams/options.py); `red.llm.*` / `blue.llm.*` only for
 teams that use an LLM; the LLM settings of every side that uses one. Every problem is one line naming the key, the bad value and what is
 valid; `check_run_config` raises one `ConfigError` holding all of them, or returns the typed
-configuration (config_schema.RunConfig) every layer below takes. Each check reads the configuration
+configuration (config/schema.py RunConfig) every layer below takes. Each check reads the configuration
 as plain data (a composed DictConfig or a stored dict), since it may be any value the user wrote.
 """
 

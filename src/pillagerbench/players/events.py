@@ -16,10 +16,6 @@ STATE_KEYS = ("voxels", "status", "inventory", "nearbyChests", "blockRecords")
 _CHAT_LINE = re.compile(r"^<([^>]+)> (.*)$", re.S)
 
 
-def of_type(events: Iterable[list], kind: str) -> list[list]:
-    return [e for e in events if e and e[0] == kind]
-
-
 def messages(events: Iterable[list], kind: str) -> list:
     """The `kind` values of the events of that type (e.g. every chat line)."""
     return [e[1].get(kind) for e in events if e and e[0] == kind]

@@ -45,16 +45,8 @@ class EpisodeDir:
         return self.path / N.WORLD_EVENTS
 
     @property
-    def game_master_path(self) -> Path:
-        return self.path / N.GAME_MASTER
-
-    @property
     def replay_path(self) -> Path:
         return self.path / N.REPLAY
-
-    @property
-    def replay_page_path(self) -> Path:
-        return self.path / N.REPLAY_PAGE
 
     def side(self, key: str) -> Path:
         """A side's own directory (its team's artefacts)."""

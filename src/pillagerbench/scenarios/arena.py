@@ -44,9 +44,6 @@ class Arena:
     mobs: Sequence[tuple[str, tuple[float, float, float]]] = field(default_factory=list)
     egg_farms: list[tuple[Pos, float]] = field(default_factory=list)  # (chest, a chicken lays every s..2s s)
 
-    def block_names(self) -> dict[Pos, str]:
-        return {tuple(b[:3]): b[3] for b in self.blocks}
-
     async def build(self, server: Control) -> None:
         """Build the arena, or put it back exactly as it was built (chests, crops, mobs, items)."""
         await server.reset_state()
