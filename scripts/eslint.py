@@ -7,12 +7,11 @@ pinned development packages of package.json, installed on first use into their o
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 from pathlib import Path
 
-from pillagerbench.host.node import ensure_node_modules, node_binary
+from pillagerbench.host.node import NODE_ENV_ALLOWED, allowed_env, ensure_node_modules, node_binary
 
 
 def main(argv: list[str]) -> int:
@@ -20,7 +19,8 @@ def main(argv: list[str]) -> int:
     js = Path.cwd() / "src" / "pillagerbench" / "js"
     cmd = [str(node_binary()), str(dev / "eslint" / "bin" / "eslint.js"), "--config", "eslint.config.js"]
     cmd += ["--max-warnings", "0", *argv, "."]
-    return subprocess.run(cmd, cwd=js, env={**os.environ, "NODE_PATH": str(dev)}).returncode
+    env = {**allowed_env(NODE_ENV_ALLOWED), "NODE_PATH": str(dev)}  # no key of the user's (docs/security.md)
+    return subprocess.run(cmd, cwd=js, env=env).returncode
 
 
 if __name__ == "__main__":

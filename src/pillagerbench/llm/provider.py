@@ -85,7 +85,9 @@ def map_error(exc: Exception, ctx: dict) -> tuple[E.LLMError, float | None]:
     if isinstance(exc, E.LLMError):
         return exc, None
     if isinstance(exc, openai.APITimeoutError):
-        return E.LLMTimeout(f"no answer within the timeout: {exc}", **ctx), None
+        return E.LLMTimeout(
+            f"no answer within the timeout (llm.timeout=SECONDS raises it, per attempt): {exc}", **ctx
+        ), None
     if isinstance(exc, openai.APIConnectionError):
         cause = exc.__cause__ or exc
         return E.LLMConnectionError(f"cannot reach the provider: {exc} ({cause})", **ctx), None
