@@ -285,3 +285,48 @@ async def test_upstream_protocol_waits_4_s_before_and_after_every_run(tmp_path, 
     )
     assert rec.status == "ok", rec.error
     assert rec.runs == {"Ryn": 1, "Raze": 1}
+
+
+EMPTY_MAIN = "async function main(bot) {\n}"  # the answer format's empty main, copied as it is
+
+
+async def test_code_that_does_nothing_is_asked_again_under_our_protocol_not_upstreams(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply=answer(EMPTY_MAIN, RAZE), times=1), Rule(role="cot", reply=answer(RYN, RAZE)))
+    team = make_team("cot", "mushroom_war", attempts=3)
+    await team.pre_game(context(tmp_path, llm_client()))
+    assert fake_llm.count == 2 and all(team.programs)
+    assert "Ryn: the code does nothing: `main` calls no function at all" in fake_llm.requests[1].messages[-1]["content"]
+    fake_llm.reset()
+    fake_llm.add(Rule(role="cot", reply=answer(EMPTY_MAIN, RAZE)))
+    upstream = make_team("cot", "mushroom_war", attempts=3)
+    ctx = context(tmp_path / "upstream", llm_client())
+    ctx.protocol = "upstream"
+    await upstream.pre_game(ctx)
+    assert fake_llm.count == 1 and all(upstream.programs)  # upstream's took any code
+
+
+class DeadBot:
+    """A player handle whose bot is gone for good: every run fails before it starts, without awaiting."""
+
+    name = "Ryn"
+
+    async def run(self, code, *, timeout=None, on_event=None):
+        raise RuntimeError("Ryn: the bot is not running (call start())")
+
+    async def stop(self):
+        return None
+
+    async def observe(self):
+        return []
+
+
+async def test_a_bot_dead_for_good_with_no_restart_pause_does_not_spin(tmp_path, fake_llm, llm_client):
+    fake_llm.add(Rule(role="cot", reply=answer(RYN, RAZE)))
+    team = make_team("cot", "mushroom_war", restart_pause_s=0.0)
+    ctx = context(tmp_path, llm_client())
+    await team.pre_game(ctx)
+    ctx.deadline = ctx.clock.now() + 0.5
+    team.iterations = [0, 0]
+    other = asyncio.create_task(asyncio.sleep(0.1))  # the event loop's other tasks still run
+    await asyncio.wait_for(team._keep_running(ctx, 0, DeadBot()), 5)
+    assert other.done() and 1 <= team.iterations[0] <= 0.5 / 0.05 + 2, team.iterations

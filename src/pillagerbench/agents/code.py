@@ -435,6 +435,14 @@ class ProgramsResult:
         return sum(p is not None for p in self.programs)
 
 
+def idle_problem(program: Program) -> str | None:
+    """Why a program does nothing (e.g. the answer format's empty `main` copied as it is), or None."""
+    parsed = parse_js(program.code)
+    if not parsed.calls and not parsed.members:
+        return f"the code does nothing: `{program.entry}` calls no function at all"
+    return None
+
+
 def programs_from_answer(
     text: str,
     players: Sequence[str],
@@ -442,8 +450,10 @@ def programs_from_answer(
     *,
     parser: JSParser | None = None,
     reject_undefined: bool = True,
+    reject_idle: bool = False,
 ) -> ProgramsResult:
-    """Code block k is player k's program. Missing or bad blocks leave that player with None."""
+    """Code block k is player k's program. Missing or bad blocks leave that player with None, and with
+    `reject_idle` a program that does nothing too."""
     blocks = extract_code_blocks(text)
     programs: list[Program | None] = []
     problems: list[str] = []
@@ -462,7 +472,11 @@ def programs_from_answer(
                 problems.append(f"{name}: no code block")
             continue
         try:
-            programs.append(check_program(blocks[k], allowed, parser=parser, reject_undefined=reject_undefined))
+            program = check_program(blocks[k], allowed, parser=parser, reject_undefined=reject_undefined)
+            idle = idle_problem(program) if reject_idle else None
+            if idle is not None:
+                raise CodeError(idle)
+            programs.append(program)
         except CodeError as exc:
             programs.append(None)
             problems.append(f"{name}: {exc}")

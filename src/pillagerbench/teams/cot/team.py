@@ -27,6 +27,7 @@ from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios.upstream import UPSTREAM_ATTEMPTS, UPSTREAM_STEPS
+from pillagerbench.server.clock import TICK_S
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
@@ -180,7 +181,11 @@ class ChainOfThought(Team):
                 )
                 rec["error"] = f"{type(exc).__name__}: {exc}"
                 break
-            result = programs_from_answer(answer.text, players, ctx.scenario.primitives)
+            # ours re-asks on code that does nothing (the answer format's empty `main`), as tacticrafter does;
+            # upstream's took any code
+            result = programs_from_answer(
+                answer.text, players, ctx.scenario.primitives, reject_idle=not ctx.upstream_protocol
+            )
             problems = list(result.problems)
             if answer.truncated:
                 problems.insert(0, "the answer was cut off (too long): be shorter")
@@ -247,16 +252,18 @@ class ChainOfThought(Team):
                 await ctx.sleep(ctx.time_left(), player.name)  # upstream: no 11th step
                 return
             self.iterations[k] += 1
-            started = ctx.clock.now()
+            started, failed = ctx.clock.now(), False
             try:
                 await player.run(program.exec_code)  # the match stops it at the whistle
             except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and try again
+                failed = True
                 self.record.setdefault("run_errors", []).append(
                     f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}"
                 )
-            quick = ctx.clock.now() - started
-            if ctx.time_left() > 0 and quick < self.restart_pause_s:
-                await ctx.sleep(self.restart_pause_s - quick, player.name)
+            # a run that could not start (a bot dead for good) waits a tick at least: never a loop that does not yield
+            pause = max(self.restart_pause_s - (ctx.clock.now() - started), TICK_S if failed else 0.0)
+            if ctx.time_left() > 0 and pause > 0:
+                await ctx.sleep(pause, player.name)
 
     async def post_game(self, ctx: TeamContext) -> None:
         players = ctx.side.player_names

@@ -27,7 +27,7 @@ from typing import Any, Protocol
 
 from pillagerbench.agents import context as C
 from pillagerbench.agents.asking import Asked, RoleLLM, ask
-from pillagerbench.agents.code import CodeError, Program, check_program, extract_code_blocks, parse_js
+from pillagerbench.agents.code import CodeError, Program, check_program, extract_code_blocks, idle_problem
 from pillagerbench.llm.parsing import parse_json
 from pillagerbench.players import events as pev
 from pillagerbench.players import primitives as prim
@@ -77,9 +77,9 @@ def parse_code(text: str, allowed) -> Program:
         program = check_program("\n\n".join(blocks), allowed)
     except CodeError as exc:
         raise ValueError(str(exc)) from None
-    parsed = parse_js(program.code)
-    if not parsed.calls and not parsed.members:  # e.g. the answer format's empty `main` copied as it is
-        raise ValueError(f"the code does nothing: `{program.entry}` calls no function at all")
+    idle = idle_problem(program)
+    if idle is not None:
+        raise ValueError(idle)
     return program
 
 
