@@ -3,6 +3,7 @@ no game time (the world waits for it), and `clock.ticks_per_1k_tokens` charges a
 
 from __future__ import annotations
 
+import asyncio
 import time
 
 import pytest_asyncio
@@ -48,9 +49,20 @@ async def test_an_answer_3_s_late_costs_no_tick_and_the_clock_runs_on_after(lock
     clock = await LockstepClock(ticks, lockstep.control).start()
     llm = llm_client("red")
     llm.thinking.during_game(lambda: clock.thinking("red"), lambda tokens: clock.charge(tokens, []))
+
+    async def ticks_during_the_call() -> tuple[int, int]:  # the server's own tick, read while the answer is awaited
+        await asyncio.sleep(0.5)
+        early = (await lockstep.clock())["tick"]
+        await asyncio.sleep(2.0)
+        return early, (await lockstep.clock())["tick"]
+
     started = time.monotonic()
+    during = asyncio.create_task(ticks_during_the_call())
     answer = await llm.complete("hello", role="action")
     assert answer.text == "fine" and time.monotonic() - started >= 3.0
+    early, late = await during
+    assert early == late, f"the world ran {late - early} ticks during the call (unpaced, nothing else holds it)"
+    assert early - ticks.held[0] <= 1  # held from the call's start, not from some moment after it
     assert len(ticks.held) == len(ticks.released) == 1
     assert ticks.released[0] - ticks.held[0] <= 1, f"the call cost {ticks.released[0] - ticks.held[0]} ticks"
     after = ticks.released[0]
