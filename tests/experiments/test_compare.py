@@ -49,6 +49,16 @@ def test_pairs_alternate_sides_against_an_opponent_and_score_by_points(tmp_path)
     assert pair_scores(head, tmp_path) == [(1.0 + 0.0) / 2, (1.0 + 0.0) / 2]  # a won as red, lost as blue twice
 
 
+def test_head_to_head_pairs_score_a_by_its_own_side_in_each_game(tmp_path):
+    """A against B directly: pair k is A as red (a_red) and A as blue (b_red, B red); won both, lost both,
+    won as blue only, each read from A's own side (an inverted reading scores 0, 1, 0.5 here)."""
+    series = tmp_path / "series"
+    write_run(series / "a_red", "mushroom_war", "a", "b", [(20, 0), (0, 4), (3, 3)])  # A red: wins, loses, ties
+    write_run(series / "b_red", "mushroom_war", "b", "a", [(0, 9), (6, 1), (0, 2)])  # A blue: wins, loses, wins
+    head = Comparison("a", "b", None, Bounds(), cap=5)
+    assert pair_scores(head, tmp_path) == [1.0, 0.0, 0.75]
+
+
 @pytest.mark.timeout(600)
 def test_passive_against_balanced_decides_on_the_real_server_and_resumes(tmp_path):
     # On the game clock: 15 s of game do not shrink when the machine is loaded (a real-clock CI run tied

@@ -27,7 +27,11 @@ def simulate(p_ahead: float, bounds: Bounds, seed: int, ties: float = 0.0) -> tu
     return shares, sum(n for _, n in found) / RUNS
 
 
-@pytest.mark.parametrize("bounds", [Bounds(), Bounds(0.5, 0.6, 0.1, 0.2)], ids=["default", "looser"])
+@pytest.mark.parametrize(
+    "bounds",
+    [Bounds(), Bounds(0.5, 0.6, 0.1, 0.2), Bounds(0.5, 0.65, 0.02, 0.3)],
+    ids=["default", "looser", "asymmetric"],  # asymmetric: alpha and beta swapped would break both rates
+)
 def test_error_rates_stay_within_their_bounds(bounds):
     false_alarm, _ = simulate(bounds.p0, bounds, seed=1)
     miss, _ = simulate(bounds.p1, bounds, seed=2)
