@@ -4,6 +4,7 @@ the cost and the cost per win of each red team; an unpriced model says so instea
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 
@@ -30,6 +31,12 @@ def test_a_run_ends_with_what_each_team_spent_and_the_report_has_cost_per_win(tm
     out, run = play(tmp_path, fake_llm.url, *PRICE)
     stats = summarize(read_ledger(run))
     assert stats.calls > 0 and stats.cost_usd > 0 and not stats.unpriced
+    # the expectation from the ledger's raw lines and the prices on the command line, not from summarize()
+    calls = [json.loads(x) for x in (run / "llm_calls.jsonl").read_text().splitlines()]
+    ok = [c for c in calls if not c.get("error")]
+    tokens_in, tokens_out = sum(c["input_tokens"] for c in ok), sum(c["output_tokens"] for c in ok)
+    assert stats.calls == len(calls) and (stats.input_tokens, stats.output_tokens) == (tokens_in, tokens_out)
+    assert abs(stats.cost_usd - (tokens_in * 1000 + tokens_out * 2000) / 1e6) < 1e-9
     (line,) = [ln for ln in out.splitlines() if ln.startswith("LLM cost of ")]
     assert line == (
         f"LLM cost of cot@fake-model: {stats.calls} call(s) ({stats.errors} failed), {stats.input_tokens:,} tokens in, "
