@@ -47,6 +47,7 @@ def spec_of(fake: FakeLLMServer, episodes: int, retries: int, *extra: str) -> Se
             "clock=lockstep",
             f"episodes={episodes}",
             f"retries={retries}",
+            "outage_wait_s=0",  # every try counts here; waiting out an outage: tests/experiments/test_outage.py
             *extra,
         ]
     )

@@ -10,7 +10,7 @@ import pytest
 
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
-from pillagerbench.rundir import EpisodeRecord, progress, spoiled
+from pillagerbench.rundir import EpisodeRecord, faults, progress, spoiled
 from tests.metrics.fake_runs import write_run
 
 UNREACHABLE = "llm failed on all 1 call(s); last: LLMConnectionError: connection refused"
@@ -94,3 +94,14 @@ def test_an_experiment_closes_with_what_our_faults_cost():
     (line,) = spoiled_lines([calm, replayed, short])
     assert line.startswith("2 episode(s) spoiled on our side (in no score")
     assert "; 1 planned episode(s) given up after every try: fewer episodes used" in line
+
+
+def test_a_stalled_episode_is_ours_and_a_record_from_before_stalls_is_not_stalled():
+    why = "lockstep: Ryn idle, neither run nor rested, and the world went on without it after the server's ..."
+    rec = record(status="ok", stalled=True, stall_reason=why)
+    assert spoiled(rec) == "stalled"
+    (fault,) = faults(rec)
+    assert (fault.whose, fault.kind, fault.side, fault.what) == ("harness", "stalled", "", why)
+    before = record(status="ok", problems={"red": [why]})  # before stalls, the let-go was a side's problem
+    assert not before.stalled and before.stall_reason is None and spoiled(before) is None
+    assert EpisodeRecord.from_dict({**rec.to_dict(), "stall_reason": None}).stall_reason is None

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 
+from pillagerbench.rundir import spoiled
 from pillagerbench.scenarios.mushroom_war import MushroomWarMaster
 from pillagerbench.teams.base import Team
 from pillagerbench.teams.mushroom_war import Passive
@@ -78,14 +79,46 @@ class WaitsOnTheWall(Team):
 
 
 async def test_a_world_that_went_on_without_an_idle_player_is_in_the_record(tmp_path):
+    """The game went on at a tick the wall clock chose: stalled, spoiled on our side (rundir/faults.py; a
+    series plays another episode in its place: tests/experiments/test_stalled.py), no team's problem."""
     (rec,) = await play_series(
         "mushroom_war", WaitsOnTheWall(), "do_nothing", tmp_path, length=5, clock="lockstep", idle_limit_s=0.5
     )
     assert rec.status == "ok", rec.error
-    went_on = [p for p in rec.problems.get("red", []) if p.startswith("lockstep: ")]
-    assert len(went_on) == 2, rec.problems  # both players: one after its run, one never run
-    assert all("went on without it" in p and "(1x)" in p for p in went_on), went_on
-    assert "blue" not in rec.problems
+    assert rec.stalled and spoiled(rec) == "stalled", rec.stall_reason
+    went_on = [r for r in str(rec.stall_reason).split("; ") if r.startswith("lockstep: ")]
+    assert len(went_on) == 2, rec.stall_reason  # both players: one after its run, one never run
+    assert all("went on without it" in r and "(1x)" in r for r in went_on), went_on
+    assert rec.problems == {}, rec.problems
+    assert "let go after 500 ms" in (tmp_path / "server.log").read_text()
+
+
+class ThinksLong(Team):
+    """Rests one player to the whistle, runs the other once, then holds the world itself for 2 s of wall time
+    (as an LLM's call in flight), then rests it too."""
+
+    name = "thinks_long"
+
+    async def play(self, ctx) -> None:
+        first, second = ctx.players.values()
+        rest = asyncio.create_task(ctx.sleep(ctx.time_left(), second.name))
+        await first.run("await bot.waitForTicks(5)")
+        async with ctx.clock.thinking(ctx.side.key):
+            await asyncio.sleep(2)
+        await ctx.sleep(ctx.time_left(), first.name)
+        await rest
+
+
+async def test_a_let_go_while_the_team_held_the_world_is_its_own_not_a_stall(tmp_path):
+    """The team's own hold (its call in flight) held the world past the server's limit on its idle bot: the
+    world did not go on at the limit, and once the call ended it went on at a moment the call chose."""
+    (rec,) = await play_series(
+        "mushroom_war", ThinksLong(), "do_nothing", tmp_path, length=5, clock="lockstep", idle_limit_s=0.5
+    )
+    assert rec.status == "ok", rec.error
+    assert not rec.stalled and spoiled(rec) is None, rec.stall_reason
+    (own,) = rec.problems["red"]
+    assert own.startswith("lockstep: Ryn idle while its team held the world past") and "(1x)" in own, own
     assert "let go after 500 ms" in (tmp_path / "server.log").read_text()
 
 
@@ -112,7 +145,7 @@ async def test_past_the_whistle_no_player_holds_the_world(tmp_path):
         idle_limit_s=0.5,
     )  # fmt: skip
     assert rec.status == "ok", rec.error
-    assert rec.problems == {}, rec.problems
+    assert rec.problems == {} and not rec.stalled, (rec.problems, rec.stall_reason)
     assert_no_wall_clock_waits(tmp_path / "server.log")
 
 

@@ -207,6 +207,7 @@ class RunConfig(RunnerConfig):
     paper: bool = written("paper")  # sets scoring and protocol to upstream's (config.compose.PAPER_SWITCHES)
     watch: int | None = Field(written("watch"), ge=0, le=65535)
     retries: int = Field(RETRIES, ge=0)
+    outage_wait_s: float = Field(written("outage_wait_s"), ge=0, allow_inf_nan=False)  # experiments/outage.py
     layout: int | str = written("layout")  # checked in full by validate.layout_problems
     split: str | None = written("split")
     resume: str | None = written("resume")

@@ -27,6 +27,7 @@ from pathlib import Path
 
 from pillagerbench.config.compose import ConfigError, load_config
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.experiments.outage import Stopped
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.series import run_series
 from pillagerbench.llm.ledger import read_ledger
@@ -176,6 +177,10 @@ def verdict_line(c: Comparison, found: str, pairs: int, run_dir: Path) -> str:
     return f"compare: {c.a} {said} {c.b}{cap} (SPRT {rates}; {pairs} pairs, {episodes} episodes, {dollars(run_dir, c)})"
 
 
+class GaveUp(Exception):
+    """A series of the compare stopped waiting for its provider or team server; the message says so."""
+
+
 def play(c: Comparison, run_dir: Path, series: dict[str, SeriesSpec]) -> str:
     """Pairs until the test decides or the cap; prints a line per pair; returns the verdict."""
     shown = 0
@@ -191,7 +196,9 @@ def play(c: Comparison, run_dir: Path, series: dict[str, SeriesSpec]) -> str:
         for sid in (sa, sb):
             spec = series[sid]
             spec.episodes = i + 1  # this series' results up to this pair
-            asyncio.run(run_series(spec, RunDir(run_dir).series_dir(sid), run_dir, say=print))
+            summary = asyncio.run(run_series(spec, RunDir(run_dir).series_dir(sid), run_dir, say=print))
+            if "outage" in summary:  # stopped past outage_wait_s (experiments/outage.py)
+                raise GaveUp(Stopped(**summary["outage"]).line(run_dir, 1))
 
 
 def start(c: Comparison, run_dir: Path | None) -> tuple[Path, dict[str, SeriesSpec]]:
@@ -230,6 +237,10 @@ def main(argv: list[str]) -> int:
     print(f"run directory: {run_dir}", flush=True)
     against = f"each against {c.opponent}" if c.opponent else "head to head"
     print(f"compare {c.a} (A) with {c.b} (B), {against}: up to {c.cap} pairs", flush=True)
-    found = play(c, run_dir, series)
+    try:
+        found = play(c, run_dir, series)
+    except GaveUp as exc:
+        print(f"compare: {exc}")
+        return 1
     print(verdict_line(c, found, len(pair_scores(c, run_dir)), run_dir))
     return 0

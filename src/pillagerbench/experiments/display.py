@@ -10,6 +10,7 @@ from rich.live import Live
 from rich.table import Table
 
 from pillagerbench.config.schema import default
+from pillagerbench.experiments.outage import Status
 
 
 class MatchDisplay:
@@ -19,6 +20,8 @@ class MatchDisplay:
         self.live_mode = mode == "live" or (mode == "auto" and sys.stdout.isatty())
         self.live: Live | None = None
         self.finished: list[str] = []
+        self.waiting: Status | None = None  # the series waits for its provider or team server (experiments/outage.py)
+        self.probes_shown = 0
 
     def __enter__(self) -> MatchDisplay:
         if self.live_mode:
@@ -38,7 +41,20 @@ class MatchDisplay:
             table.add_row(*line.split("|"))
         if s:
             table.add_row(str(s["episode"]), f"{s['t']:>3.0f}/{s['length']:.0f} s", f"{s['red']:g}", f"{s['blue']:g}")
+        if self.waiting:
+            table.caption = self.waiting.line()
         return table
+
+    def outage(self, status: Status | None) -> None:
+        """The one live line while the series waits (None: it no longer does); in logs a line per probe."""
+        self.waiting = status
+        if self.live:
+            self.live.update(self._table({}))
+        elif status and status.probes != self.probes_shown:
+            self.probes_shown = status.probes
+            print(status.line(), flush=True)
+        elif status is None:
+            self.probes_shown = 0
 
     def tick(self, s: dict) -> None:
         if self.live:

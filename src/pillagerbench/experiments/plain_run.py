@@ -20,6 +20,7 @@ from pathlib import Path
 
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.display import MatchDisplay
+from pillagerbench.experiments.outage import Stopped
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
@@ -47,7 +48,7 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"run directory: {run_dir}", flush=True)
     try:
-        asyncio.run(_play(spec, run_dir, cfg))
+        summary = asyncio.run(_play(spec, run_dir, cfg))
     except KeyboardInterrupt:
         print(
             f"interrupted: finished episodes are kept in {RunDir(run_dir).episodes_path}; finish with resume={run_dir}"
@@ -72,15 +73,24 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
         print(line)
     for line in spend_lines([(RunDir(run_dir).ledger_path, labels_of(spec.config.stored()))]):
         print(line)
+    if "outage" in summary:  # stopped past outage_wait_s (experiments/outage.py)
+        print(Stopped(**summary["outage"]).line(run_dir, spec.episodes - done.used - done.given_up))
     print(f"run directory: {run_dir}")
-    return 1 if (failed and failed == len(records)) or all_without_model else 0
+    return 1 if (failed and failed == len(records)) or all_without_model or "outage" in summary else 0
 
 
-async def _play(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> None:
+async def _play(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> dict:
     scenario = scenario_from_config(spec.config)
     title = f"{scenario.title}: red {spec.red} vs blue {spec.blue}"
     with MatchDisplay(title, cfg.display) as display:
-        await run_series(spec, run_dir, on_episode=display.episode_done, on_tick=display.tick, watch=cfg.watch)
+        return await run_series(
+            spec,
+            run_dir,
+            on_episode=display.episode_done,
+            on_tick=display.tick,
+            watch=cfg.watch,
+            on_outage=display.outage,
+        )
 
 
 def summarize_problems(records: list) -> tuple[list[str], bool]:

@@ -12,6 +12,7 @@ import asyncio
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 from rich.console import Console, Group
 from rich.live import Live
@@ -19,6 +20,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from rich.table import Table
 
 from pillagerbench.config.schema import default
+from pillagerbench.experiments.outage import Status, read_status
 from pillagerbench.rundir import EpisodeRecord, RunDir, progress, spoiled
 
 
@@ -29,6 +31,13 @@ def fmt_duration(seconds: float | None) -> str:
     h, rest = divmod(seconds, 3600)
     m, s = divmod(rest, 60)
     return f"{h}:{m:02d}:{s:02d}" if h else f"{m}:{s:02d}"
+
+
+def waiting_line(waiting: list[tuple[Any, Status]]) -> str:
+    """The one live line of the series waiting for a provider or team server (experiments/outage.py)."""
+    spec, first = min(waiting, key=lambda w: w[1].since)
+    more = f" (and {len(waiting) - 1} more series)" if len(waiting) > 1 else ""
+    return f"{spec.id}{more}: {first.line()}"
 
 
 class ExperimentProgress:
@@ -57,6 +66,7 @@ class ExperimentProgress:
         self.start_time = time.monotonic()
         self.start_done: int | None = None
         self._reported: dict[str, int] = {}
+        self._probes: dict[str, int] = {}  # the probes shown of each series waiting (experiments/outage.py)
         self._last_plain = 0.0
         self._task: asyncio.Task | None = None
         self._live: Live | None = None
@@ -82,7 +92,7 @@ class ExperimentProgress:
 
     def snapshot(self) -> dict:
         done = failed = 0
-        running = []
+        running, waiting = [], []
         for spec in self.specs:
             fin = self.finished(spec)
             settled = progress(fin, spec.episodes, spec.config.retries)  # a spoiled episode is played again
@@ -91,6 +101,9 @@ class ExperimentProgress:
             status = RunDir(self.series_dir(spec)).read_live() if not settled.complete else None
             if status is not None:
                 running.append((spec, status))
+            outage = read_status(self.series_dir(spec)) if not settled.complete else None
+            if outage is not None:
+                waiting.append((spec, outage))
         if self.start_done is None:
             self.start_done = done
         elapsed = time.monotonic() - self.start_time
@@ -105,6 +118,7 @@ class ExperimentProgress:
             "total": self.total,
             "failed": failed,
             "running": running,
+            "waiting": waiting,
             "eta_s": eta,
             "elapsed_s": elapsed,
         }
@@ -122,6 +136,8 @@ class ExperimentProgress:
                 f"{live.red:g}",
                 f"{live.blue:g}",
             )
+        if snap.get("waiting"):
+            table.caption = waiting_line(snap["waiting"])
         return table
 
     def _plain(self, snap: dict, force: bool = False) -> None:
@@ -138,6 +154,10 @@ class ExperimentProgress:
                     flush=True,
                 )
             self._reported[spec.id] = len(fin)
+        for spec, outage in snap.get("waiting", []):
+            if self._probes.get(spec.id) != outage.probes:  # a line per probe
+                self._probes[spec.id] = outage.probes
+                print(f"{spec.id}: {outage.line()}", file=self.stream, flush=True)
         now = time.monotonic()
         if force or now - self._last_plain >= self.plain_every:
             self._last_plain = now

@@ -43,6 +43,7 @@ from pillagerbench.rundir import (
 from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
+STOPPED = "stopped"  # a series' status when it stopped past outage_wait_s (experiments/outage.py)
 
 
 def local_parallel(cfg: RunnerConfig, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
@@ -108,7 +109,7 @@ def series_progress(spec: SeriesSpec, series_dir: Path):
 def _comparable(spec: SeriesSpec) -> dict:
     d = spec.to_dict()
     d["config"] = {k: v for k, v in d["config"].items() if k not in IGNORED_ON_RESUME}
-    for key in ("scoring", "protocol", "retries"):  # runs from before these keys: the schema's defaults
+    for key in ("scoring", "protocol", "retries", "outage_wait_s"):  # runs from before these keys: the defaults
         d["config"].setdefault(key, default(key))
     return d
 
@@ -155,7 +156,7 @@ async def run_all(
                 blocked = [
                     d
                     for d in s.after
-                    if results.get(d, {}).get("status") in ("error", "skipped")
+                    if results.get(d, {}).get("status") in ("error", "skipped", STOPPED)
                     or (d not in results and d not in pending and d not in {r.id for r in running.values()})
                 ]
                 if blocked:
@@ -172,8 +173,8 @@ async def run_all(
             for fut in done:
                 s = running.pop(fut)
                 exc = fut.exception()
-                if exc is None:
-                    results[s.id] = {**fut.result(), "status": "done"}
+                if exc is None:  # a series that stopped past outage_wait_s is not done (experiments/outage.py)
+                    results[s.id] = {**fut.result(), "status": STOPPED if "outage" in fut.result() else "done"}
                 else:
                     text = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))
                     dirs[s.id].mkdir(parents=True, exist_ok=True)
@@ -235,9 +236,10 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
             closer()
 
 
-def check_series(specs: list[SeriesSpec]) -> None:
+def check_series(specs: list[SeriesSpec], dirs: dict[str, Path] | None = None) -> None:
     """Before anything starts: each distinct series config checked whole (match/validate.py: teams, their
-    options, LLM settings), then the preflight (match/preflight.py: every LLM and team server answers)."""
+    options, LLM settings), then the preflight (match/preflight.py: every LLM and team server answers),
+    but for the sides a resumed series (its directory in `dirs`) waits for (experiments/outage.py)."""
     from pillagerbench.config.schema import check
     from pillagerbench.match import preflight
     from pillagerbench.match.validate import team_problems
@@ -247,7 +249,34 @@ def check_series(specs: list[SeriesSpec]) -> None:
         for line in team_problems(s.config.stored()):
             seen.setdefault(line, None)
     check(list(seen))
-    preflight.check([side for s in specs for side in preflight.sides_of(s.config)])
+    waits = {s.id: waiting_sides(s.config, dirs[s.id]) for s in specs} if dirs else {}
+    sides = [
+        checked
+        for s in specs
+        for side, checked in zip(preflight.SIDES, preflight.sides_of(s.config))
+        if side not in waits.get(s.id, {})
+    ]
+    preflight.check(sides)
+
+
+def waiting_sides(cfg: RunConfig, series_dir: Path) -> dict[str, str]:
+    """The sides a resumed series waits for before it plays on: those its last episode could not reach."""
+    from pillagerbench.experiments.outage import unreachable
+
+    finished = RunDir(series_dir).read_lenient()[0] if cfg.outage_wait_s > 0 else {}
+    return unreachable(finished[max(finished)], cfg) if finished else {}
+
+
+def outage_lines(results: dict[str, dict], specs: list[SeriesSpec], dirs: dict[str, Path], run_dir: Path) -> list[str]:
+    """One line when series stopped past outage_wait_s: how many, what did not answer, resume."""
+    from pillagerbench.experiments.outage import Stopped
+
+    stopped = [(s, Stopped(**results[s.id]["outage"])) for s in specs if "outage" in results.get(s.id, {})]
+    if not stopped:
+        return []
+    left = sum(s.episodes - p.used - p.given_up for s, _ in stopped for p in [series_progress(s, dirs[s.id])])
+    first = min((o for _, o in stopped), key=lambda o: o.since)
+    return [f"{len(stopped)} series stopped: " + first.line(run_dir, left)]
 
 
 def lag_lines(specs: list[SeriesSpec], dirs: dict[str, Path], show: int = 10) -> list[str]:
@@ -285,7 +314,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         title, specs, dirs = load_experiment(run_dir)
         if cfg.experiment is not None and title != "run":
             check_same(specs, build_series(cfg, argv), run_dir)
-        check_series(specs)
+        check_series(specs, dirs)
         print(f"resuming {run_dir}", flush=True)
         if title == "run":  # a plain run: finished as it was started, with its display and summary
             from pillagerbench.experiments.plain_run import play_run
@@ -308,6 +337,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         print(f"interrupted: finished episodes are kept; finish with resume={run_dir}")
         return 130
     errors = [r for r in results.values() if r["status"] in ("error", "skipped")]
+    stopped = outage_lines(results, specs, dirs, run_dir)
     done = [series_progress(s, dirs[s.id]) for s in specs]
     print(
         f"{sum(p.used for p in done)}/{sum(s.episodes for s in specs)} episodes used; "
@@ -319,5 +349,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         print(line)
     for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config.stored())) for s in specs):
         print(line)
+    for line in stopped:
+        print(line)
     print(f"run directory: {run_dir}")
-    return 1 if errors else 0
+    return 1 if errors or stopped else 0

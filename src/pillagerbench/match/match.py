@@ -3,7 +3,8 @@
 Per episode: put the arena back in place, reset every player (position, empty inventory), pre-game
 (not timed; duration recorded), game (`game.py`: wall clock, `episode_length` s: the game master's
 rules run and every team's score is sampled each second; the parts of `parts.py` follow it),
-whistle (all code stopped; the score at exactly the end is final), post-game. The record of each
+whistle (all code stopped; the score at exactly the end is final), whether our machine stalled the
+game (`_stalled`: the episode is then spoiled), post-game. The record of each
 episode is written to the run directory (`pillagerbench.rundir`). The scorings: `scoring.py`.
 """
 
@@ -14,7 +15,7 @@ import functools
 import json
 import random
 import time
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator, Callable, Sequence
 from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
@@ -30,9 +31,60 @@ from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.scenarios import Scenario, upstream
 from pillagerbench.scenarios.layout import episode_layout
 from pillagerbench.server.clock import GameClock, LockstepClock, RealClock
-from pillagerbench.server.seams import Server
+from pillagerbench.server.seams import Control, Events, Server
 from pillagerbench.teams import Team, TeamContext
 from pillagerbench.teams.base import PlayerHandle
+
+
+class SidesClock(LockstepClock):
+    """The lockstep clock as a match keeps it: it also counts, per player, the let-gos of its idle bot that
+    came while its side held the world itself (`thinking` as the side: an LLM's or a team server's call in
+    flight). Those did not let the world go on at the server's wall-clock limit (the side's own hold still
+    held it); once the call ended it went on without the bot at a moment the call chose: the team's own,
+    not a stall of our machine. (A seat's hold, `tools:<side>`, is not counted: the seat frees its idle
+    bots as it holds the world, and its holds come and go with every tool call.)"""
+
+    def __init__(self, server: Control, events: Events | None, per_1k: float | None, sides: dict[str, list[str]]):
+        super().__init__(server, events, per_1k)
+        self.sides = sides  # side key -> its players
+        self.masked: dict[str, int] = {}  # player -> let-gos of the game while its side held the world
+        self._thinking: dict[str, int] = {}  # side -> its holds on (thinking)
+        self._before: dict[str, dict[str, int]] = {}  # side -> the let-gos as its first hold began
+
+    @asynccontextmanager
+    async def thinking(self, who: str) -> AsyncIterator[None]:
+        tracked = not self.over and who in self.sides  # (an LLM's or a team server's hold is its side's key)
+        async with super().thinking(who):
+            if tracked:
+                self._thinking[who] = self._thinking.get(who, 0) + 1
+                if self._thinking[who] == 1:
+                    self._before[who] = await self._let_gos()
+            try:
+                yield
+            finally:
+                if tracked and self._thinking.get(who):
+                    self._thinking[who] -= 1
+                    if not self._thinking[who] and not self.over:
+                        self._mask(who, await asyncio.shield(self._let_gos()))
+
+    async def _let_gos(self) -> dict[str, int]:
+        state = await self.server.clock()
+        return {who.removeprefix("idle:"): n for who, n in state.get("let_go", {}).items()}
+
+    def _mask(self, side: str, now: dict[str, int]) -> None:
+        before = self._before.pop(side, {})
+        for name in self.sides[side]:
+            self.masked[name] = self.masked.get(name, 0) + now.get(name, 0) - before.get(name, 0)
+
+    async def end(self) -> None:
+        await super().end()
+        for side in [k for k, n in self._thinking.items() if n]:  # still thinking at the whistle
+            self._mask(side, self.went_on)
+        self._thinking.clear()
+
+    async def begin(self, bystanders: Sequence[str] = ()) -> None:
+        self.masked, self._thinking, self._before = {}, {}, {}
+        await super().begin(bystanders)
 
 
 class Match:
@@ -112,7 +164,10 @@ class Match:
         await self.clock.end()
         if self.clock_config.mode == "lockstep":
             per_1k = self.clock_config.ticks_per_1k_tokens
-            self.clock = await LockstepClock(self.server, self.server.control, per_1k).start()
+            sides = {side.key: list(side.player_names) for side in self.scenario.sides}
+            clock = SidesClock(self.server, self.server.control, per_1k, sides)
+            await clock.start()
+            self.clock = clock
 
     async def close(self) -> None:
         await asyncio.gather(*(p.close() for p in self.players.values()), return_exceptions=True)
@@ -254,8 +309,11 @@ class Match:
         await asyncio.gather(*(timed_pre_game(k) for k in contexts))
 
         game = Game(self.server, self.scenario, self.teams, self.players, rec, out, self.episode_length, self.clock)
+        for player in self.players.values():  # a restart before the game (its reset's) cost the game nothing
+            player.watchdog.take_stalls()
         async with self._game_time():
             clean, late = await play_game(game, contexts, random.Random(rec.seed), parts, self.scoring)
+        self._stalled(rec)
         rec.scores = {"clean": {k: clean.timeline[-1][k] for k in ("red", "blue")}}
         if late:
             rec.scores["upstream"] = {k: late.timeline[-1][k] for k in ("red", "blue")}
@@ -299,10 +357,34 @@ class Match:
         for key, team in self.teams.items():
             if team.problems:
                 rec.problems.setdefault(key, []).extend(team.problems)
-        went_on: dict[str, int] = self.clock.went_on if isinstance(self.clock, LockstepClock) else {}
-        for side in self.scenario.sides:
-            for name in (n for n in side.player_names if went_on.get(n)):
-                rec.problems.setdefault(side.key, []).append(
-                    f"lockstep: {name} idle, neither run nor rested, and the world went on without it after the "
-                    f"server's wall-clock limit ({went_on[name]}x): this game may not repeat under its seed"
-                )
+
+    def _stalled(self, rec: EpisodeRecord) -> None:
+        """Whether our machine stalled the game, and how (the episode is then spoiled: rundir/faults.py): on the
+        lockstep clock the world went on without an idle bot at the server's wall-clock limit (a tick the wall
+        clock chose; a seat's own `free` is no let-go), or a bot was restarted for the machine's sake (starved
+        of CPU, or it did not stop in time: players/player.py)."""
+        reasons = _went_on(rec, self.clock) if isinstance(self.clock, SidesClock) else []
+        reasons += [stall for player in self.players.values() for stall in player.watchdog.take_stalls()]
+        if reasons:
+            rec.stalled, rec.stall_reason = True, "; ".join(reasons)
+
+
+def _went_on(rec: EpisodeRecord, clock: SidesClock) -> list[str]:
+    """The game's let-gos of idle bots at the server's wall-clock limit, as stalls; one that came while the bot's
+    side held the world itself (a call of its longer than the limit) is that side's own problem instead, as a
+    seat's think limit is."""
+    reasons = []
+    for name, n in clock.went_on.items():
+        own = min(n, max(0, clock.masked.get(name, 0)))
+        if n > own:
+            reasons.append(
+                f"lockstep: {name} idle, neither run nor rested, and the world went on without it after the "
+                f"server's wall-clock limit ({n - own}x): this game may not repeat under its seed"
+            )
+        side = next((k for k, names in clock.sides.items() if name in names), None)
+        if own and side:
+            rec.problems.setdefault(side, []).append(
+                f"lockstep: {name} idle while its team held the world past the server's wall-clock limit ({own}x): "
+                "once the team's call ended the world went on without it; this game may not repeat under its seed"
+            )
+    return reasons

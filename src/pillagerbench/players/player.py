@@ -13,6 +13,12 @@ its requests, placement.py sets and restores inventory and position). It writes 
 200 ms; when it stays silent for `watchdog_s` (agent code blocking its event loop), or dies, the
 handle kills its process group, logs in again with the same name, restores inventory and position
 through the control channel (when `server` is given) and ends the pending run with an onError event.
+
+A silent bot is told apart by the CPU time its process got while silent (from the watchdog's last look
+while it spoke, which comes after its last heartbeat, to the verdict): a loop in its code burns a core
+(its fair share of one, on a busy machine); a bot stopped or starved by the machine got next to none
+(under `STARVED_SHARE` of a core), and that restart is ours, not the code's: `Watchdog` keeps it in its
+`stalls` with a bot that did not stop within 2 s, and the match records them (the episode is spoiled).
 """
 
 from __future__ import annotations
@@ -21,6 +27,8 @@ import asyncio
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
+
+import psutil  # type: ignore[import-untyped]  # (no stubs pinned; one call, below)
 
 from pillagerbench.server.seams import Control
 
@@ -33,6 +41,13 @@ __all__ = ["Player", "PlayerError"]
 # One login at a time per server (flying-squid handles concurrent logins badly), with a short gap.
 _login_locks: dict[tuple[str, int], asyncio.Lock] = {}
 LOGIN_GAP_S = 0.05
+# A bot silent past its watchdog whose process got less than this share of one core meanwhile was
+# starved (stopped, or the machine gave it no time), not looping: a loop burns its fair share of a core
+# (all of one on a calm machine; 0.28 to 0.41 on 2 cores beside 4 CPU-bound processes, docs/performance.md),
+# a stopped bot none. A tenth: a loop still gets it beside 19 busy processes on 2 cores.
+STARVED_SHARE = 0.1
+STOP_WAIT_S = 2.0  # a bot told to stop has this long to end its run, or it is restarted
+Cpu = tuple[float, float, int]  # a process's CPU time read: (monotonic then, its CPU seconds, its pid)
 
 
 class _RunState:
@@ -74,6 +89,7 @@ class Player:
         self.watchdog_s = watchdog_s
         self.login_timeout = login_timeout
         self.restarts = 0
+        self.watchdog = Watchdog(self)  # its silence judged: the code's or the machine's (a stall)
         self.channel = BotChannel(name, self.log_dir)
         self._run: _RunState | None = None
         self._run_lock = asyncio.Lock()
@@ -128,7 +144,7 @@ class Player:
         self._tasks.append(asyncio.create_task(self._read_stdout(proc, gen)))
         self._tasks.append(asyncio.create_task(self.channel.read_stderr(proc)))
         if not any(t.get_name() == f"watchdog-{self.name}" and not t.done() for t in self._tasks):
-            self._tasks.append(asyncio.create_task(self._watchdog(), name=f"watchdog-{self.name}"))
+            self._tasks.append(asyncio.create_task(self.watchdog.run(), name=f"watchdog-{self.name}"))
 
     async def _login(self) -> None:
         """Cue the launched bot to connect; wait until it has spawned."""
@@ -158,7 +174,7 @@ class Player:
                         PlayerError(f"{self.name}: bot process ended before spawning: {reason}")
                     )
                 else:
-                    task = asyncio.create_task(self._recover(reason, gen))
+                    task = asyncio.create_task(self._recover(reason, None, gen))
                     self._recoveries.add(task)
                     task.add_done_callback(self._recoveries.discard)
 
@@ -194,25 +210,13 @@ class Player:
         return self._last_obs
 
     # ---- watchdog and recovery -------------------------------------------------------------
-    async def _watchdog(self) -> None:
-        while not self._closed:
-            await asyncio.sleep(0.1)
-            if not self.alive or self._recover_lock.locked():
-                continue
-            if time.monotonic() - self.channel.last_line > self.watchdog_s:
-                await asyncio.sleep(0.1)  # if our own loop was late, let pending reads land first
-                if time.monotonic() - self.channel.last_line > self.watchdog_s and self.alive:
-                    await self._recover(
-                        f"Error: the code blocked the bot for more than {self.watchdog_s:g} s "
-                        "(an endless loop?); the bot was restarted",
-                        self._generation,
-                    )
-
-    async def _recover(self, reason: str, gen: int) -> None:
-        """Kill (if needed), log in again, restore state, and end the pending run with onError."""
+    async def _recover(self, reason: str, stall: str | None, gen: int) -> None:
+        """Kill (if needed), log in again, restore state, and end the pending run with onError. `stall`: the
+        restart is the machine's fault (the watchdog keeps it for the match)."""
         async with self._recover_lock:
             if gen != self._generation or self._closed:
                 return
+            self.watchdog.stalls += [stall] if stall else []
             saved = await placement.snapshot(self.server, self.name, self._last_obs)
             await self.channel.kill()
             self.channel.fail_pending(reason)
@@ -291,9 +295,13 @@ class Player:
         except PlayerError:
             return
         try:
-            await asyncio.wait_for(asyncio.shield(run.done), 2.0)
+            await asyncio.wait_for(asyncio.shield(run.done), STOP_WAIT_S)
         except asyncio.TimeoutError:
-            await self._recover("Error: the bot did not stop within 2 s and was restarted", self._generation)
+            await self._recover(
+                f"Error: the bot did not stop within {STOP_WAIT_S:g} s and was restarted",
+                f"{self.name} did not stop within {STOP_WAIT_S:g} s and was restarted",
+                self._generation,
+            )
 
     async def observe(self) -> list:
         return [["observe", await self._observe()]]
@@ -350,6 +358,69 @@ class Player:
 
     async def __aexit__(self, *exc) -> None:
         await self.close()
+
+
+class Watchdog:
+    """Python's watchdog of one player's bot, which writes a heartbeat every 200 ms: silent for the player's
+    `watchdog_s`, the bot is restarted, its silence put on its code (an endless loop) or, when its process
+    got under STARVED_SHARE of a core meanwhile, on the machine. The machine's restarts (those, and a bot
+    that did not stop in time) are `stalls`, kept until the match takes them (`take_stalls`)."""
+
+    def __init__(self, player: Player):
+        self.player = player  # (the module's own: its recovery, its lock and generation)
+        self.stalls: list[str] = []
+        self._mark: Cpu | None = None  # the bot's process as it last spoke
+
+    async def run(self) -> None:
+        p = self.player
+        while not p._closed:
+            await asyncio.sleep(0.1)
+            if not p.alive or p._recover_lock.locked():
+                self._mark = None
+                continue
+            if time.monotonic() - p.channel.last_line < p.watchdog_s / 2:  # it speaks: mark its CPU time
+                self._mark = _cpu_seconds(p.proc)
+            elif time.monotonic() - p.channel.last_line > p.watchdog_s:
+                await asyncio.sleep(0.1)  # if our own loop was late, let pending reads land first
+                if time.monotonic() - p.channel.last_line > p.watchdog_s and p.alive:
+                    silence = _silence(p.name, p.watchdog_s, self._mark, _cpu_seconds(p.proc), p.channel.last_line)
+                    await p._recover(*silence, p._generation)
+
+    def take_stalls(self) -> list[str]:
+        """The machine's restarts since the last take (a game's: the match records them)."""
+        stalls, self.stalls = self.stalls, []
+        return stalls
+
+
+def _silence(
+    name: str, watchdog_s: float, mark: Cpu | None, now: Cpu | None, last_line: float
+) -> tuple[str, str | None]:
+    """(the run's error, the stall or None) of a bot silent past its watchdog, by the CPU time its process got
+    from `mark` (taken as it last spoke) to `now`, as a share of one core: under STARVED_SHARE it was starved,
+    the machine's fault; else, or unknown, its code blocked it."""
+    share = (now[1] - mark[1]) / max(now[0] - mark[0], 1e-3) if now and mark and now[2] == mark[2] else None
+    if share is None or share >= STARVED_SHARE:
+        return (
+            f"Error: the code blocked the bot for more than {watchdog_s:g} s (an endless loop?); the bot was restarted",
+            None,
+        )
+    silent = time.monotonic() - last_line
+    return (
+        f"Error: the bot was starved of CPU for {silent:.1f} s ({share:.0%} of a core: the machine's fault, not the "
+        "code's); the bot was restarted"
+    ), f"{name} was starved of CPU for {silent:.1f} s ({share:.0%} of a core) and restarted"
+
+
+def _cpu_seconds(proc: asyncio.subprocess.Process | None) -> Cpu | None:
+    """(monotonic now, the CPU seconds the process has had, user and system, its pid), or None when it cannot
+    say."""
+    if proc is None or proc.returncode is not None:
+        return None
+    try:
+        times = psutil.Process(proc.pid).cpu_times()
+    except psutil.Error:
+        return None
+    return time.monotonic(), times.user + times.system, proc.pid
 
 
 def _tick_of(answer: object) -> int | None:

@@ -34,6 +34,10 @@ class EpisodeRecord:
     )  # player -> physics-tick lag in the game (host/machine.py)
     lagged: bool = False  # played under lag: a threshold of host/machine.py crossed (scores may be low for it)
     lag_reason: str | None = None
+    # stalled on our machine: the lockstep world went on without an idle bot at the server's wall-clock
+    # limit, or a bot was restarted for the machine's sake (starved of CPU, or it did not stop in time)
+    stalled: bool = False
+    stall_reason: str | None = None
     problems: dict[str, list[str]] = field(default_factory=dict)  # side -> what failed throughout
     refusals: dict[str, int] = field(default_factory=dict)  # actions the server refused, per player (fair play)
     scoring: str = "clean"  # which of `scores` red_score/blue_score are (config `scoring`)
@@ -93,7 +97,7 @@ FAILED = "failed"
 # what a line that names no more than its episode (and status) stands for
 _UNNAMED: dict[str, Any] = {"scenario": "", "red": "", "blue": ""}
 # keys whose null is a value (not "missing in an earlier version")
-_NULLABLE = {"red_score", "blue_score", "winner", "error", "server_tps", "lag_reason"}
+_NULLABLE = {"red_score", "blue_score", "winner", "error", "server_tps", "lag_reason", "stall_reason"}
 
 
 class TimelinePoint(TypedDict):

@@ -5,7 +5,9 @@ series plays another episode in its place (rundir/schedule.py).
 
 The rules are data. An episode that failed is ours (its error names what failed, `FAILED`), unless its
 error is a team's budget spent (`BudgetExceeded`); one whose cause is not named (a team's pre-game
-raising is one) is not put on the team. An episode played under lag is ours. A side's problem is the
+raising is one) is not put on the team. An episode played under lag is ours, and so is one our machine
+stalled (`stalled`: the lockstep world went on without an idle bot at the server's wall-clock limit, or
+a bot was restarted because it was starved of CPU or did not stop in time). A side's problem is the
 team's when it holds one of `TEAM_PROBLEMS` (every call refused by the team's own budget), else ours
 when it starts with one of `HARNESS_PROBLEMS`; every other is the team's.
 """
@@ -19,7 +21,8 @@ from pillagerbench.rundir.episode import EpisodeRecord
 HARNESS = "harness"
 TEAM = "team"
 # a recorded problem's start -> the harness failure it is (llm/budget.py: every call of the episode failed)
-HARNESS_PROBLEMS: dict[str, str] = {"llm failed on all": "provider unreachable"}
+# (a "provider outage" line: the provider answered no probe after the episode either, experiments/outage.py)
+HARNESS_PROBLEMS: dict[str, str] = {"llm failed on all": "provider unreachable", "provider outage": "provider outage"}
 # a recorded problem holding this -> the team's own, whatever its start (its budget refused every call)
 TEAM_PROBLEMS: dict[str, str] = {"last: BudgetExceeded": "the team's budget spent"}
 # a failed episode's error type -> (whose, kind); any other type: ours, "failed (cause not named)"
@@ -40,9 +43,9 @@ class Fault:
     """One fault of an episode's record."""
 
     whose: str  # HARNESS | TEAM
-    kind: str  # e.g. "failed: the server", "lagged", "the team's own"
+    kind: str  # e.g. "failed: the server", "lagged", "stalled", "the team's own"
     side: str  # "red", "blue", or "" for the whole episode
-    what: str  # the error, the lag's reason or the side's problem as recorded
+    what: str  # the error, the lag's or the stall's reason, or the side's problem as recorded
 
 
 def _problem(problem: str) -> tuple[str, str]:
@@ -55,13 +58,15 @@ def _problem(problem: str) -> tuple[str, str]:
 
 
 def faults(rec: EpisodeRecord) -> list[Fault]:
-    """Every fault of an episode's record: its failure, its lag, each side's problems."""
+    """Every fault of an episode's record: its failure, its lag, its stall, each side's problems."""
     out = []
     if not rec.ok:  # a line may hold no more than its status (a killed run's)
         what = str(rec.error or rec.status)
         out.append(Fault(*FAILED.get(what.partition(":")[0], (HARNESS, "failed (cause not named)")), "", what))
     if rec.lagged:
         out.append(Fault(HARNESS, "lagged", "", str(rec.lag_reason)))
+    if rec.stalled:
+        out.append(Fault(HARNESS, "stalled", "", str(rec.stall_reason)))
     for side, problems in rec.problems.items():
         out += [Fault(*_problem(problem), side, problem) for problem in problems]
     return out

@@ -1,8 +1,10 @@
 """Which episode a series plays next. A series plans `planned` episodes; an episode spoiled on our side
 (rundir/faults.py) is kept on disk and a further episode index is played in its place, up to
 `retries` times for each planned episode; after that the planned episode is given up and the series
-goes on, ending with fewer used episodes. Everything is read from the finished records, so a
-resumed series goes on exactly where it stopped, and nothing is overwritten.
+goes on, ending with fewer used episodes. An episode spoiled by a provider outage that the series
+waited for (a fault of a kind in `NO_TRY`: experiments/outage.py) is played again and spends no try.
+Everything is read from the finished records, so a resumed series goes on exactly where it stopped,
+and nothing is overwritten.
 """
 
 from __future__ import annotations
@@ -13,7 +15,11 @@ from dataclasses import dataclass
 from pillagerbench.config.schema import RETRIES  # the config's default `retries` (runs from before the key: this)
 from pillagerbench.rundir.directory import RunDir
 from pillagerbench.rundir.episode import EpisodeRecord
-from pillagerbench.rundir.faults import spoiled
+from pillagerbench.rundir.faults import HARNESS, faults, spoiled
+
+# the faults of ours that spend no try: the provider answered no probe after the episode, and the series
+# waited for it before playing the episode again (experiments/outage.py)
+NO_TRY: frozenset[str] = frozenset({"provider outage"})
 
 
 @dataclass
@@ -39,6 +45,9 @@ def progress(records: dict[int, EpisodeRecord], planned: int, retries: int = RET
     for index in sorted(records):
         if slot >= planned:
             break
+        if any(f.whose == HARNESS and f.kind in NO_TRY for f in faults(records[index])):
+            out.spoiled += 1  # waited out: played again, no try spent
+            continue
         tries += 1
         if spoiled(records[index]):
             out.spoiled += 1

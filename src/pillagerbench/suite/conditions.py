@@ -83,6 +83,11 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("plan_width", NOT, "a question the plan answers; plays nothing"),
     Setting("plan_difference", NOT, "a question the plan answers; plays nothing"),
     Setting("retries", NOT, "how often an episode spoiled on our side is played again (it is in no score)"),
+    Setting(
+        "outage_wait_s",
+        NOT,
+        "how long a series waits for a provider or team server that stopped answering; it plays nothing meanwhile",
+    ),
 )
 RULES: tuple[str, ...] = tuple(s.key for s in SETTINGS if s.kind == RULE)
 

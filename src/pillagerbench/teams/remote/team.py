@@ -51,6 +51,10 @@ DEFAULTS: dict[str, Any] = defaults(RemoteOptions)
 
 
 Reply = TypeVar("Reply", bound=BaseModel)
+# the episode's last call (its post-game) recorded as a problem holding one of these: the team server did not
+# answer at all at the episode's end (refused, name not resolved, cut, a 5xx); a series then waits for it
+# before its next episode (experiments/outage.py). A time-out is not one: a slow team's answers are its own.
+UNREACHABLE = ("cannot reach ", "broken answer from ", "HTTP 5")
 
 
 class RemoteError(Exception):
@@ -144,6 +148,13 @@ class RemoteTeam(Team):
                 "(docs/remote-teams.md)"
             )
         return None
+
+    @classmethod
+    def unreachable(cls, problems: list[str]) -> bool:
+        """Whether a side's recorded problems say its team server could not be reached at the episode's end
+        (its post-game call, `UNREACHABLE`): a series probes it (`preflight`) and waits for it before its next
+        episode (docs/experiments.md). A call that failed mid-game, the server answering again, is not."""
+        return any(p.startswith("remote /postgame: ") and any(u in p for u in UNREACHABLE) for p in problems)
 
     # --- calls ---------------------------------------------------------------------------------
     async def _call(self, path: str, message: BaseModel, reply: type[BaseModel], timeout: float) -> Any:
