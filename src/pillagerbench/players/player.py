@@ -28,7 +28,7 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-import psutil  # type: ignore[import-untyped]  # (no stubs pinned; one call, below)
+import psutil
 
 from pillagerbench.server.seams import Control
 
