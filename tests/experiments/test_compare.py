@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from pillagerbench.experiments.compare import Comparison, pair_scores
+from pillagerbench.experiments.comparison import Comparison, pair_scores
 from pillagerbench.stats.sprt import Bounds
 from tests.metrics.fake_runs import write_run
 from tests.support.cli import refused_in_process, run_cli
@@ -94,3 +94,5 @@ def test_passive_against_balanced_decides_on_the_real_server_and_resumes(tmp_pat
     report = run_cli(tmp_path, "report", str(run), "--no-replays", "--out", str(tmp_path / "report"), timeout=180)
     assert report.returncode == 0, report.stderr
     assert Path(tmp_path / "report" / "summary.md").exists()
+    # decided is finished: the report opens with the answer and reads no series as unfinished
+    assert report.stdout.splitlines()[0] == last and "unfinished" not in report.stdout, report.stdout

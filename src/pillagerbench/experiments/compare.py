@@ -20,49 +20,20 @@ with the episodes and dollars spent. The run directory is an experiment's (`repo
 from __future__ import annotations
 
 import asyncio
-import json
 import time
-from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from pillagerbench.config.compose import ConfigError, load_config
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.experiments.comparison import FILE, Answer, Comparison, answer, read, settle
 from pillagerbench.experiments.outage import Stopped
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.series import run_series
-from pillagerbench.llm.ledger import read_ledger
-from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, spoiled
+from pillagerbench.rundir import RunDir, SeriesSpec
 from pillagerbench.stats.sample_size import fixed_test
-from pillagerbench.stats.sprt import BETTER, NOT_BETTER, UNDECIDED, Bounds, llr, verdict
+from pillagerbench.stats.sprt import Bounds
 
-FILE = "compare.json"
 OWN_KEYS = ("opponent", "cap", "resume", "run_dir", *(f"sprt.{k}" for k in ("p0", "p1", "alpha", "beta")))
-
-
-@dataclass
-class Comparison:
-    """What a compare plays and how it decides (compare.json)."""
-
-    a: str
-    b: str
-    opponent: str | None = None
-    bounds: Bounds = field(default_factory=Bounds)
-    cap: int = 0  # pairs at most
-    game: list[str] = field(default_factory=list)  # the overrides both entrants play under
-
-    def series(self) -> dict[str, tuple[str, str]]:
-        """Series id -> (red, blue): each entrant on each side against the opponent, or each other."""
-        if self.opponent is None:
-            return {"a_red": (self.a, self.b), "b_red": (self.b, self.a)}
-        o = self.opponent
-        return {"a_red": (self.a, o), "b_red": (self.b, o), "a_blue": (o, self.a), "b_blue": (o, self.b)}
-
-    def pair(self, k: int) -> tuple[str, str, int]:
-        """The series holding A's and B's episode of pair k, and its place among their used episodes."""
-        if self.opponent is None:
-            return "a_red", "b_red", k
-        side = "red" if k % 2 == 0 else "blue"
-        return f"a_{side}", f"b_{side}", k // 2
 
 
 def parse(argv: list[str]) -> tuple[Comparison | None, Path | None]:
@@ -122,77 +93,25 @@ def specs(c: Comparison, cfgs: dict[str, RunConfig]) -> list[SeriesSpec]:
     ]
 
 
-def used(series_dir: Path) -> list[EpisodeRecord]:
-    """A series' results so far: its finished episodes that are not spoiled, in order."""
-    finished = RunDir(series_dir).finished()
-    return [finished[i] for i in sorted(finished) if not spoiled(finished[i])]
-
-
-def _points(rec: EpisodeRecord, entrant_side: str) -> float:
-    return float((rec.red_score if entrant_side == "red" else rec.blue_score) or 0.0)
-
-
-def _result(rec: EpisodeRecord, side: str) -> float:
-    own, other = _points(rec, side), _points(rec, "blue" if side == "red" else "red")
-    return 1.0 if own > other else 0.5 if own == other else 0.0
-
-
-def pair_scores(c: Comparison, run_dir: Path) -> list[float]:
-    """A's score in each complete pair so far, in order."""
-    rundir, eps = RunDir(run_dir), {}
-    for sid in c.series():
-        eps[sid] = used(rundir.series_dir(sid))
-    out = []
-    for k in range(c.cap):
-        sa, sb, i = c.pair(k)
-        if i >= len(eps[sa]) or i >= len(eps[sb]):
-            break
-        if c.opponent is None:  # A red in a_red, A blue in b_red
-            out.append((_result(eps[sa][i], "red") + _result(eps[sb][i], "blue")) / 2)
-        else:
-            side = sa.removeprefix("a_")
-            a, b = _points(eps[sa][i], side), _points(eps[sb][i], side)
-            out.append(1.0 if a > b else 0.5 if a == b else 0.0)
-    return out
-
-
-def dollars(run_dir: Path, c: Comparison) -> str:
-    """What the LLM calls of every series cost ("$0.0000"; "unknown" when a call had no price)."""
-    ledgers = [RunDir(RunDir(run_dir).series_dir(sid)).ledger_path for sid in c.series()]
-    calls = [r for path in ledgers if path.exists() for r in read_ledger(path)]
-    if any(r.get("cost_usd") is None for r in calls if "cost_usd" in r):
-        return "unknown (a call had no price)"
-    return f"${sum(float(r.get('cost_usd') or 0.0) for r in calls):.4f}"
-
-
 def line(k: int, score: float, value: float, b: Bounds) -> str:
     return f"pair {k + 1}: A scores {score:g}; LLR {value:+.2f} in [{b.lower:+.2f}, {b.upper:+.2f}]"
-
-
-def verdict_line(c: Comparison, found: str, pairs: int, run_dir: Path) -> str:
-    said = {BETTER: "is better than", NOT_BETTER: "is not better than", UNDECIDED: "undecided against"}[found]
-    cap = f" at the cap ({c.cap} pairs)" if found == UNDECIDED else ""
-    rates = f"α={c.bounds.alpha:g}, β={c.bounds.beta:g}, p0={c.bounds.p0:g}, p1={c.bounds.p1:g}"
-    episodes = sum(len(RunDir(RunDir(run_dir).series_dir(s)).finished()) for s in c.series())
-    return f"compare: {c.a} {said} {c.b}{cap} (SPRT {rates}; {pairs} pairs, {episodes} episodes, {dollars(run_dir, c)})"
 
 
 class GaveUp(Exception):
     """A series of the compare stopped waiting for its provider or team server; the message says so."""
 
 
-def play(c: Comparison, run_dir: Path, series: dict[str, SeriesSpec]) -> str:
-    """Pairs until the test decides or the cap; prints a line per pair; returns the verdict."""
+def play(c: Comparison, run_dir: Path, series: dict[str, SeriesSpec]) -> Answer:
+    """Pairs until the test decides or the cap; prints a line per pair; returns the answer."""
     shown = 0
     while True:
-        scores = pair_scores(c, run_dir)
-        for k in range(shown, len(scores)):
-            print(line(k, scores[k], llr(scores[: k + 1], c.bounds), c.bounds), flush=True)
-        shown = len(scores)
-        found = verdict(scores, c.bounds)
-        if found != UNDECIDED or len(scores) >= c.cap:
+        found = answer(c, run_dir)
+        for k in range(shown, len(found.scores)):
+            print(line(k, found.scores[k], found.path[k], c.bounds), flush=True)
+        shown = len(found.scores)
+        if found.finished:
             return found
-        sa, sb, i = c.pair(len(scores))
+        sa, sb, i = c.pair(len(found.scores))
         for sid in (sa, sb):
             spec = series[sid]
             spec.episodes = i + 1  # this series' results up to this pair
@@ -215,15 +134,14 @@ def start(c: Comparison, run_dir: Path | None) -> tuple[Path, dict[str, SeriesSp
     all_specs = specs(c, cfgs)
     top = {"experiment": {"name": f"compare {c.a} vs {c.b}", "design": "compare"}}
     write_experiment(run_dir, top, [c.a, c.b, *c.game], all_specs)
-    (run_dir / FILE).write_text(json.dumps({**asdict(c), "bounds": asdict(c.bounds)}, indent=1))
+    c.write(run_dir)
     return run_dir, {s.id: s for s in all_specs}
 
 
 def resume(run_dir: Path) -> tuple[Comparison, dict[str, SeriesSpec]]:
-    if not (run_dir / FILE).exists():
+    c = read(run_dir)
+    if c is None:
         raise ConfigError(f"resume={run_dir}: not a compare's run directory (no {FILE})")
-    data = json.loads((run_dir / FILE).read_text())
-    c = Comparison(**{**data, "bounds": Bounds(**data["bounds"])})
     return c, {s.id: s for s in specs(c, configs(c))}
 
 
@@ -242,5 +160,6 @@ def main(argv: list[str]) -> int:
     except GaveUp as exc:
         print(f"compare: {exc}")
         return 1
-    print(verdict_line(c, found, len(pair_scores(c, run_dir)), run_dir))
+    settle(run_dir, found)  # its series are finished: report, verify and export read them so
+    print(found.line())
     return 0

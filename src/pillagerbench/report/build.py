@@ -16,9 +16,7 @@ scenario versions are refused.
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import pandas as pd
 
@@ -27,41 +25,16 @@ from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.estimates import ALL, scenario_order
 from pillagerbench.metrics.findings import Findings, find
 from pillagerbench.metrics.runs import ReportError, beside, reader_switches
+from pillagerbench.report import comparison, html, plots, replays
 from pillagerbench.report import generalization as unseen
-from pillagerbench.report import html, plots, replays, tables
 from pillagerbench.report.provenance import provenance
-
-
-@dataclass
-class Section:
-    """One part of the report, in page order: a table (written as NAME.csv and NAME.md), a figure
-    (content: (png path, caption)) or markup; on the page and in its contents unless empty."""
-
-    title: str
-    kind: str  # "table" | "image" | "html"
-    content: Any
-    name: str | None = None
-    empty: bool = False
-
-    def files(self, out: Path) -> list[Path]:
-        if self.kind == "table":
-            return tables.write(self.content, out, str(self.name), self.title)
-        return [self.content[0]] if self.kind == "image" else []
-
+from pillagerbench.report.sections import Section, figure, table
 
 DIFFERENCES = (
     "differences",
     "Differences between entrants against the same opponent (a − b in points: paired where they met the same "
     "layouts and seeds, else two means; the unpaired interval beside)",
 )
-
-
-def table(name: str, title: str, frame: pd.DataFrame) -> Section:
-    return Section(title, "table", frame, name, empty=not len(frame))
-
-
-def figure(title: str, path: Path, caption: str, episodes: int) -> Section:
-    return Section(title, "image", (path, caption), empty=not episodes)
 
 
 def build_report(
@@ -74,7 +47,9 @@ def build_report(
 ) -> dict:
     found = find(run_dirs, calibration, mix_suites, verify)  # metrics computes; the rest only formats
     out.mkdir(parents=True, exist_ok=True)
+    compares = comparison.answers(found.runs)
     sections = [  # the report's one list of sections: its files, its contents and its page
+        *comparison.sections(compares, out),  # a comparison's answer first
         table("provenance", "Provenance: what each run is, from its manifests", provenance(found.runs)),
         table("summary", "Summary per red entrant (all scenarios and opponents)", found.summary),
         table("per_scenario", "Per red entrant and scenario", found.per_scenario),
@@ -105,7 +80,7 @@ def build_report(
     ]
     for s in sections:  # mixed suite versions, a bundle not verified: every table says so (its .md file too)
         s.title += found.title
-    notes = report_notes(found)
+    notes = [a.line() for _, a in compares] + report_notes(found)
     files: list[Path] = []
     if with_replays:
         replay_rows, files = replays.write_all(found.runs.series, out)

@@ -6,6 +6,7 @@
 - learning_curve.png        D per episode index (experience) per red team, CI error bars
 - groups.png                P/D per group (adaptation same/different, self-play "after k")
 - series_scores.png         red and blue score per episode of long series where a team meets itself
+- compare_<run>.png         a compare's log-likelihood ratio after each pair, between its bounds
 """
 
 from __future__ import annotations
@@ -255,6 +256,24 @@ def series_scores(df: pd.DataFrame, path: Path, max_series: int = 6) -> Path:
         ax.set_xlabel("episode")
         ax.set_ylabel("points")
         ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def sprt_path(llrs: list[float], lower: float, upper: float, title: str, path: Path) -> Path:
+    """A sequential test's log-likelihood ratio after each pair, between its two bounds (a compare)."""
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    pairs = list(range(len(llrs) + 1))
+    ax.plot(pairs, [0.0, *llrs], marker="o", color="#1f77b4", label="LLR after each pair")
+    ax.axhline(upper, color="#2ca02c", ls="--", label=f"A better ({upper:+.2f})")
+    ax.axhline(lower, color="#d62728", ls="--", label=f"A not better ({lower:+.2f})")
+    ax.axhline(0, color="grey", lw=0.6)
+    ax.set_xlabel("pairs played")
+    ax.set_ylabel("log-likelihood ratio")
+    ax.set_title(title)
+    ax.legend(fontsize=8, loc="best")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

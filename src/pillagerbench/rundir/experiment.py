@@ -4,6 +4,7 @@ command's overrides and every series as a SeriesSpec's dict), read back whicheve
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 from typing import Any
 
@@ -28,7 +29,11 @@ class ExperimentFile(BaseModel):
 
 
 def write_experiment_file(run_dir: str | Path, data: ExperimentFile) -> None:
-    (Path(run_dir) / EXPERIMENT).write_text(json.dumps(data.to_json(), indent=1, default=str))
+    """experiment.json, replaced whole (a settled compare rewrites it: a kill leaves the old or the new)."""
+    path = Path(run_dir) / EXPERIMENT
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(data.to_json(), indent=1, default=str))
+    os.replace(tmp, path)
 
 
 def read_experiment(run_dir: str | Path) -> ExperimentFile:
