@@ -330,3 +330,17 @@ async def test_a_bot_dead_for_good_with_no_restart_pause_does_not_spin(tmp_path,
     other = asyncio.create_task(asyncio.sleep(0.1))  # the event loop's other tasks still run
     await asyncio.wait_for(team._keep_running(ctx, 0, DeadBot()), 5)
     assert other.done() and 1 <= team.iterations[0] <= 0.5 / 0.05 + 2, team.iterations
+
+
+async def test_a_remote_teams_bot_dead_for_good_with_no_restart_pause_does_not_spin(tmp_path):
+    """The remote team's loop restarts its player's program as cot's does (TeamContext.pause_before_rerun):
+    with restart_pause_s=0 a run that fails before it starts waits a tick, never a loop that does not yield."""
+    team = make_team("remote", "mushroom_war", url="http://127.0.0.1:9", restart_pause_s=0.0)
+    ctx = context(tmp_path, None)
+    ctx.deadline = ctx.clock.now() + 0.5
+    team.programs, team.versions, team.iterations, team.problems = {"Ryn": "await bot.chat('hi')"}, {"Ryn": 1}, [0], []
+    ctx.players = {"Ryn": DeadBot()}
+    other = asyncio.create_task(asyncio.sleep(0.1))
+    await asyncio.wait_for(team._keep_running(ctx, 0, "Ryn", {"Ryn": []}), 5)
+    assert other.done() and 1 <= team.iterations[0] <= 0.5 / 0.05 + 2, team.iterations
+    assert team.problems[0] == "Ryn: RuntimeError: Ryn: the bot is not running (call start())", team.problems

@@ -95,3 +95,18 @@ def test_tacticrafters_roles_are_checked_before_the_run():
     assert line.startswith(
         "red.roles={'chef': {}, 'action': {'temprature': 0.0}}: value error, tacticrafter: unknown role"
     )
+
+
+@pytest.mark.parametrize(
+    ("overrides", "red_cap", "blue_cap"),
+    [
+        (["red=cot", "blue=cot"], 4096, 4096),  # the preset's own 512 does not cut a team's cap
+        (["red=cot", "blue=cot", "llm.max_tokens=1024"], 1024, 1024),  # the user's limit wins: stricter
+        (["red=cot", "blue=cot", "llm.max_tokens=9000"], 4096, 4096),  # the team's cap is stricter
+        (["red=cot", "blue=cot", "blue.llm.max_tokens=100"], 4096, 100),  # one side's limit
+        (["red=cot", "blue=tools", "red.max_tokens=8000", "llm.max_tokens=1024"], 1024, 1024),
+    ],
+)
+def test_the_users_llm_max_tokens_caps_a_teams_own_answer_cap(overrides, red_cap, blue_cap):
+    cfg = load_config(overrides)
+    assert (cfg.red.max_tokens, cfg.blue.max_tokens) == (red_cap, blue_cap)

@@ -226,6 +226,7 @@ def load_config(overrides: list[str] | None = None, config_name: str = "config")
         raise ConfigError(one_line(str(exc), list(overrides or []))) from None
     OmegaConf.set_readonly(cfg, False)
     _apply_paper(cfg, list(overrides or []))
+    _apply_answer_cap(cfg, list(overrides or []))
     return cfg
 
 
@@ -249,6 +250,21 @@ def _apply_paper(cfg: DictConfig, overrides: list[str]) -> None:
                 f"paper=true plays with {key}={value} (as the paper's tables); drop {key}={given[-1]} or paper=true"
             )
         cfg[key] = value
+
+
+def _apply_answer_cap(cfg: DictConfig, overrides: list[str]) -> None:
+    """`llm.max_tokens=N` (or `<side>.llm.max_tokens=N`) given on the command line caps every answer of
+    that side: a team's own cap (cot's 4096, tools' 2048: `<side>.max_tokens`) larger than N becomes N,
+    the stricter limit winning, so the user's limit applies. A preset's own max_tokens does not."""
+    given = {k.lstrip("+~"): v for k, sep, v in (o.partition("=") for o in overrides) if sep}
+    for side in GROUP_ALIASES:
+        node = OmegaConf.select(cfg, side)
+        if not OmegaConf.is_dict(node) or node.get("max_tokens") is None:
+            continue
+        asked = given.get(f"{side}.llm.max_tokens", given.get("llm.max_tokens"))
+        if asked is None or not asked.isdigit():
+            continue  # none given (a bad value is the schema's to refuse)
+        node["max_tokens"] = min(int(node["max_tokens"]), int(asked))
 
 
 def to_dict(cfg: Any) -> dict[str, Any]:

@@ -270,6 +270,7 @@ def sprt_path(llrs: list[float], lower: float, upper: float, title: str, path: P
     ax.axhline(upper, color="#2ca02c", ls="--", label=f"A better ({upper:+.2f})")
     ax.axhline(lower, color="#d62728", ls="--", label=f"A not better ({lower:+.2f})")
     ax.axhline(0, color="grey", lw=0.6)
+    ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
     ax.set_xlabel("pairs played")
     ax.set_ylabel("log-likelihood ratio")
     ax.set_title(title)

@@ -15,7 +15,7 @@ from typing import Any, ClassVar, Protocol
 from pillagerbench.llm import LLMClient
 from pillagerbench.rundir import LastEpisode, TeamState
 from pillagerbench.scenarios import Scenario, Side
-from pillagerbench.server.clock import GameClock, RealClock
+from pillagerbench.server.clock import TICK_S, GameClock, RealClock
 from pillagerbench.teams.options import TeamOptions
 
 
@@ -81,6 +81,14 @@ class TeamContext:
         await self.clock.rest([player], wait)
         if self.time_left() < 1e-6:  # (game seconds are ticks x 0.05: not exact in floating point)
             await self.clock.retire([player])
+
+    async def pause_before_rerun(self, player: str, pause_s: float, started: float, failed: bool) -> None:
+        """A team's loop that restarts a player's program waits `pause_s` of game time since the run
+        `started` (none once it ran that long); a run that could not start (a bot dead for good) waits a
+        tick at least, whatever `pause_s`: a loop that restarts never spins without yielding."""
+        pause = max(pause_s - (self.clock.now() - started), TICK_S if failed else 0.0)
+        if self.time_left() > 0 and pause > 0:
+            await self.sleep(pause, player)
 
     @property
     def opponent(self) -> Side:

@@ -27,7 +27,6 @@ from pillagerbench.agents.prompts import load_prompts
 from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios.upstream import UPSTREAM_ATTEMPTS, UPSTREAM_STEPS
-from pillagerbench.server.clock import TICK_S
 from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.options import TeamOptions
 
@@ -260,10 +259,7 @@ class ChainOfThought(Team):
                 self.record.setdefault("run_errors", []).append(
                     f"{ctx.side.player_names[k]}: {type(exc).__name__}: {exc}"
                 )
-            # a run that could not start (a bot dead for good) waits a tick at least: never a loop that does not yield
-            pause = max(self.restart_pause_s - (ctx.clock.now() - started), TICK_S if failed else 0.0)
-            if ctx.time_left() > 0 and pause > 0:
-                await ctx.sleep(pause, player.name)
+            await ctx.pause_before_rerun(player.name, self.restart_pause_s, started, failed)
 
     async def post_game(self, ctx: TeamContext) -> None:
         players = ctx.side.player_names

@@ -253,14 +253,16 @@ class RemoteTeam(Team):
                 continue
             version = self.versions.get(name)
             self.iterations[k] += 1
-            started = ctx.clock.now()
+            started, failed = ctx.clock.now(), False
             try:
                 await player.run(code, on_event=lambda event: outbox[name].append(event))
             except Exception as exc:  # noqa: BLE001 - the bot cannot run code right now: note it and go on
+                failed = True
                 self.problems.append(f"{name}: {type(exc).__name__}: {exc}")
-            quick = ctx.clock.now() - started
-            if self.versions.get(name) == version and ctx.time_left() > 0 and quick < self.restart_pause_s:
-                await ctx.sleep(self.restart_pause_s - quick, name)
+            # a new program starts at once; the same one after the pause (a failed start: a tick at least)
+            await ctx.pause_before_rerun(
+                name, 0.0 if self.versions.get(name) != version else self.restart_pause_s, started, failed
+            )
 
     async def post_game(self, ctx: TeamContext) -> None:
         last = last_seen_json(ctx.last_episode) if ctx.last_episode else {}
