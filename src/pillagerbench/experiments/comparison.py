@@ -18,6 +18,7 @@ from typing import Any
 from pillagerbench.llm.ledger import read_ledger
 from pillagerbench.rundir import EpisodeRecord, RunDir, spoiled
 from pillagerbench.rundir.experiment import read_experiment, write_experiment_file
+from pillagerbench.stats.result import result
 from pillagerbench.stats.sprt import BETTER, NOT_BETTER, UNDECIDED, Bounds, llr, verdict
 
 FILE = "compare.json"
@@ -78,8 +79,7 @@ def _points(rec: EpisodeRecord, entrant_side: str) -> float:
 
 
 def _result(rec: EpisodeRecord, side: str) -> float:
-    own, other = _points(rec, side), _points(rec, "blue" if side == "red" else "red")
-    return 1.0 if own > other else 0.5 if own == other else 0.0
+    return result(_points(rec, side), _points(rec, "blue" if side == "red" else "red"))
 
 
 def pair_scores(c: Comparison, run_dir: Path) -> list[float]:
@@ -97,7 +97,7 @@ def pair_scores(c: Comparison, run_dir: Path) -> list[float]:
         else:
             side = sa.removeprefix("a_")
             a, b = _points(eps[sa][i], side), _points(eps[sb][i], side)
-            out.append(1.0 if a > b else 0.5 if a == b else 0.0)
+            out.append(result(a, b))  # A's points against B's
     return out
 
 

@@ -14,6 +14,7 @@ import pandas as pd
 from pillagerbench.league.ratings import ANCHOR, Outcome
 from pillagerbench.stats.bradley_terry import Game, rate
 from pillagerbench.stats.lottery import pool_view
+from pillagerbench.stats.result import result
 
 COLUMNS = ("BT rating", "BT 95% low", "BT 95% high", "lottery share", "Nash margin", "LLM cost/win")
 BOOTSTRAP_ROUNDS = 500
@@ -22,7 +23,7 @@ BOOTSTRAP_ROUNDS = 500
 def games_of(outs: list[Outcome]) -> list[Game]:
     """One game per episode between two different entrants: red's result 1, 0.5 or 0."""
     return [
-        (o.red, o.blue, 1.0 if o.red_score > o.blue_score else 0.5 if o.red_score == o.blue_score else 0.0)
+        (o.red, o.blue, result(o.red_score, o.blue_score))
         for o in sorted(outs, key=lambda o: o.order)
         if o.red != o.blue
     ]

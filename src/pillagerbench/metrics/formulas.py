@@ -24,6 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pillagerbench.stats.result import results
+
 Values = Sequence[float] | np.ndarray  # scores, one per episode
 
 SCORE_SCALE = {"mushroom_war": 1.0, "dash_and_dine": 0.1}
@@ -113,11 +115,6 @@ def mean_ci(values: Iterable[float]) -> Estimate:
     return Estimate(float(x.mean()), float(t_critical(n - 1) * x.std(ddof=1) / math.sqrt(n)), n)
 
 
-def win_outcomes(red: Values, blue: Values) -> np.ndarray:
-    r, b = np.asarray(red, dtype=float), np.asarray(blue, dtype=float)
-    return (r > b).astype(float) + 0.5 * (r == b)
-
-
 def points(red: Values) -> Estimate:
     return mean_ci(red)
 
@@ -127,8 +124,7 @@ def difference(red: Values, blue: Values) -> Estimate:
 
 
 def win_rate(red: Values, blue: Values) -> Estimate:
-    e = mean_ci(win_outcomes(red, blue))
-    return e
+    return mean_ci(results(red, blue))
 
 
 def sabotage(blue: Sequence[float], sigma_blue: float | None, sigma: Estimate | None = None) -> Estimate:

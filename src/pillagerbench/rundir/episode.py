@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any, NotRequired, TypedDict
 
+from pillagerbench.stats.result import DREW, LOST, WON, result
 from pillagerbench.suite.conditions import RULES, stamp, suite_defaults
 from pillagerbench.suite.version import UNVERSIONED, current
 
@@ -130,4 +131,4 @@ def last_seen_json(last: LastEpisode) -> dict[str, Any]:
 
 
 def winner_of(red: float, blue: float) -> str:
-    return "red" if red > blue else "blue" if blue > red else "tie"
+    return {WON: "red", DREW: "tie", LOST: "blue"}[result(red, blue)]
