@@ -35,3 +35,22 @@ def test_wait_ticks_ends_without_physics_ticks_and_early_with_them():
     assert out["ticking_ms"] < out["silent_ms"]  # 4 ticks at 5 ms each end it before the fallback
     assert out["zero_ms"] < 50
     assert out["listeners_left"] == 0
+
+
+def test_the_tick_is_declared_once_and_both_languages_read_it():
+    """js/clock/tick.json: the game clock (and through it ticks.js and the server's lockstep) and Python's
+    TICK_S agree, and no source spells the tick's length as a number of its own."""
+    import re
+
+    from pillagerbench.config.game_tick import TICK_MS, TICK_S, TICKS_PER_S
+    from pillagerbench.host.node import JS_DIR
+    from pillagerbench.server import clock
+
+    out = run_node_script("console.log(JSON.stringify(require(process.argv[1] + '/clock/game_clock.js').TICK_MS))")
+    assert out == TICK_MS == round(TICK_S * 1000) and TICKS_PER_S * TICK_MS == 1000 and clock.TICK_S == TICK_S
+    spelled = [
+        str(p)
+        for p in JS_DIR.glob("*/**/*.js")
+        if "node_modules" not in p.parts and re.search(r"TICK_MS\s*=\s*\d", p.read_text())
+    ]
+    assert not spelled, spelled

@@ -19,6 +19,7 @@ from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
 from pydantic_core import PydanticCustomError
 
 from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
+from pillagerbench.config.game_tick import TICKS_PER_S
 
 SECRET = "secret"  # the error type of a value that must not be echoed (problems() names the key only)
 # conf/config.yaml: every default of a key is written there, once (with the comment `run --help` shows;
@@ -342,13 +343,15 @@ def watch_problems(cfg: Any) -> list[str]:
 
 
 def clock_problems(cfg: Any) -> list[str]:
-    """What clock=lockstep cannot honour: a tick rate other than 20 (its game tick is 50 ms)."""
+    """What clock=lockstep cannot honour: a tick rate other than the game's (TICKS_PER_S, 20: its tick is 50 ms)."""
     data = plain(cfg)
     if (data.get("clock") or {}).get("mode") != "lockstep":
         return []
-    tps = (data.get("server") or {}).get("tps", 20)
-    if tps != 20:
-        return [f"server.tps={tps}: clock=lockstep plays 20 ticks per game second (drop server.tps or clock=lockstep)"]
+    tps = (data.get("server") or {}).get("tps", TICKS_PER_S)
+    if tps != TICKS_PER_S:
+        return [
+            f"server.tps={tps}: clock=lockstep plays {TICKS_PER_S} ticks per game second (drop server.tps or clock=lockstep)"
+        ]
     return []
 
 

@@ -21,9 +21,9 @@ from collections.abc import AsyncIterator, Sequence
 from contextlib import AbstractAsyncContextManager, asynccontextmanager
 from typing import Protocol
 
+from pillagerbench.config.game_tick import TICK_S
 from pillagerbench.server.seams import Control, Events
 
-TICK_S = 0.05
 CLOCK_EVENT = "clock"  # the event the server pushes with its tick (not a world event)
 
 

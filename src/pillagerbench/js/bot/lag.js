@@ -8,7 +8,7 @@
 //   late_mean_ms  mean of (gap between two ticks − 50 ms), gaps shorter than 50 ms counting 0
 //   late_max_ms   the largest such lateness
 //   late_pct      % of ticks more than a whole tick (50 ms) late
-const TICK_MS = 50
+const { TICK_MS } = require('../clock/game_clock')
 
 class LagMeter {
   constructor (bot, now = () => performance.now()) {

@@ -4,7 +4,7 @@
 // the chunk under the bot is not loaded (right after a teleport, or while the server is slow to
 // send it); it then rejects after 5 s. Here a wait ends after `n` physics ticks or after the
 // wall-clock time of `n` ticks plus a little slack, whichever comes first.
-const TICK_MS = 50
+const { TICK_MS } = require('../clock/game_clock')
 const SLACK_MS = 250
 
 function waitTicks (bot, n) {

@@ -12,7 +12,7 @@
 const { AsyncResource } = require('async_hooks')
 const timers = require('timers')
 
-const TICK_MS = 50
+const TICK_MS = require('./tick.json').ms // declared once (Python reads it too)
 const real = {
   setTimeout: globalThis.setTimeout,
   clearTimeout: globalThis.clearTimeout,
