@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.config.sides import other_side
 from pillagerbench.llm.ledger import read_ledger
 from pillagerbench.rundir import EpisodeRecord, RunDir, spoiled
 from pillagerbench.rundir.experiment import read_experiment, write_experiment_file
@@ -79,7 +80,7 @@ def _points(rec: EpisodeRecord, entrant_side: str) -> float:
 
 
 def _result(rec: EpisodeRecord, side: str) -> float:
-    return result(_points(rec, side), _points(rec, "blue" if side == "red" else "red"))
+    return result(_points(rec, side), _points(rec, other_side(side)))
 
 
 def pair_scores(c: Comparison, run_dir: Path) -> list[float]:

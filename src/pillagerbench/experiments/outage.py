@@ -33,6 +33,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.sides import SIDES
 from pillagerbench.llm.preflight import UNANSWERED
 from pillagerbench.llm.preflight import probe as llm_probe
 from pillagerbench.rundir import HARNESS, EpisodeRecord, RunDir, faults
@@ -40,11 +41,10 @@ from pillagerbench.teams import find_team
 
 FIRST_WAIT_S = 5.0  # the wait before the second probe; doubled after each probe that finds it out
 MAX_WAIT_S = 60.0
-TICK_S = 1.0  # the live line's refresh while waiting
+REFRESH_S = 1.0  # the live line's refresh while waiting
 OUTAGE = "provider outage"  # an LLM side's problem when its provider answered no probe (rundir/faults.py)
 PROVIDER = "provider unreachable"  # rundir/faults.py's kind of "llm failed on all ..." and of a failed call
 FILE = "outage.json"  # in the series directory, while it waits
-SIDES = ("red", "blue")
 LLM, TEAM = "llm", "team"  # what a side's probe asks: its LLM provider, or its team (a remote team's server)
 _ERROR = re.compile(r"(?:^|last: )(\w+):")  # the error type in a failed episode's error or a side's problem
 
@@ -207,4 +207,4 @@ class Waiter:
         while (left := status.next_probe - time.time()) > 0:
             if self.show:
                 self.show(status)
-            await asyncio.sleep(min(TICK_S, left))
+            await asyncio.sleep(min(REFRESH_S, left))

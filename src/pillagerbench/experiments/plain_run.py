@@ -19,6 +19,7 @@ import time
 from pathlib import Path
 
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.display import MatchDisplay
 from pillagerbench.experiments.outage import Stopped
 from pillagerbench.experiments.series import run_series
@@ -97,7 +98,7 @@ def summarize_problems(records: list) -> tuple[list[str], bool]:
     """Lines about episodes in which a team had problems (its model or its server never answered,
     ...), and whether every episode of some team went that way."""
     lines, all_failed = [], False
-    for side in ("red", "blue"):
+    for side in SIDES:
         hit = [r for r in records if side in (r.problems or {})]
         if hit:
             lines.append(

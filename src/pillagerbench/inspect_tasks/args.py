@@ -21,6 +21,7 @@ from typing import Any
 from inspect_ai._util.error import PrerequisiteError
 
 from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.spec import build_series, slug
 from pillagerbench.match.validate import check_run_config, layout_problems, team_problems
 from pillagerbench.rundir import SeriesSpec
@@ -28,7 +29,6 @@ from pillagerbench.scenarios.layout import PAPER, SPLITS
 from pillagerbench.teams import TEAMS, find_team
 from pillagerbench.teams.tools import AgentTeam
 
-SIDES = ("red", "blue")
 AGENT = AgentTeam.name  # -T team=agent: the Inspect agent plays the team through the game's tools (seated.py)
 ARGS = (
     "team",

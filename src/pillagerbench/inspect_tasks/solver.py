@@ -14,6 +14,7 @@ from inspect_ai.model import get_model
 from inspect_ai.solver import Generate, Solver, TaskState, solver
 from inspect_ai.util import concurrency
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.series import run_series
 from pillagerbench.host.machine import choose_parallel
 from pillagerbench.rundir import SeriesSpec
@@ -32,7 +33,7 @@ def epoch_spec(spec: SeriesSpec, epoch: int) -> SeriesSpec:
     directory, the entrants and the ledger's prices name the real model, not `eval`."""
     seed = spec.seed + EPOCH_SEED * (epoch - 1)
     changes: dict = {"seed": seed}
-    for side in ("red", "blue"):
+    for side in SIDES:
         team = spec.red_team if side == "red" else spec.blue_team
         if getattr(find_team(team), "uses_llm", False):
             changes[side] = {"llm": {"model": str(get_model(role=side))}}

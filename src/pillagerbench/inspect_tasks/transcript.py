@@ -12,10 +12,10 @@ from typing import Any
 
 from inspect_ai.log import transcript
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.replay.page import write_replay
 from pillagerbench.rundir import EpisodeDir, EpisodeRecord, RunDir, spoiled
 
-SIDES = ("red", "blue")
 REFUSED_SHOWN = 20  # refused actions listed per episode (the record counts them all)
 CODE_KEYS = ("programs", "errors", "iterations", "agents", "problems")  # what an artefact says of the code run
 

@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.league import results, splits
 from pillagerbench.league.arena_view import BOOTSTRAP_ROUNDS, COLUMNS, arena_columns, cost_plot
 from pillagerbench.league.ratings import ANCHOR, Rating, ranked, ranks
@@ -58,7 +59,7 @@ def _sides(df: pd.DataFrame, name: str) -> pd.DataFrame:
 def _recorded(df: pd.DataFrame, name: str) -> dict[str, str]:
     """The entrant label and id its episodes recorded (teams/entrant.py), "" before it played."""
     seen: dict[str, str] = {}
-    for side in ("red", "blue"):
+    for side in SIDES:
         mine = df[df[Col.series_name(side)] == name]
         seen |= dict(zip(mine[Col.entrant_id(side)], mine[Col.entrant(side)]))
     return {"label": ", ".join(dict.fromkeys(seen.values())), "id": ", ".join(seen)}

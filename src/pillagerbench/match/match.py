@@ -15,76 +15,27 @@ import functools
 import json
 import random
 import time
-from collections.abc import AsyncIterator, Callable, Sequence
+from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
 
 from pillagerbench.config.schema import ClockConfig, default
+from pillagerbench.config.sides import SIDES
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay, Scoreboard
 from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
+from pillagerbench.match.sides_clock import SidesClock
 from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.scenarios import Scenario, upstream
 from pillagerbench.scenarios.layout import episode_layout
-from pillagerbench.server.clock import GameClock, LockstepClock, RealClock
-from pillagerbench.server.seams import Control, Events, Server
+from pillagerbench.server.clock import GameClock, RealClock
+from pillagerbench.server.seams import Server
 from pillagerbench.teams import Team, TeamContext
 from pillagerbench.teams.base import PlayerHandle
-
-
-class SidesClock(LockstepClock):
-    """The lockstep clock as a match keeps it: it also counts, per player, the let-gos of its idle bot that
-    came while its side held the world itself (`thinking` as the side: an LLM's or a team server's call in
-    flight). Those did not let the world go on at the server's wall-clock limit (the side's own hold still
-    held it); once the call ended it went on without the bot at a moment the call chose: the team's own,
-    not a stall of our machine. (A seat's hold, `tools:<side>`, is not counted: the seat frees its idle
-    bots as it holds the world, and its holds come and go with every tool call.)"""
-
-    def __init__(self, server: Control, events: Events | None, per_1k: float | None, sides: dict[str, list[str]]):
-        super().__init__(server, events, per_1k)
-        self.sides = sides  # side key -> its players
-        self.masked: dict[str, int] = {}  # player -> let-gos of the game while its side held the world
-        self._thinking: dict[str, int] = {}  # side -> its holds on (thinking)
-        self._before: dict[str, dict[str, int]] = {}  # side -> the let-gos as its first hold began
-
-    @asynccontextmanager
-    async def thinking(self, who: str) -> AsyncIterator[None]:
-        tracked = not self.over and who in self.sides  # (an LLM's or a team server's hold is its side's key)
-        async with super().thinking(who):
-            if tracked:
-                self._thinking[who] = self._thinking.get(who, 0) + 1
-                if self._thinking[who] == 1:
-                    self._before[who] = await self._let_gos()
-            try:
-                yield
-            finally:
-                if tracked and self._thinking.get(who):
-                    self._thinking[who] -= 1
-                    if not self._thinking[who] and not self.over:
-                        self._mask(who, await asyncio.shield(self._let_gos()))
-
-    async def _let_gos(self) -> dict[str, int]:
-        state = await self.server.clock()
-        return {who.removeprefix("idle:"): n for who, n in state.get("let_go", {}).items()}
-
-    def _mask(self, side: str, now: dict[str, int]) -> None:
-        before = self._before.pop(side, {})
-        for name in self.sides[side]:
-            self.masked[name] = self.masked.get(name, 0) + now.get(name, 0) - before.get(name, 0)
-
-    async def end(self) -> None:
-        await super().end()
-        for side in [k for k, n in self._thinking.items() if n]:  # still thinking at the whistle
-            self._mask(side, self.went_on)
-        self._thinking.clear()
-
-    async def begin(self, bystanders: Sequence[str] = ()) -> None:
-        self.masked, self._thinking, self._before = {}, {}, {}
-        await super().begin(bystanders)
 
 
 class Match:
@@ -165,15 +116,14 @@ class Match:
         if self.clock_config.mode == "lockstep":
             per_1k = self.clock_config.ticks_per_1k_tokens
             sides = {side.key: list(side.player_names) for side in self.scenario.sides}
-            clock = SidesClock(self.server, self.server.control, per_1k, sides)
+            clock = SidesClock(self.server, self.server.control, per_1k, sides, self.clock_config.speed)
             await clock.start()
             self.clock = clock
 
     async def close(self) -> None:
         await asyncio.gather(*(p.close() for p in self.players.values()), return_exceptions=True)
         self.players.clear()
-        if isinstance(self.clock, LockstepClock):
-            await self.clock.close()
+        await self.clock.close()
 
     async def play_episodes(self, episodes, on_episode: Callable[[EpisodeRecord], None]) -> None:
         """Play the given episode indices in order; after each, `on_episode(record)`. An episode that
@@ -314,9 +264,9 @@ class Match:
         async with self._game_time():
             clean, late = await play_game(game, contexts, random.Random(rec.seed), parts, self.scoring)
         self._stalled(rec)
-        rec.scores = {"clean": {k: clean.timeline[-1][k] for k in ("red", "blue")}}
+        rec.scores = {"clean": {k: clean.timeline[-1][k] for k in SIDES}}
         if late:
-            rec.scores["upstream"] = {k: late.timeline[-1][k] for k in ("red", "blue")}
+            rec.scores["upstream"] = {k: late.timeline[-1][k] for k in SIDES}
         rec.red_score, rec.blue_score = rec.scores[self.scoring]["red"], rec.scores[self.scoring]["blue"]
         rec.winner = winner_of(rec.red_score, rec.blue_score)
         rec.iterations = {k: list(t.iterations) for k, t in self.teams.items()}
@@ -327,23 +277,19 @@ class Match:
         """The game on its clock: lockstep at its speed (between games it keeps real time's pace, so
         idle bots cost no CPU), each team's LLM calls holding the world while in flight."""
         clock = self.clock
-        if isinstance(clock, LockstepClock):
-            speed = self.clock_config.speed
-            await self.server.clock(unpaced=True) if speed == "max" else await self.server.clock(speed=float(speed))
-            await clock.begin(bystanders=[p.name for p in self.scenario.extra_players])
-            for key, llm in self.llms.items():
-                names = [s.player_names for s in self.scenario.sides if s.key == key][0]
-                llm.thinking.during_game(
-                    functools.partial(clock.thinking, key), functools.partial(clock.charge, players=names)
-                )
+        await clock.begin(bystanders=[p.name for p in self.scenario.extra_players])
+        for key, llm in self.llms.items():  # (on the real clock a hold and a charge are nothing)
+            names = [s.player_names for s in self.scenario.sides if s.key == key][0]
+            llm.thinking.during_game(
+                functools.partial(clock.thinking, key), functools.partial(clock.charge, players=names)
+            )
         try:
             yield
         finally:
             for llm in self.llms.values():
                 llm.thinking.after_game()
-            if isinstance(clock, LockstepClock) and self.server.alive:
+            if self.server.alive:
                 await clock.end()
-                await self.server.clock(speed=1.0)
 
     async def _post_game(self, rec: EpisodeRecord, contexts: dict) -> None:
         """Each team looks back on what it saw; what went wrong for a team goes in the record."""
@@ -363,28 +309,7 @@ class Match:
         lockstep clock the world went on without an idle bot at the server's wall-clock limit (a tick the wall
         clock chose; a seat's own `free` is no let-go), or a bot was restarted for the machine's sake (starved
         of CPU, or it did not stop in time: players/player.py)."""
-        reasons = _went_on(rec, self.clock) if isinstance(self.clock, SidesClock) else []
+        reasons = self.clock.stalls(rec.problems)
         reasons += [stall for player in self.players.values() for stall in player.watchdog.take_stalls()]
         if reasons:
             rec.stalled, rec.stall_reason = True, "; ".join(reasons)
-
-
-def _went_on(rec: EpisodeRecord, clock: SidesClock) -> list[str]:
-    """The game's let-gos of idle bots at the server's wall-clock limit, as stalls; one that came while the bot's
-    side held the world itself (a call of its longer than the limit) is that side's own problem instead, as a
-    seat's think limit is."""
-    reasons = []
-    for name, n in clock.went_on.items():
-        own = min(n, max(0, clock.masked.get(name, 0)))
-        if n > own:
-            reasons.append(
-                f"lockstep: {name} idle, neither run nor rested, and the world went on without it after the "
-                f"server's wall-clock limit ({n - own}x): this game may not repeat under its seed"
-            )
-        side = next((k for k, names in clock.sides.items() if name in names), None)
-        if own and side:
-            rec.problems.setdefault(side, []).append(
-                f"lockstep: {name} idle while its team held the world past the server's wall-clock limit ({own}x): "
-                "once the team's call ended the world went on without it; this game may not repeat under its seed"
-            )
-    return reasons

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.config.registry import Registry
+from pillagerbench.config.sides import SIDES
 from pillagerbench.host.machine import lag_verdict
 from pillagerbench.players import Player
 from pillagerbench.replay.record import RECORDING, Recorder
@@ -245,7 +246,7 @@ class Scoreboard(Part):
 
     def second(self, game: Game, t: int, scores: dict[str, float]) -> None:
         for ctx in self.contexts.values():
-            ctx.scores = {k: scores[k] for k in ("red", "blue") if k in scores}
+            ctx.scores = {k: scores[k] for k in SIDES if k in scores}
 
     async def whistle(self, game: Game, final: dict[str, float]) -> None:
         self.second(game, int(game.length), final)

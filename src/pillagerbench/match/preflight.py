@@ -10,10 +10,9 @@ from typing import Any
 
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.sides import SIDES
 from pillagerbench.llm.preflight import preflight as llm_preflight
 from pillagerbench.teams import find_team
-
-SIDES = ("red", "blue")
 
 
 def sides_of(cfg: RunConfig) -> list[tuple[str, dict, Any]]:

@@ -25,6 +25,7 @@ from pillagerbench.config.schema import (
     watch_problems,
 )
 from pillagerbench.config.schema import merged as merged_llm
+from pillagerbench.config.sides import SIDES
 from pillagerbench.llm.errors import LLMConfigError
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
@@ -34,8 +35,6 @@ from pillagerbench.teams import TEAMS, find_team
 from pillagerbench.teams.options import defaults, options_model
 
 Composed = Mapping[str, Any]  # a composed configuration (a dict, or Hydra's node) before it is typed
-
-SIDES = ("red", "blue")
 
 
 def _team_problems(data: dict[str, Any], side: str, scenario: str) -> list[str]:

@@ -27,6 +27,7 @@ from typing import Any
 
 from pillagerbench.config.compose import ConfigError, load_config, to_dict
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.plain_run import make_run_dir
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS
@@ -38,7 +39,6 @@ from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series
 from pillagerbench.teams.tools import Seat, ToolResult
 from pillagerbench.teams.tools.agent import open_seat, reserve_seat
 
-SIDES = ("red", "blue")
 TRANSPORTS = ("stdio", "http")
 TOKEN_ENV = "PILLAGERBENCH_MCP_TOKEN"
 LINGER_S = 3.0  # http: after the run, the server answers this long (the client reads that it is over)

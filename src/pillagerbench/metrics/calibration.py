@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from pillagerbench.config.args import Parser
+from pillagerbench.config.sides import other_side
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import SCORE_SCALE, Estimate, mean_ci
 from pillagerbench.metrics.reference import REFERENCE_CALIBRATION, REFERENCE_SCORES
@@ -45,7 +46,7 @@ def against_do_nothing(df: pd.DataFrame, side: str = "blue"):
     built-in team's entrant is its name."""
     if not len(df):
         return
-    other = "red" if side == "blue" else "blue"
+    other = other_side(side)
     ref = df[(df[Col.team(other)] == "do_nothing") & df[Col.GROUP].isna()]
     yield from ((sc, team, g) for (sc, team), g in ref.groupby([Col.SCENARIO, Col.name(side)], sort=False))
 

@@ -12,9 +12,8 @@ from __future__ import annotations
 
 from typing import Final
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.match import SCORINGS
-
-SIDES: Final = ("red", "blue")
 
 
 class Col:

@@ -24,6 +24,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pillagerbench.config.sides import SIDES, other_side
 from pillagerbench.metrics.calibration import opponent_groups
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.estimate import COLUMNS, EntrantEstimate, Group
@@ -165,7 +166,7 @@ def team_view(df: pd.DataFrame) -> pd.DataFrame:
     if not len(df):
         return pd.DataFrame(columns=cols)
     parts = []
-    for side, other in (("red", "blue"), ("blue", "red")):
+    for side, other in ((s, other_side(s)) for s in SIDES):
         parts.append(
             pd.DataFrame(
                 {

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from pillagerbench.config.sides import other_side
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.calibration import FROM_RUNS, against_do_nothing, opponent_groups
@@ -73,7 +74,7 @@ def fidelity_table(df: pd.DataFrame) -> tuple[pd.DataFrame, list[str]]:
     few: list[str] = []
     unlike: dict[str, list[str]] = {}  # conditions unlike the references' -> the rows played under them
     for side in ("blue", "red"):
-        other = "red" if side == "blue" else "blue"
+        other = other_side(side)
         for scenario, team, g in against_do_nothing(df, side):
             if team == "do_nothing" or (scenario in REFERENCE_SCORES and team not in builtin_teams(scenario)):
                 continue  # the check is about the built-in opponents (an LLM team's row is the report's)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import pandas as pd
 
+from pillagerbench.config.sides import SIDES, other_side
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.formulas import Estimate, mean_ci, welch_half_width
 
@@ -82,7 +83,7 @@ def by_entrant(episodes: pd.DataFrame) -> pd.DataFrame:
     if not len(episodes):  # nothing used (every episode spoiled): no rows, the same columns
         return pd.DataFrame(columns=[Col.SCENARIO, "side", "entrant", "opponent", "points", *KEY])
     views = []
-    for side, other in (("red", "blue"), ("blue", "red")):
+    for side, other in ((s, other_side(s)) for s in SIDES):
         view = pd.DataFrame(
             {
                 Col.SCENARIO: episodes[Col.SCENARIO],

@@ -18,13 +18,12 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.metrics.faults import tally
 from pillagerbench.metrics.runs import ReportError, Runs, read_runs
 from pillagerbench.rundir import EpisodeRecord, RunDir, winner_of
 from pillagerbench.rundir.bundle import checksum_problems, is_bundle, unpack
 from pillagerbench.suite.version import UNVERSIONED, current, label, recorded, same_version
-
-SIDES = ("red", "blue")
 
 
 def summary(runs: Runs) -> dict:

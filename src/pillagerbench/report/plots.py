@@ -22,6 +22,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.estimates import ALL, opponent_order, red_order
 from pillagerbench.metrics.formulas import t_critical
@@ -165,7 +166,7 @@ def timeline_lines(df: pd.DataFrame, scenario: str) -> list[dict]:
     for red in red_order(sd):
         rd = sd[sd["red"] == red]
         n_t = min(len(t) for t in rd["t"])
-        for side in ("red", "blue"):
+        for side in SIDES:
             y = np.stack([v[:n_t] for v in rd[Col.over_time(side)]])
             half = t_critical(len(y) - 1) * y.std(axis=0, ddof=1) / math.sqrt(len(y)) if len(y) > 1 else None
             label = f"{red} (red, n={len(y)})" if side == "red" else f"{red}'s opponents (blue)"

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.metrics.columns import Col
 from pillagerbench.metrics.runs import Runs, SeriesInfo
 from pillagerbench.rundir import Manifest, RunDir
@@ -59,11 +60,7 @@ def models(s: SeriesInfo) -> list[str]:
 
 def entrants(df: pd.DataFrame) -> list[str]:
     """`label (id)` of every entrant in these episodes, red before blue, each once."""
-    return [
-        f"{label} ({i})"
-        for side in ("red", "blue")
-        for label, i in zip(df[Col.entrant(side)], df[Col.entrant_id(side)])
-    ]
+    return [f"{label} ({i})" for side in SIDES for label, i in zip(df[Col.entrant(side)], df[Col.entrant_id(side)])]
 
 
 def provenance(runs: Runs) -> pd.DataFrame:

@@ -35,7 +35,6 @@ GAME_MASTER = "game_master.json"
 REPLAY = "replay.jsonl.gz"
 REPLAY_PAGE = "replay.html"
 TASK_ERROR = ".error.txt"  # <task>.error.txt: a background task of the game that raised (match/game.py)
-SIDES = ("red", "blue")  # each side's own directory (its team's artefacts)
 
 # a team's saved state (state/episode_NNN/<side>/, checkpoints/episode_NNN/<side>/) and the ledger's
 # length beside it (state/episode_NNN/ledger_offset)

@@ -13,6 +13,7 @@ import random
 from dataclasses import dataclass
 from typing import ClassVar
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.scenarios import dash_and_dine_layout as L
 from pillagerbench.scenarios.arena import GROUND_Y, Arena, standing
 from pillagerbench.scenarios.base import GameMaster, PlayerSpec, Scenario, Side, sides_at, vec
@@ -133,7 +134,7 @@ class DashAndDine(Scenario[L.DashAndDineLayout]):
 
     @property
     def sides(self) -> tuple[Side, ...]:
-        bases = {key: self.layout.base(key) for key in ("red", "blue")}
+        bases = {key: self.layout.base(key) for key in SIDES}
         return sides_at(
             {k: [standing(p) for p in b.players] for k, b in bases.items()},
             {k: standing(b.server) for k, b in bases.items()},

@@ -15,6 +15,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.scenarios.arena import GROUND_Y
 from pillagerbench.scenarios.layout import PAPER, Cell, Draw, LayoutKey, apart, search, unreachable
 
@@ -295,7 +296,7 @@ def problems(layout: DashAndDineLayout) -> list[str]:
     if mirror.server != layout.blue.server or set(mirror.players) != set(layout.blue.players):
         out.append("the blue base is not the red base mirrored across the middle line (sides must be fair)")
     paper = mean_distance(PAPER_LAYOUT, "red")
-    for side in ("red", "blue"):
+    for side in SIDES:
         d = mean_distance(layout, side)
         if not DISTANCE[0] * paper <= d <= DISTANCE[1] * paper and layout.key != PAPER:
             out.append(
@@ -315,7 +316,7 @@ def _floor() -> tuple[Cell, Cell]:
 def _overlaps(layout: DashAndDineLayout, gap: int) -> list[str]:
     """Stations sharing a cell (generated layouts: also touching: a free cell must lie between)."""
     out: list[str] = []
-    seen: dict[str, set[Cell]] = {f"{s} base": _base_cells(layout.base(s)) for s in ("red", "blue")}
+    seen: dict[str, set[Cell]] = {f"{s} base": _base_cells(layout.base(s)) for s in SIDES}
     (x0, z0), (x1, z1) = _floor()
     for kind, piece in layout.pieces().items():
         cells = piece.cells()
@@ -332,8 +333,8 @@ def _walk_map(layout: DashAndDineLayout) -> tuple[dict, dict, set]:
     """Spawns (both bases' players), targets (every station's worked blocks, both servers) and the
     cells no one walks through."""
     pieces = layout.pieces()
-    blocked = {c for p in pieces.values() for c in p.blocked()} | {layout.base(s).server for s in ("red", "blue")}
-    spawns = {f"{s} player {i}": p for s in ("red", "blue") for i, p in enumerate(layout.base(s).players)}
+    blocked = {c for p in pieces.values() for c in p.blocked()} | {layout.base(s).server for s in SIDES}
+    spawns = {f"{s} player {i}": p for s in SIDES for i, p in enumerate(layout.base(s).players)}
     targets = {kind: p.targets() for kind, p in pieces.items()}
-    targets |= {f"{s} server": [layout.base(s).server] for s in ("red", "blue")}
+    targets |= {f"{s} server": [layout.base(s).server] for s in SIDES}
     return spawns, targets, blocked

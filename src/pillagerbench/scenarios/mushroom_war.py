@@ -12,6 +12,7 @@ import random
 from dataclasses import dataclass
 from typing import ClassVar
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.scenarios import mushroom_war_layout as L
 from pillagerbench.scenarios.arena import GROUND_Y, Arena, standing
 from pillagerbench.scenarios.base import GameMaster, Scenario, Side, sides_at, vec
@@ -40,7 +41,7 @@ class MushroomWar(Scenario[L.MushroomWarLayout]):
 
     @property
     def sides(self) -> tuple[Side, ...]:
-        areas = {key: self.layout.area(key) for key in ("red", "blue")}
+        areas = {key: self.layout.area(key) for key in SIDES}
         return sides_at(
             {k: [standing(p) for p in a.players] for k, a in areas.items()},
             {k: standing(a.center) for k, a in areas.items()},
@@ -49,7 +50,7 @@ class MushroomWar(Scenario[L.MushroomWarLayout]):
     @property
     def arena(self) -> Arena:
         blocks = []
-        for key in ("red", "blue"):
+        for key in SIDES:
             area = self.layout.area(key)
             blocks += [(*p, "mushroom_stem") for p in stems(area)]
             blocks += [(*p, CAP[key]) for p in caps(area)]
@@ -96,7 +97,7 @@ class MushroomWarMaster(GameMaster):
     async def start(self) -> None:
         # as upstream's: both teams start "dirty" (their areas start with more slime than the cutoff), so the
         # first announcement is a change; teams are named by index, red 0 and blue 1
-        self.areas = {key: self.scenario.layout.area(key) for key in ("red", "blue")}
+        self.areas = {key: self.scenario.layout.area(key) for key in SIDES}
         self.clean: dict[str, bool] = {key: False for key in self.areas}
         self.original_slime = [p for area in self.areas.values() for p in slime(area)]
         await self.say("starting cleanup scenario...")

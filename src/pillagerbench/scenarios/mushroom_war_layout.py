@@ -14,6 +14,7 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict
 
+from pillagerbench.config.sides import SIDES, other_side
 from pillagerbench.scenarios.arena import GROUND_Y
 from pillagerbench.scenarios.layout import PAPER, Cell, Draw, LayoutKey, apart, search, unreachable
 
@@ -162,8 +163,8 @@ SPAWNS = [(dx, dz) for dx in range(-SPAWN_RANGE, SPAWN_RANGE + 1) for dz in rang
 def problems(layout: MushroomWarLayout) -> list[str]:
     """Every way `layout` breaks the rules of docs/layouts.md, one line each (none: valid)."""
     out = []
-    for side in ("red", "blue"):
-        area, other = layout.area(side), layout.area("blue" if side == "red" else "red")
+    for side in SIDES:
+        area, other = layout.area(side), layout.area(other_side(side))
         counts = (len(area.mushrooms), len(area.slime), len(area.players))
         if counts != (MUSHROOMS, PATCHES, PLAYERS):
             out.append(
@@ -185,7 +186,7 @@ def problems(layout: MushroomWarLayout) -> list[str]:
 
 def _footprints(layout: MushroomWarLayout) -> dict[str, list[Cell]]:
     out: dict[str, list[Cell]] = {}
-    for side in ("red", "blue"):
+    for side in SIDES:
         area = layout.area(side)
         out |= {f"{side} mushroom {i}": plus(c) for i, c in enumerate(area.mushrooms)}
         out |= {f"{side} slime patch {i}": plus(c) for i, c in enumerate(area.slime)}
@@ -201,7 +202,7 @@ def _overlaps(layout: MushroomWarLayout) -> list[str]:
             out.append(f"{name} overlaps or touches {clash[0]} (a free cell must lie between them)")
         seen[name] = cells
     taken = {c for cells in _footprints(layout).values() for c in cells}
-    for side in ("red", "blue"):
+    for side in SIDES:
         for spawn in layout.area(side).players:
             if not apart([spawn], taken, 1):
                 out.append(f"{side} spawn {spawn} is on or beside a mushroom or slime patch")
@@ -216,7 +217,7 @@ def _floor() -> tuple[Cell, Cell]:
 def _bounds(layout: MushroomWarLayout) -> list[str]:
     (x0, z0), (x1, z1) = _floor()
     out = []
-    for side in ("red", "blue"):
+    for side in SIDES:
         c = layout.area(side).center
         if not (x0 + RADIUS < c[0] < x1 - RADIUS and z0 + RADIUS < c[1] < z1 - RADIUS):
             out.append(f"{side}: its area (centre {c}) does not fit in the arena {BOX}")
@@ -242,5 +243,5 @@ def _walk_map(layout: MushroomWarLayout) -> tuple[dict, dict, set]:
     (a mushroom's stem and caps, a slime block: one could jump onto slime, but the check does not count on it)."""
     footprints = _footprints(layout)
     blocked = {c for cells in footprints.values() for c in cells}
-    spawns = {f"{side} player {i}": p for side in ("red", "blue") for i, p in enumerate(layout.area(side).players)}
+    spawns = {f"{side} player {i}": p for side in SIDES for i, p in enumerate(layout.area(side).players)}
     return spawns, footprints, blocked

@@ -52,9 +52,15 @@ class GameClock(Protocol):
 
     async def free_idle(self, players: list[str]) -> None: ...
 
+    async def begin(self, bystanders: Sequence[str] = ()) -> None: ...
+
     async def end(self) -> None: ...
 
+    async def close(self) -> None: ...
+
     def saw(self, tick: int | None) -> None: ...
+
+    def stalls(self, problems: dict[str, list[str]]) -> list[str]: ...
 
 
 async def _forever() -> None:
@@ -102,11 +108,21 @@ class RealClock:
     async def free_idle(self, players: list[str]) -> None:
         return None
 
+    async def begin(self, bystanders: Sequence[str] = ()) -> None:
+        return None
+
     async def end(self) -> None:
+        return None
+
+    async def close(self) -> None:
         return None
 
     def saw(self, tick: int | None) -> None:
         return None
+
+    def stalls(self, problems: dict[str, list[str]]) -> list[str]:
+        """The wall clock never stops the world: nothing of a game is the clock's doing."""
+        return []
 
 
 class LockstepClock:
@@ -114,10 +130,19 @@ class LockstepClock:
 
     mode = "lockstep"
 
-    def __init__(self, server: Control, events: Events | None, ticks_per_1k_tokens: float | None = None):
+    def __init__(
+        self,
+        server: Control,
+        events: Events | None,
+        ticks_per_1k_tokens: float | None = None,
+        speed: float | str | None = None,
+    ):
         self.server = server
         self.events = events
         self.ticks_per_1k_tokens = ticks_per_1k_tokens
+        # a game's pace (config clock.speed: "max", or times real time); None: the server's as it is. Between
+        # games the server keeps real time's pace, so idle bots cost no CPU
+        self.speed = speed
         self.tick = 0
         self.over = False  # after the whistle thinking holds the world no more
         self._held: dict[str, int] = {}  # who -> holds of thinking() still on
@@ -125,6 +150,10 @@ class LockstepClock:
         # player -> how many times in the last game the server let go of its idle bot (its team neither ran
         # nor rested it within the server's wall-clock limit): that game may not repeat under its seed
         self.went_on: dict[str, int] = {}
+        # the game's players by side, and per player the let-gos that came while its side held the world itself
+        # (counted by match/sides_clock.py): those are the side's own, not a stall of our machine
+        self.sides: dict[str, list[str]] = {}
+        self.masked: dict[str, int] = {}
         self._queue: asyncio.Queue | None = None
         self._follow: asyncio.Task | None = None
 
@@ -252,6 +281,8 @@ class LockstepClock:
             drop_holds=True, game=False
         )  # a step cancelled at the whistle may still be due a hold
         self.went_on = {who.removeprefix("idle:"): n for who, n in state.get("let_go", {}).items()}
+        if self.speed is not None:
+            await self.server.clock(speed=1.0)  # between games: real time's pace
 
     async def begin(self, bystanders: Sequence[str] = ()) -> None:
         """A new game: thinking holds the world again, and so does a bot whose run has ended.
@@ -259,6 +290,31 @@ class LockstepClock:
         nothing (held, each would stop the world for the 5 s of wall time the server allows)."""
         self.over = False
         self._stepping.clear()
+        if self.speed is not None:
+            await self.server.clock(unpaced=True) if self.speed == "max" else await self.server.clock(
+                speed=float(self.speed)
+            )
         self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held
         for name in bystanders:
             await self.server.release(f"idle:{name}")
+
+    def stalls(self, problems: dict[str, list[str]]) -> list[str]:
+        """The last game's let-gos of idle bots at the server's wall-clock limit, as stalls of our machine; one
+        that came while the bot's side held the world itself (a call of its longer than the limit) is that
+        side's own problem instead (added to `problems`), as a seat's think limit is."""
+        reasons = []
+        for name, n in self.went_on.items():
+            own = min(n, max(0, self.masked.get(name, 0)))
+            if n > own:
+                reasons.append(
+                    f"lockstep: {name} idle, neither run nor rested, and the world went on without it after the "
+                    f"server's wall-clock limit ({n - own}x): this game may not repeat under its seed"
+                )
+            side = next((k for k, names in self.sides.items() if name in names), None)
+            if own and side:
+                problems.setdefault(side, []).append(
+                    f"lockstep: {name} idle while its team held the world past the server's wall-clock limit "
+                    f"({own}x): once the team's call ended the world went on without it; this game may not repeat "
+                    "under its seed"
+                )
+        return reasons

@@ -27,6 +27,7 @@ import hashlib
 import json
 from typing import Any
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.teams.options import defaults, options_model
 from pillagerbench.teams.registry import TEAMS
 
@@ -155,4 +156,4 @@ def entrant_of(config: dict, side: str) -> dict[str, Any]:
 
 def labels_of(config: dict) -> dict[str, str]:
     """Each side's entrant label under a run's resolved config: what its records and tables call it."""
-    return {side: entrant_of(config, side)["label"] for side in ("red", "blue")}
+    return {side: entrant_of(config, side)["label"] for side in SIDES}

@@ -24,6 +24,7 @@ from typing import Any
 import jsonschema
 from pydantic import Field
 
+from pillagerbench.config.sides import SIDES
 from pillagerbench.players import events as ev
 from pillagerbench.scenarios import Scenario
 from pillagerbench.server.clock import TICK_S
@@ -200,7 +201,7 @@ class Seat:
             "episode": self.episode,
             "players": self.players,
             "time_left_s": round(ctx.time_left(), 2) if playing and ctx is not None else None,
-            "scores": {k: (ctx.scores.get(k, 0) if ctx else 0) for k in ("red", "blue")},
+            "scores": {k: (ctx.scores.get(k, 0) if ctx else 0) for k in SIDES},
         }
 
     async def _context(self) -> TeamContext:
