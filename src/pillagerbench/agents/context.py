@@ -21,6 +21,7 @@ from typing import Any
 from pillagerbench.players import events as ev
 from pillagerbench.players.events import last_observation as last_observation  # re-exported for agents
 from pillagerbench.players.observation import Observation
+from pillagerbench.rundir.names import player_events_name
 
 NONE = "none"
 
@@ -120,7 +121,7 @@ def read_events(path: str | Path) -> list[list]:
 def episode_events(last_episode: Mapping[str, Any] | None, players: Iterable[str]) -> dict[str, list[list]]:
     """The events each player produced last episode (from `ctx.last_episode["events_dir"]`)."""
     directory = (last_episode or {}).get("events_dir")
-    return {name: read_events(Path(directory) / f"{name}.jsonl") if directory else [] for name in players}
+    return {name: read_events(Path(directory) / player_events_name(name)) if directory else [] for name in players}
 
 
 def _speaker(line: str) -> str | None:

@@ -10,6 +10,7 @@ import time
 
 from pillagerbench.match.parts import Game, Part
 from pillagerbench.match.scoring import CleanScoring, UpstreamScoring
+from pillagerbench.rundir import EpisodeDir
 from pillagerbench.scenarios.base import GameMaster
 from pillagerbench.server.clock import GameClock
 from pillagerbench.teams.base import TeamContext
@@ -91,11 +92,11 @@ async def play_game(
     clean.final(game.length, final)
     for task in plays:
         if task.done() and not task.cancelled() and task.exception():
-            (game.out / f"{task.get_name()}.error.txt").write_text(repr(task.exception()))
+            EpisodeDir(game.out).task_error_path(task.get_name()).write_text(repr(task.exception()))
     clean.write(game.out)
     if upstream:
         upstream.write(game.out)
-    (game.out / "game_master.json").write_text(json.dumps(gm.log))
+    EpisodeDir(game.out).game_master_path.write_text(json.dumps(gm.log))
     return clean, upstream
 
 

@@ -169,12 +169,12 @@ class Match:
             blue_entrant=self.entrants.get("blue"),
         )
         out = self.rundir.episode(episode)
-        events = self.rundir.files(episode).events_dir
-        events.mkdir(parents=True, exist_ok=True)
+        episode_files = self.rundir.files(episode)
+        episode_files.events_dir.mkdir(parents=True, exist_ok=True)
         files: dict[str, Any] = {}
 
         def sink(name: str, event: list) -> None:
-            f = files.get(name) or files.setdefault(name, open(events / f"{name}.jsonl", "a"))
+            f = files.get(name) or files.setdefault(name, open(episode_files.player_events_path(name), "a"))
             f.write(json.dumps(event, default=str) + "\n")
 
         replay, parts = self._parts()

@@ -40,9 +40,22 @@ class EpisodeDir:
         """Each player's events (events/<player>.jsonl)."""
         return self.path / N.EVENTS
 
+    def player_events_path(self, player: str) -> Path:
+        """One player's events (events/<player>.jsonl)."""
+        return self.events_dir / N.player_events_name(player)
+
     @property
     def world_events_path(self) -> Path:
         return self.path / N.WORLD_EVENTS
+
+    @property
+    def game_master_path(self) -> Path:
+        """The game master's log (game_master.json)."""
+        return self.path / N.GAME_MASTER
+
+    def task_error_path(self, task: str) -> Path:
+        """A background task of the game that raised (<task>.error.txt)."""
+        return self.path / f"{task}{N.TASK_ERROR}"
 
     @property
     def replay_path(self) -> Path:

@@ -42,6 +42,11 @@ TEAM_STATE = "team.json"
 LEDGER_OFFSET = "ledger_offset"
 
 
+def player_events_name(player: str) -> str:
+    """A player's file in an episode's events/ (`<player>.jsonl`)."""
+    return f"{player}.jsonl"
+
+
 def timeline_name(scoring: str) -> str:
     """timeline.json for the clean scoring, timeline_<scoring>.json for another."""
     return f"{TIMELINE}.json" if scoring == "clean" else f"{TIMELINE}_{scoring}.json"
