@@ -8,18 +8,17 @@ import ast
 import json
 import re
 import shutil
-from fnmatch import fnmatch
 from pathlib import Path
 from typing import get_args
 
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.match import SCORINGS
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import main as report_main
 from pillagerbench.rundir import EpisodeRecord, RunDir, progress, read_experiment, spoiled
 from pillagerbench.rundir import names as N
-from pillagerbench.suite.version import SCORE_FILES
 from tests.support.cli import run_cli
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "pillagerbench"
@@ -46,12 +45,6 @@ FILES = (
     *(N.REPLAY, N.REPLAY_PAGE, N.TASK_ERROR, N.TEAM_STATE, N.LEDGER_OFFSET),
 )
 NAMES = re.compile(r"^/?(" + "|".join(map(re.escape, FILES)) + r")$|^/?episode_($|\d|[{\[*])|^/?events/")
-# files the suite's hash covers (suite.SCORE_FILES) write three of an episode's files themselves: a change
-# there is a new suite version, so they keep their literals, held here to the names of rundir/names.py
-SCORED_WRITERS = {
-    Path("match/scoring.py"): {N.timeline_name("clean"), N.timeline_name("upstream")},
-    Path("match/game.py"): {N.GAME_MASTER, N.TASK_ERROR},
-}
 
 
 def literals(path: Path) -> list[tuple[int, str]]:
@@ -71,15 +64,9 @@ def test_only_the_rundir_package_spells_the_run_directorys_names():
         for path in sorted(SRC.rglob("*.py"))
         if "rundir" not in path.parts
         for line, text in literals(path)
-        if NAMES.search(text) and text not in SCORED_WRITERS.get(path.relative_to(SRC), set())
+        if NAMES.search(text)
     ]
     assert not found, "ask pillagerbench.rundir.RunDir for these paths:\n" + "\n".join(found)
-
-
-def test_the_scored_writers_spell_the_names_of_rundir():
-    for path, names in SCORED_WRITERS.items():
-        assert any(fnmatch(str(path), glob) for glob in SCORE_FILES), f"{path} is no longer scored: ask RunDir"
-        assert names <= {text for _, text in literals(SRC / path)}, path
 
 
 def unnamed(episode_dir: Path) -> list[str]:
@@ -89,7 +76,7 @@ def unnamed(episode_dir: Path) -> list[str]:
     out = []
     for path in sorted(p for p in episode_dir.rglob("*") if p.is_file()):
         top, *rest = path.relative_to(episode_dir).parts
-        if top in N.SIDES or top == N.EVENTS and len(rest) == 1 and path.suffix == ".jsonl":
+        if top in SIDES or top == N.EVENTS and len(rest) == 1 and path.suffix == ".jsonl":
             continue
         if top not in named and not re.fullmatch(r"timeline(_\w+)?\.json", top) and not top.endswith(N.TASK_ERROR):
             out.append(path.relative_to(episode_dir).as_posix())

@@ -102,10 +102,10 @@ def test_every_manifest_names_the_suite(tmp_path):
     from pillagerbench.config.schema import RunConfig
     from pillagerbench.experiments.runner import write_experiment
     from pillagerbench.rundir import RunDir
-    from pillagerbench.rundir.manifest import write_manifest
+    from pillagerbench.rundir.manifest import match_manifest
 
     scenario = SimpleNamespace(key="mushroom_war", title="Mushroom War", version="1")
-    write_manifest(tmp_path / "run", RunConfig.of(load_config([])), scenario)
+    RunDir(tmp_path / "run").write_manifest(match_manifest(RunConfig.of(load_config([])), scenario))
     write_experiment(tmp_path / "exp", {"experiment": {"name": "x"}}, [], [])
     for run in ("run", "exp"):
         assert RunDir(tmp_path / run).manifest().suite == current()

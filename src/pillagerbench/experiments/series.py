@@ -62,7 +62,7 @@ async def run_series(
     live status, experiments/outage.py). Returns {"id", "finished", "failed", "played", "used", "spoiled",
     "given_up"}, and "outage" (a Stopped, as a dict) when the series stopped past `outage_wait_s`."""
     from pillagerbench.match.run import scenario_from_config
-    from pillagerbench.rundir.manifest import write_manifest
+    from pillagerbench.rundir.manifest import match_manifest
     from pillagerbench.teams import team_from_config
 
     rundir = RunDir(series_dir)
@@ -86,7 +86,7 @@ async def run_series(
             for side, ref in (spec.checkpoint or {}).items():
                 teams[side].load_checkpoint(resolve_checkpoint(ref, side, run_dir))
         if not rundir.manifest_path.exists():
-            write_manifest(rundir.path, cfg, scenario)
+            rundir.write_manifest(match_manifest(cfg, scenario))
         else:
             rundir.note_resume(sorted(finished), discarded)
         before = len(finished)

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.config.registry import Registry
+from pillagerbench.rundir import EpisodeDir
 from pillagerbench.scenarios.upstream import UPSTREAM_WAIT_S
 from pillagerbench.server.clock import GameClock
 
@@ -25,7 +26,6 @@ class CleanScoring:
     """The score each second, and the final one at the whistle: `second(t, scores)` is called with each."""
 
     name = "clean"
-    file = "timeline.json"
 
     def __init__(self) -> None:
         self.timeline: list[dict[str, Any]] = []
@@ -46,14 +46,13 @@ class CleanScoring:
         self.timeline.append({"t": length, **scores})
 
     def write(self, out: Path) -> None:
-        (out / self.file).write_text(json.dumps(self.timeline))
+        EpisodeDir(out).timeline_path(self.name).write_text(json.dumps(self.timeline))
 
 
 class UpstreamScoring:
     """Upstream's samples (lines 0 … L of its rewards file, each at UPSTREAM_WAIT_S + line + 1 s)."""
 
     name = "upstream"
-    file = "timeline_upstream.json"
 
     def __init__(self) -> None:
         self.timeline: list[dict[str, Any]] = []
@@ -69,7 +68,7 @@ class UpstreamScoring:
             await clock.let_go("upstream-scores")
 
     def write(self, out: Path) -> None:
-        (out / self.file).write_text(json.dumps(self.timeline))
+        EpisodeDir(out).timeline_path(self.name).write_text(json.dumps(self.timeline))
 
 
 # config `scoring`: every episode records the clean score as well

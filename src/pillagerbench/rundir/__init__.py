@@ -18,7 +18,7 @@ from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.experiment import EXPERIMENT, ExperimentFile, read_experiment, write_experiment_file
 from pillagerbench.rundir.faults import HARNESS, TEAM, Fault, faults, spoiled
 from pillagerbench.rundir.live import Live, LiveWriter
-from pillagerbench.rundir.manifest_file import Manifest, ScenarioStamp
+from pillagerbench.rundir.manifest import Manifest, ScenarioStamp
 from pillagerbench.rundir.schedule import RETRIES, Progress, episodes_to_play, progress
 from pillagerbench.rundir.series import SeriesSpec, plain_series, read_series, write_series
 from pillagerbench.rundir.team_state import TeamState, has_team_state, team_state_path

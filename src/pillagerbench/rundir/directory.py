@@ -29,7 +29,7 @@ from pillagerbench.rundir import names as N
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
 from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.live import Live
-from pillagerbench.rundir.manifest_file import Manifest
+from pillagerbench.rundir.manifest import Manifest
 
 EPISODES = N.EPISODES
 LEDGER = N.LEDGER

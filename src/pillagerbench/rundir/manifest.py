@@ -1,8 +1,9 @@
-"""The manifest of a run directory (`manifest.json`): config, versions, seed, git revision, suite and
-the rules differing from the suite's defaults (suite/conditions.py).
-
-Written by every series (experiments/series.py): an experiment's, and the one series of a plain
-`pillagerbench run`; the experiment's own top-level manifest uses `git_revision` too.
+"""A run directory's manifest.json: what was played (the config, the scenario), with what (versions, git
+revision, suite) and under which rules (conditions, the rules differing from the suite's defaults:
+suite/conditions.py). A series' manifest has every field (`match_manifest`: every series writes one, an
+experiment's and the one series of a plain `pillagerbench run`); an experiment's top-level one names the
+experiment and has no scenario, seed or conditions. Written with the fields that were given, in this order,
+so the file is as it always was; a manifest of an earlier version reads with what it has (unknown keys kept).
 """
 
 from __future__ import annotations
@@ -13,11 +14,49 @@ import time
 from pathlib import Path
 from typing import Any
 
+from pydantic import BaseModel, ConfigDict
+
 from pillagerbench import __version__
 from pillagerbench.config.schema import RunConfig
-from pillagerbench.rundir import Manifest, RunDir, ScenarioStamp
 from pillagerbench.suite.conditions import conditions_of
-from pillagerbench.suite.version import current
+from pillagerbench.suite.version import UNVERSIONED, current
+
+
+class ScenarioStamp(BaseModel):
+    model_config = ConfigDict(extra="allow")
+
+    key: str | None = None
+    title: str | None = None
+    version: str | int | float | None = None
+
+
+class Manifest(BaseModel):
+    model_config = ConfigDict(extra="allow")
+
+    created: str | None = None
+    config: dict[str, Any] = {}  # the resolved configuration
+    scenario: ScenarioStamp | None = None
+    versions: dict[str, Any] = {}  # pillagerbench, python, node, minecraft
+    seed: int | None = None
+    git_revision: str | None = None
+    suite: dict[str, Any] | None = None  # suite.current(): name, sha256, label
+    conditions: dict[str, Any] | None = None  # the rules differing from the suite's (suite/conditions.py)
+    experiment: str | None = None  # an experiment's top-level manifest: its name
+
+    def to_json(self) -> dict[str, Any]:
+        """The fields given, as written."""
+        return self.model_dump(exclude_unset=True)
+
+    @property
+    def scenario_version(self) -> str:
+        """The scenario's version ("?" when the manifest does not say)."""
+        version = self.scenario.version if self.scenario else None
+        return "?" if version is None else str(version)
+
+    @property
+    def suite_label(self) -> str:
+        """The suite it was played under ("unversioned" before suite versions)."""
+        return str((self.suite or {}).get("label") or UNVERSIONED)
 
 
 def git_revision() -> str | None:
@@ -32,12 +71,12 @@ def git_revision() -> str | None:
         return None
 
 
-def write_manifest(run_dir: Path, cfg: RunConfig, scenario: Any) -> None:
-    """`run_dir/manifest.json` for one match; `scenario` is the Scenario played (key, title, version)."""
+def match_manifest(cfg: RunConfig, scenario: Any) -> Manifest:
+    """The manifest of one match (a series); `scenario` is the Scenario played (key, title, version)."""
     from pillagerbench.host.node import node_binary
 
     node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
-    manifest = Manifest(
+    return Manifest(
         created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         config=cfg.stored(),
         scenario=ScenarioStamp(key=scenario.key, title=scenario.title, version=scenario.version),
@@ -52,4 +91,3 @@ def write_manifest(run_dir: Path, cfg: RunConfig, scenario: Any) -> None:
         suite=current(),
         conditions=conditions_of(cfg.select, scenario.key),
     )
-    RunDir(run_dir).write_manifest(manifest)
