@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import asyncio
+import json
 import os
 import signal
+import subprocess
+import time
 
 import pytest
 
 from pillagerbench.server import ArenaServer, ControlError
 from pillagerbench.server.control import ChannelClosed
+from pillagerbench.server.process import exit_code
 
 
 async def test_ready_with_flat_world_and_log(arena):
@@ -74,6 +78,50 @@ async def test_death_of_the_server_is_reported_clearly(tmp_path):
             await server.ping()
             await asyncio.sleep(0.1)
     await server.stop()
+
+
+async def test_a_killed_server_is_not_alive_and_is_left_for_asyncio_to_collect(tmp_path):
+    """Killed from outside (kill anywhere, issue 55 item 6): dead as soon as its channel closes, so the
+    match starts a fresh one, and its exit status is asyncio's to collect, -9 (reaped behind asyncio's
+    back, its returncode stayed None: the server read as alive and every later episode failed)."""
+    server = ArenaServer(log_path=tmp_path / "server.log")
+    await server.start()
+    proc = server.process
+    os.kill(proc.pid, signal.SIGKILL)
+    with pytest.raises(ChannelClosed, match="exit code"):
+        for _ in range(50):
+            await server.ping()
+            await asyncio.sleep(0.1)
+    assert not server.alive
+    assert await asyncio.wait_for(proc.wait(), 10) == -9
+    await server.stop()
+
+
+async def test_a_server_whose_parent_went_without_reading_stops(tmp_path):
+    """A parent killed with the server's replies unread (as in a run killed while its server started): the
+    server's channel fails (ECONNRESET, or EPIPE on its next write) with no end of stream; it stops all the
+    same, never an orphan listening on its port."""
+    server = ArenaServer(log_path=tmp_path / "server.log")
+    await server.start()
+    proc, control = server.process, server.control
+    control._writer.transport.pause_reading()  # nothing reads the replies from here on: they stay in the socket
+    for i in range(20):
+        control._writer.write(json.dumps({"id": 10_000 + i, "op": "ping"}).encode() + b"\n")
+    await control._writer.drain()
+    await asyncio.sleep(1)  # the replies are in our socket, unread
+    control._writer.transport.abort()
+    assert await asyncio.wait_for(proc.wait(), 15) == 0
+    await server.stop()
+
+
+def test_an_exit_code_is_read_without_reaping_the_process():
+    child = subprocess.Popen(["sleep", "30"])
+    child.kill()
+    deadline = time.monotonic() + 10
+    while exit_code(child.pid) is None and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert exit_code(child.pid) == exit_code(child.pid) == -9  # read twice: still there
+    assert child.wait(timeout=5) == -9  # and its parent still collects it
 
 
 async def test_clean_shutdown(tmp_path):

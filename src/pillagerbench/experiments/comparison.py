@@ -53,10 +53,16 @@ class Comparison:
 
     def write(self, run_dir: Path, decided: dict[str, Any] | None = None) -> None:
         """compare.json (replaced whole: a kill leaves the old one or the new one)."""
-        data = {**asdict(self), "bounds": asdict(self.bounds), **({"decided": decided} if decided else {})}
-        tmp = run_dir / f"{FILE}.tmp"
-        tmp.write_text(json.dumps(data, indent=1))
-        os.replace(tmp, run_dir / FILE)
+        _replace(
+            run_dir / FILE, {**asdict(self), "bounds": asdict(self.bounds), **({"decided": decided} if decided else {})}
+        )
+
+
+def _replace(path: Path, data: dict[str, Any]) -> None:
+    """A JSON file replaced whole (a kill leaves the old one or the new one)."""
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(data, indent=1))
+    os.replace(tmp, path)
 
 
 def read(run_dir: Path) -> Comparison | None:
@@ -154,7 +160,7 @@ def settle(run_dir: Path, found: Answer) -> None:
         s["episodes"] = played.get(s["id"], s["episodes"])
     write_experiment_file(run_dir, data)
     for sid, n in played.items():
-        series = RunDir(RunDir(run_dir).series_dir(sid))
-        if series.series_path.exists():
-            series.series_path.write_text(json.dumps({**json.loads(series.series_path.read_text()), "episodes": n}))
+        path = RunDir(RunDir(run_dir).series_dir(sid)).series_path
+        if path.exists():
+            _replace(path, {**json.loads(path.read_text()), "episodes": n})
     c.write(run_dir, {"verdict": found.verdict, "pairs": len(found.scores), "episodes": found.episodes})

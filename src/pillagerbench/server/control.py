@@ -58,6 +58,11 @@ class ControlChannel(Control):
         finally:
             self._pending.pop(rid, None)
 
+    @property
+    def closed(self) -> bool:
+        """The channel has closed (the server ended or the channel failed): no request will be answered."""
+        return self._closed_reason is not None
+
     def subscribe(self) -> asyncio.Queue:
         """A queue receiving every pushed event from now on (dicts with an `event` key)."""
         q: asyncio.Queue = asyncio.Queue()

@@ -36,6 +36,19 @@ GROUND_Y = 3  # top of the grass layer; players stand at y = 4
 MAX_LINE = 2**28  # a control reply (e.g. a scan of a whole arena) is one JSON line
 
 
+def exit_code(pid: int) -> int | None:
+    """A child's exit code (negative: the signal that ended it) if it has ended, else None, read without
+    reaping it: asyncio's child watcher must still collect it, or the process' returncode stays None and
+    the server reads as alive after it died (a series then never restarts it)."""
+    try:
+        info = os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT)
+    except ChildProcessError:
+        return None
+    if info is None:
+        return None
+    return info.si_status if info.si_code == os.CLD_EXITED else -info.si_status
+
+
 class ArenaServerError(RuntimeError):
     """The arena server could not start or died."""
 
@@ -140,11 +153,7 @@ class ArenaServer(Control):
     def _death_reason(self) -> str:
         code = self.process.returncode if self.process else None
         if code is None and self.process:
-            try:
-                pid, status = os.waitpid(self.process.pid, os.WNOHANG)
-                code = os.waitstatus_to_exitcode(status) if pid else None
-            except ChildProcessError:
-                pass
+            code = exit_code(self.process.pid)
         return f"arena server process ended (exit code {code}); log: {self.log_path}\n{self.log_tail()}"
 
     def log_tail(self, lines: int = 15) -> str:
@@ -161,7 +170,10 @@ class ArenaServer(Control):
 
     @property
     def alive(self) -> bool:
-        return self.process is not None and self.process.returncode is None
+        """Started, its process not known to have ended and its control channel open (the channel
+        closes at once when the process dies; asyncio may learn of the death later)."""
+        running = self.process is not None and self.process.returncode is None
+        return running and self.control is not None and not self.control.closed
 
     async def stop(self, timeout: float = 5) -> None:
         proc, self.process = self.process, None

@@ -258,7 +258,10 @@ function attach (serv, { input, write }) {
       reply({ id, ok: false, error: err instanceof ControlError ? err.message : `internal error: ${err.message}` })
     }
   }
+  // the parent gone: an end, or an error (EPIPE, ECONNRESET: it died before reading what we wrote, e.g.
+  // killed while we started); either way no one is left to play for, so the server stops, never an orphan
   input.on('end', () => serv.emit('control_closed'))
+  input.on('error', () => serv.emit('control_closed'))
 }
 
 module.exports = { attach, OPS, undeclared }
