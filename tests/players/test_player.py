@@ -11,33 +11,11 @@ import time
 
 from pillagerbench.players import Player
 from pillagerbench.players import primitives as prim_docs
+from pillagerbench.players.bot_protocol import PROTOCOL
 from pillagerbench.players.events import chats_by, errors, last_observation
 from pillagerbench.scenarios import make_scenario
 
-STATUS_KEYS = {
-    "health",
-    "food",
-    "saturation",
-    "oxygen",
-    "position",
-    "velocity",
-    "yaw",
-    "pitch",
-    "onGround",
-    "equipment",
-    "name",
-    "timeSinceOnGround",
-    "isInWater",
-    "isInLava",
-    "isInWeb",
-    "isCollidedHorizontally",
-    "isCollidedVertically",
-    "biome",
-    "entities",
-    "timeOfDay",
-    "inventoryUsed",
-    "elapsedTime",
-}
+STATUS_KEYS = set(PROTOCOL.status)  # what observe.js writes, as declared (js/bot/bot_protocol.json)
 
 
 async def test_a_launched_bot_logs_in_only_at_its_start_and_ends_if_closed_before(server, tmp_path):
@@ -67,7 +45,7 @@ async def test_observation_fields(server, area, make_player):
     events = await p.run("bot.chat('look'); bot.save('saved_it'); await bot.waitForTicks(2)")
     assert [e[0] for e in events] == ["onSave", "onChat", "observe"]
     for _kind, data in events:
-        assert {"voxels", "status", "inventory", "nearbyChests", "blockRecords"} <= set(data)
+        assert set(PROTOCOL.observation) <= set(data)
     assert events[0][1]["onSave"] == "saved_it" and events[1][1]["onChat"] == f"<{p.name}> look"
     obs = last_observation(events)
     status = obs["status"]

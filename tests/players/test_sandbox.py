@@ -214,7 +214,7 @@ async def test_timers_and_listeners_end_with_the_run(shared):
 
 async def test_bot_process_runs_under_the_permission_model(shared):
     bad, _ = shared
-    perms = await bad.channel.request("permissions")
+    perms = await bad.channel.permissions()
     assert perms == {
         "enabled": True,
         "fsWrite": False,

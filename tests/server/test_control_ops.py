@@ -18,41 +18,9 @@ import pytest
 
 from pillagerbench.host.node import JS_DIR, node_binary, node_env
 from pillagerbench.server.seams import DECLARATION, OPS, TYPES, Control, OpSpec, UndeclaredOp, read_declaration
+from tests.support.declared_ops import method_problems, typed_methods
 
 NOT_OPS = {"request", "send"}  # Control's own methods: the channel and the sending of a declared op
-
-
-def typed_methods(cls: type) -> dict[str, Callable]:
-    """The typed op methods of a `Control` class (inherited ones too)."""
-    return {
-        n: getattr(cls, n)
-        for n in dir(cls)
-        if not n.startswith("_") and n not in NOT_OPS and inspect.iscoroutinefunction(getattr(cls, n))
-    }
-
-
-def annotation(spec: OpSpec, arg: str, types: dict[str, dict[str, str]]) -> str:
-    python = types[spec.args[arg]]["python"]
-    return f"{python} | None" if arg in spec.optional else python
-
-
-def method_problems(name: str, method: Callable, spec: OpSpec, types: dict[str, dict[str, str]]) -> list[str]:
-    """How one typed method differs from its op's declaration (its parameters named as on the wire,
-    `from_` for `from`; an optional one defaults to None)."""
-    problems = []
-    params = {p.name.removesuffix("_"): p for p in list(inspect.signature(method).parameters.values())[1:]}
-    if params.keys() != spec.args.keys():
-        problems.append(f"{name}: arguments {sorted(params)}, declared {sorted(spec.args)}")
-    for arg in params.keys() & spec.args.keys():
-        p = params[arg]
-        if (p.default is None) != (arg in spec.optional) or p.default not in (None, inspect.Parameter.empty):
-            problems.append(f"{name}: argument {arg} is {'optional' if arg in spec.optional else 'required'}")
-        if p.annotation != annotation(spec, arg, types):
-            problems.append(f"{name}: argument {arg} is {p.annotation}, declared {annotation(spec, arg, types)}")
-    result = types[spec.result]["python"]
-    if inspect.signature(method).return_annotation != result:
-        problems.append(f"{name}: answers {inspect.signature(method).return_annotation}, declared {result}")
-    return problems
 
 
 class Recording(Control):
@@ -79,7 +47,7 @@ async def sending_problems(name: str, method: Callable, control: Recording) -> l
 
 
 async def python_problems(cls: type, ops: dict[str, OpSpec], types: dict[str, dict[str, str]]) -> list[str]:
-    methods = typed_methods(cls)
+    methods = typed_methods(cls, NOT_OPS)
     problems = [f"op {op} is declared but Control has no method for it" for op in ops if op not in methods]
     control = Recording()  # each method sends through it, whichever class it comes from
     for name, method in methods.items():
@@ -139,7 +107,7 @@ async def test_an_op_that_waits_is_sent_without_a_reply_timeout():
 
 async def test_every_python_method_is_a_declared_op_with_its_arguments():
     assert await python_problems(Control, OPS, TYPES) == []
-    assert len(typed_methods(Control)) == len(OPS) == 43
+    assert len(typed_methods(Control, NOT_OPS)) == len(OPS) == 43
 
 
 # ---- and the checks fail where they should ----

@@ -2,8 +2,8 @@
 
 `BotChannel` starts the process under Node's permission model (`bot_command`), reads its stdout
 (each message to the player's handler) and stderr (its tail kept, the whole written to the player's
-log), sends requests and matches their answers by id, and kills the process group. What a message
-means, and when to restart, is the player's (player.py).
+log), sends the declared ops (`bot_protocol.BotOps`) and matches their answers by id, and kills the
+process group. What a message means, and when to restart, is the player's (player.py).
 """
 
 from __future__ import annotations
@@ -11,7 +11,6 @@ from __future__ import annotations
 import asyncio
 import collections
 import contextlib
-import itertools
 import json
 import os
 import signal
@@ -21,6 +20,9 @@ from pathlib import Path
 from typing import IO, Any
 
 from pillagerbench.host.node import JS_DIR, ensure_node_modules, node_binary, node_env, profile_args
+from pillagerbench.host.requests import Requests
+
+from .bot_protocol import BotOps, Settings
 
 BOT_MAIN = JS_DIR / "bot" / "main.js"
 HEAP_LIMIT_MB = 256
@@ -30,7 +32,7 @@ class PlayerError(RuntimeError):
     """The bot process could not start, log in, or answer."""
 
 
-def bot_command(settings: dict[str, Any]) -> list[str]:
+def bot_command(settings: Settings) -> list[str]:
     """The node command line of a bot process, under Node's permission model."""
     modules = ensure_node_modules(quiet=True)
     profile = profile_args()  # Node writes no profile under its permission model: measuring only
@@ -56,8 +58,9 @@ def bot_command(settings: dict[str, Any]) -> list[str]:
     ]
 
 
-class BotChannel:
-    """The process of one player's bot and the requests waiting for its answers."""
+class BotChannel(BotOps):
+    """The process of one player's bot and the requests waiting for its answers (the declared ops as
+    `BotOps`' typed methods)."""
 
     def __init__(self, name: str, log_dir: Path | None):
         self.name = name
@@ -65,15 +68,14 @@ class BotChannel:
         self.proc: asyncio.subprocess.Process | None = None
         self.last_line = 0.0  # monotonic time of the last line on stdout (a heartbeat at least)
         self.expect_exit = False  # the process is ending because we asked it to
-        self._ids = itertools.count(1)
-        self._pending: dict[int, asyncio.Future] = {}
+        self._requests = Requests(lambda error: PlayerError(f"{name}: {error}"))
         self._stderr_tail: collections.deque[str] = collections.deque(maxlen=40)
 
     def next_id(self) -> int:
         """A request id not used before (runs and requests share them)."""
-        return next(self._ids)
+        return self._requests.next_id()
 
-    async def spawn(self, settings: dict[str, Any]) -> asyncio.subprocess.Process:
+    async def spawn(self, settings: Settings) -> asyncio.subprocess.Process:
         self.expect_exit = False
         self.proc = await asyncio.create_subprocess_exec(
             *bot_command(settings),
@@ -140,20 +142,11 @@ class BotChannel:
 
     def answer(self, msg: dict) -> None:
         """An answer to a request: its waiting caller gets the result or a PlayerError."""
-        rid: Any = msg.get("id")
-        fut = self._pending.pop(rid, None)
-        if fut is not None and not fut.done():
-            if msg.get("ok"):
-                fut.set_result(msg.get("result"))
-            else:
-                fut.set_exception(PlayerError(f"{self.name}: {msg.get('error')}"))
+        self._requests.answer(msg)
 
     def fail_pending(self, reason: str) -> None:
         """Every request still waiting ends with a PlayerError saying `reason`."""
-        for fut in self._pending.values():
-            if not fut.done():
-                fut.set_exception(PlayerError(f"{self.name}: {reason}"))
-        self._pending.clear()
+        self._requests.fail(PlayerError(f"{self.name}: {reason}"))
 
     async def send(self, msg: dict) -> None:
         if not self.proc or self.proc.returncode is not None or not self.proc.stdin:
@@ -165,25 +158,18 @@ class BotChannel:
             raise PlayerError(f"{self.name}: bot process is not running ({exc})") from None
 
     async def cue(self) -> None:
-        """Tell the bot, launched with `"cue": true`, to log in now (js/bot/main.js). A process that has
+        """Tell the bot, launched with `"cue": true`, to log in now (the `login` op). A process that has
         ended already is no error here: its reader says why."""
         with contextlib.suppress(PlayerError):
-            await self.send({"op": "login"})
+            await self.login()
 
-    async def request(self, op: str, wait: float = 10.0, **args: object) -> object:
-        """Send request `op` with `args` (JSON values); wait up to `wait` seconds for the answer (the
-        JSON value js/bot/main.js's op returns)."""
-        timeout = wait
-        rid = self.next_id()
-        fut = asyncio.get_running_loop().create_future()
-        self._pending[rid] = fut
+    async def _exchange(self, rid: int, line: dict, wait: float) -> Any:
+        """Send request `line` (its id `rid`); wait up to `wait` seconds for its answer (the JSON value
+        js/bot/main.js's op returns)."""
         try:
-            await self.send({"id": rid, "op": op, **args})
-            return await asyncio.wait_for(fut, timeout)
+            return await self._requests.ask(rid, lambda: self.send(line), wait)
         except asyncio.TimeoutError:
-            raise PlayerError(f"{self.name}: no answer to {op!r} within {timeout} s") from None
-        finally:
-            self._pending.pop(rid, None)
+            raise PlayerError(f"{self.name}: no answer to {line['op']!r} within {wait} s") from None
 
     async def kill(self) -> None:
         proc = self.proc

@@ -1,4 +1,6 @@
-"""An observation: what a bot sees and holds, as js/bot/observe.js writes it (`Observer.observe()`).
+"""An observation: what a bot sees and holds, as js/bot/observe.js writes it (`Observer.observe()`),
+typed as js/bot/bot_protocol.json declares it (`observation`, `status`; tests/players/test_bot_protocol.py
+holds these TypedDicts to the declaration, and tests/players/test_player.py what the bot writes).
 
 It is the answer to the `observe` request and the state part of every event (`[type, data]`: an
 on* event's data adds its own key, e.g. `onChat`, to it). Every key may be missing: an observation

@@ -6,14 +6,14 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Awaitable, Callable, Sequence
-from typing import Any
 
 from pillagerbench.server.seams import Control
 
+from . import bot_protocol
 from .channel import BotChannel, PlayerError
 from .observation import Observation
 
-Equipment = Sequence[str | None] | dict[str, Any] | None
+Equipment = bot_protocol.Equipment | None
 
 
 async def snapshot(server: Control | None, name: str, last_observation: Observation) -> dict | None:
@@ -61,7 +61,7 @@ async def teleport(server: Control, channel: BotChannel, name: str, pos: list[fl
     yaw, pitch = LOGIN_LOOK if clock == "lockstep" else (None, None)
     for _attempt in range(3):
         await server.teleport(name, pos, yaw, pitch)
-        settled = await channel.request("settle", pos=pos, timeout=3, wait=6)
+        settled = await channel.settle(pos, 3, wait=6)
         if settled is True:
             return
     raise PlayerError(f"{name}: teleport to {pos} did not arrive (bot at {settled})")

@@ -8,11 +8,12 @@
         assert events[-1][0] == "observe"
         await player.close()
 
-The bot process speaks JSON lines over stdio (see js/bot/main.js; channel.py holds the process and
-its requests, placement.py sets and restores inventory and position). It writes a heartbeat every
-200 ms; when it stays silent for `watchdog_s` (agent code blocking its event loop), or dies, the
-handle kills its process group, logs in again with the same name, restores inventory and position
-through the control channel (when `server` is given) and ends the pending run with an onError event.
+The bot process speaks JSON lines over stdio, declared in js/bot/bot_protocol.json (bot_protocol.py: the
+typed ops and settings; channel.py holds the process and its requests, placement.py sets and restores
+inventory and position). It writes a heartbeat every 200 ms; when it stays silent for `watchdog_s`
+(agent code blocking its event loop), or dies, the handle kills its process group, logs in again with
+the same name, restores inventory and position through the control channel (when `server` is given)
+and ends the pending run with an onError event.
 
 A silent bot is told apart by the CPU time its process got while silent (from the watchdog's last look
 while it spoke, which comes after its last heartbeat, to the verdict): a loop in its code burns a core
@@ -33,6 +34,7 @@ import psutil
 from pillagerbench.server.seams import Control
 
 from . import placement
+from .bot_protocol import Settings
 from .channel import BotChannel, PlayerError
 from .observation import Observation, observation
 
@@ -131,7 +133,7 @@ class Player:
     async def launch(self) -> None:
         """Start the bot process: it loads its libraries, then waits for its cue to log in (`start`).
         A match launches all its players at once, so that this overlaps the logins, one at a time."""
-        settings = {"host": self.host, "port": self.server_port, "username": self.name, "primitives": self.primitives}
+        settings = Settings(host=self.host, port=self.server_port, username=self.name, primitives=self.primitives)
         settings |= {"heartbeatMs": 200, "clock": self.clock, "cue": True}  # cue: it logs in at _login's
         loop = asyncio.get_running_loop()
         self._generation += 1
@@ -206,7 +208,7 @@ class Player:
 
     async def _observe(self) -> Observation:
         """The bot's observation now (the `observe` request), kept as the last one seen."""
-        self._last_obs = observation(await self.channel.request("observe"))
+        self._last_obs = observation(await self.channel.observe())
         return self._last_obs
 
     # ---- watchdog and recovery -------------------------------------------------------------
@@ -269,11 +271,8 @@ class Player:
             state = _RunState(rid, on_event)
             self._run = state
             try:
-                msg: dict = {"id": rid, "op": "run", "code": code}
-                if timeout:
-                    msg["timeout"] = timeout
                 try:
-                    await self.channel.send(msg)
+                    await self.channel.run(code, timeout or None, rid=rid)
                 except PlayerError as exc:
                     state.add(["onError", {"onError": str(exc)}])
                     return state.events
@@ -291,7 +290,7 @@ class Player:
         if run is None or run.done.done():
             return
         try:
-            await self.channel.send({"id": self.channel.next_id(), "op": "stop"})
+            await self.channel.stop()
         except PlayerError:
             return
         try:
@@ -309,8 +308,8 @@ class Player:
     async def lag(self, *, reset: bool = False) -> dict:
         """How late this bot's 50 ms physics ticks were since the last `lag(reset=True)`, measured in
         the bot process (js/bot/lag.js): ticks, wall_s, tick_rate, late_mean_ms, late_max_ms, late_pct."""
-        found = await self.channel.request("lag", reset=reset)
-        return found if isinstance(found, dict) else {}
+        found = await self.channel.lag(reset=reset)
+        return dict(found) if isinstance(found, dict) else {}
 
     async def reset(
         self,
@@ -338,8 +337,8 @@ class Player:
                 await placement.reset_to(self._control(), self.channel, self.name, position, self.clock)
             if equipment is not None:
                 await placement.wait_inventory(self._observe, inventory or {}, equipment)
-                await self.channel.request("equip", equipment=equipment, wait=15)
-            await self.channel.request("clear", **({} if seed is None else {"seed": seed}))
+                await self.channel.equip(equipment, wait=15)
+            await self.channel.clear(seed)
             return await self.observe()
 
     async def close(self) -> None:

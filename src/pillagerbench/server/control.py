@@ -8,11 +8,11 @@ Requests are `{"id", "op", "args"}`; replies `{"id", "ok", "result"|"error"}`; a
 from __future__ import annotations
 
 import asyncio
-import itertools
 import json
 from collections.abc import Callable
 from typing import Any
 
+from pillagerbench.host.requests import Requests
 from pillagerbench.server.seams import Control
 
 
@@ -29,8 +29,7 @@ class ControlChannel(Control):
         self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter, on_close: Callable[[], str] | None = None
     ):
         self._reader, self._writer = reader, writer
-        self._ids = itertools.count(1)
-        self._pending: dict[int, asyncio.Future] = {}
+        self._requests = Requests(ControlError)
         self._subscribers: list[asyncio.Queue] = []
         self._on_close = on_close
         self._closed_reason: str | None = None
@@ -41,22 +40,20 @@ class ControlChannel(Control):
     async def request(self, op: str, timeout: float | None = 30, **args: Any) -> Any:
         if self._closed_reason:
             raise ChannelClosed(self._closed_reason)
-        rid = next(self._ids)
-        fut = asyncio.get_running_loop().create_future()
-        self._pending[rid] = fut
-        try:
+        rid = self._requests.next_id()
+
+        async def send() -> None:
             self._writer.write((json.dumps({"id": rid, "op": op, "args": args}) + "\n").encode())
             await self._writer.drain()
-            return await asyncio.wait_for(fut, timeout)
+
+        try:
+            return await self._requests.ask(rid, send, timeout)
         except asyncio.TimeoutError:
             raise ControlError(f"control op {op!r} got no reply within {timeout} s") from None
         except ConnectionError:
             # The server went away before our read loop noticed; let it record why, then say that.
-            self._pending.pop(rid, None)
             await asyncio.wait({self._task}, timeout=2)
             raise ChannelClosed(self._closed_reason or "control channel closed") from None
-        finally:
-            self._pending.pop(rid, None)
 
     @property
     def closed(self) -> bool:
@@ -88,14 +85,8 @@ class ControlChannel(Control):
                     for q in list(self._subscribers):
                         q.put_nowait(msg)
                     continue
-                fut = self._pending.get(msg.get("id"))
-                if fut is None or fut.done():
+                if not self._requests.answer(msg):
                     self.unmatched = (self.unmatched + [msg])[-20:]
-                    continue
-                if msg.get("ok"):
-                    fut.set_result(msg.get("result"))
-                else:
-                    fut.set_exception(ControlError(msg.get("error", "unknown error")))
         except (ConnectionError, asyncio.IncompleteReadError):
             pass
         except Exception as exc:  # noqa: BLE001 - e.g. a line over the reader's limit: say so instead of dying silently
@@ -107,9 +98,7 @@ class ControlChannel(Control):
                 or "control channel closed"
             )
             err = ChannelClosed(self._closed_reason)
-            for fut in self._pending.values():
-                if not fut.done():
-                    fut.set_exception(err)
+            self._requests.fail(err)
             if not self.ready.done():
                 self.ready.set_exception(err)
             for q in list(self._subscribers):

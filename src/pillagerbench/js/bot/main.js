@@ -1,16 +1,14 @@
 'use strict'
 // One player: a mineflayer bot driven by JSON lines on stdin, answering on stdout.
 //   usage: node --permission ... main.js '{"host": "127.0.0.1", "port": 25565, "username": "Ryn", "primitives": null, "clock": "real"}'
-// Lines out:
-//   {"hb": 1}                                heartbeat every 200 ms (the Python side's watchdog)
-//   {"spawned": {...}}                       logged in and the chunks around are loaded
-//   {"ev": [type, data], "run": id}          an event of run `id` (onChat, onError, onSave, observe)
-//   {"id": n, "ok": true, "result": ...}     reply to request n (or "ok": false, "error": "...")
-//   {"fatal": "..."}                         the bot was kicked or disconnected; the process exits
-// Requests in: {"id", "op": "run", "code", "timeout"?} | {"id", "op": "stop"} | {"id", "op": "observe"} |
-//   {"id", "op": "lag", "reset"?} |
-//   {"id", "op": "clear"} | {"id", "op": "equip", "equipment"} | {"id", "op": "settle", "pos"?} | {"id", "op": "ping"}
+// The protocol is declared once, in bot_protocol.json (read by Python too: pillagerbench/players/
+// bot_protocol.py): the settings above, the requests in (each op's arguments and answer: replies
+// {"id", "ok", "result"|"error"}), the lines out besides replies (hb, spawned, ev, fatal) and the
+// observation. A request is dispatched from it (protocol.js); the bot does not start when its settings or
+// its handlers (OPS, RUNS, CUES below) differ from it (tests/players/test_bot_protocol.py).
 const settings = JSON.parse(process.argv[2] || '{}')
+const protocol = require('./protocol')
+protocol.refuse(protocol.settingsProblems(settings))
 const clock = require('../clock/game_clock')
 clock.install(settings.clock) // before anything reads the time (game_clock.js)
 require('./speedups').install() // cheaper equivalents of two library hot spots (speedups.js)
@@ -42,14 +40,20 @@ const CHAT_WINDOW_TICKS = 100
 const CHAT_PIECE = 256
 const EVENT_BUFFER = 200
 
-// settings.cue: connect only once Python says so (a line on stdin, `Player.start`). A match launches its
-// bots' processes all at once, so each loads its libraries and sets itself up meanwhile, and still logs
-// them in one at a time. Without it, at once.
+// settings.cue: connect only at the login op (a line on stdin, `Player.start`). A match launches its bots'
+// processes all at once, so each loads its libraries and sets itself up meanwhile, and still logs them in
+// one at a time. Any other line before it gets an error reply. Without it, at once.
+const CUES = { login: (connect) => connect() } // the ops answered by the spawned line
 function cued (connect) {
   if (!settings.cue) return connect()
   const rl = readline.createInterface({ input: process.stdin })
   let go = false
-  rl.once('line', () => { go = true; rl.close(); connect() })
+  rl.on('line', (line) => {
+    if (go) return
+    const { msg, op, error } = protocol.parse(line)
+    if (op && protocol.answerOf(op) === 'spawned') { go = true; rl.close(); return CUES[op](connect) }
+    out({ id: msg.id ?? null, ok: false, error: error || `op ${op}: not logged in yet (the first request is login)` })
+  })
   rl.once('close', () => { if (!go) process.exit(0) }) // closed before its cue: nothing to play
 }
 const net = require('net')
@@ -223,7 +227,6 @@ const OPS = {
     const m = process.memoryUsage()
     return Object.fromEntries(Object.entries(m).map(([k, v]) => [k, Math.round(v / 2 ** 20 * 10) / 10]))
   },
-  run: null, // handled by doRun (replies itself)
   stop: async () => {
     if (process.env.PB_TRACE) log(`[trace] stop received ${Date.now() % 100000}`)
     if (current) halt(current, 'Stopped')
@@ -272,23 +275,30 @@ const OPS = {
   }
 }
 
-function startProtocol () {
-  const rl = readline.createInterface({ input: process.stdin })
-  rl.on('line', (line) => clock.atBoundary(() => handle(line)))
-  async function handle (line) {
-    let msg
-    try { msg = JSON.parse(line) } catch (err) { return out({ id: null, ok: false, error: `bad request: ${err.message}` }) }
-    if (msg.op === 'run') {
-      doRun(msg).catch(err => out({ id: msg.id, ok: false, error: String(err && err.stack ? err.stack : err) }))
-      return
-    }
-    const fn = OPS[msg.op]
-    if (!fn) return out({ id: msg.id, ok: false, error: `unknown op ${msg.op}` })
+// The ops that answer when a run ends (their events first): doRun replies itself.
+const RUNS = { run: doRun }
+protocol.refuse(protocol.undeclared({ reply: OPS, run: RUNS, spawned: CUES }))
+
+// How each kind of declared answer is given (bot_protocol.json's `answer`).
+const ANSWER = {
+  reply: async (op, msg) => {
     try {
-      out({ id: msg.id, ok: true, result: (await fn(msg)) ?? null })
+      out({ id: msg.id, ok: true, result: (await OPS[op](msg)) ?? null })
     } catch (err) {
       out({ id: msg.id, ok: false, error: err && err.message ? err.message : String(err) })
     }
+  },
+  run: (op, msg) => RUNS[op](msg).catch(err => out({ id: msg.id, ok: false, error: String(err && err.stack ? err.stack : err) })),
+  spawned: (op, msg) => out({ id: msg.id ?? null, ok: false, error: `op ${op}: already logged in` })
+}
+
+function startProtocol () {
+  const rl = readline.createInterface({ input: process.stdin })
+  rl.on('line', (line) => clock.atBoundary(() => handle(line)))
+  function handle (line) {
+    const { msg, op, error } = protocol.parse(line)
+    if (error) return out({ id: msg.id ?? null, ok: false, error })
+    return ANSWER[protocol.answerOf(op)](op, msg)
   }
   rl.on('close', () => { try { bot.quit() } catch (_) {} clock.real.setTimeout(() => process.exit(0), 100) })
 }

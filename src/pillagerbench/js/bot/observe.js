@@ -1,6 +1,7 @@
 'use strict'
 // Observations in upstream's shape (reference §3): every event's data holds the state keys
-// voxels, status, inventory, nearbyChests, blockRecords; `on*` events add their own key.
+// voxels, status, inventory, nearbyChests, blockRecords; `on*` events add their own key. The fields
+// and their types are declared in bot_protocol.json (`observation`, `status`), which Python types them by.
 const { Vec3 } = require('vec3')
 
 const EQUIPMENT_SLOTS = [5, 6, 7, 8] // head, chest, legs, feet; then main hand, off hand (45)
