@@ -96,3 +96,9 @@ def test_passive_against_balanced_decides_on_the_real_server_and_resumes(tmp_pat
     assert Path(tmp_path / "report" / "summary.md").exists()
     # decided is finished: the report opens with the answer and reads no series as unfinished
     assert report.stdout.splitlines()[0] == last and "unfinished" not in report.stdout, report.stdout
+    # its bundle, on the game clock end to end: exported, verified, every episode used
+    bundle = tmp_path / "cmp.tar.gz"
+    exported = run_cli(tmp_path, "export", str(run), "--out", str(bundle), timeout=120)
+    assert exported.returncode == 0 and f"{2 * len(pairs)} episode(s) used" in exported.stdout, exported.stdout
+    verified = run_cli(tmp_path, "verify", str(bundle), timeout=120)
+    assert verified.returncode == 0, verified.stdout + verified.stderr
