@@ -59,6 +59,35 @@ def test_a_given_parallel_wins_and_the_default_is_explained():
     assert n == 2 and why is None  # the CPU count: nothing surprising to say
 
 
+def test_on_the_lockstep_clock_parallel_is_chosen_for_cpu_bound_play():
+    # a lockstep game cannot lag: the load of others does not hold it back, the cores bound it
+    cores = machine.LOCKSTEP_MATCH_CORES
+    assert [local_parallel(RunnerConfig(), clock="lockstep", cpus=2, load=x)[0] for x in (0.0, 9.0)] == [
+        int(2 / cores)
+    ] * 2
+    assert local_parallel(RunnerConfig(), clock="real", cpus=2, load=9.0)[0] == 1
+    choice = machine.choose_parallel_lockstep(cpus=8, load=3.0, match_cores=0.5)
+    assert (
+        choice.parallel == 16
+        and "lockstep clock's CPU-bound play" in choice.explain()
+        and "8 cores" in choice.explain()
+    )
+    assert machine.choose_parallel_lockstep(cpus=1, match_cores=1.5).parallel == 1  # never 0
+    assert local_parallel(RunnerConfig(parallel=3), clock="lockstep", cpus=2) == (3, None)
+
+
+def test_the_speed_probe_is_cheap_and_reads_a_cores_speed(monkeypatch):
+    import time
+
+    t0 = time.perf_counter()
+    fast = machine.core_speed_ms(0.05)
+    assert time.perf_counter() - t0 < 0.3 and fast > 0
+    # twice the work per try reads about twice as slow (its fastest try: the load of the moment left out)
+    monkeypatch.setattr(machine, "SPEED_PROBE_STEPS", 2 * machine.SPEED_PROBE_STEPS)
+    slow = machine.core_speed_ms(0.1)
+    assert 1.5 < slow / fast < 2.6, (fast, slow)
+
+
 LAG_SCRIPT = r"""
 const { EventEmitter } = require('events')
 const { LagMeter } = require(process.argv[1] + '/bot/lag.js')

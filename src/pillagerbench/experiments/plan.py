@@ -4,12 +4,16 @@ directory). docs/experiments.md ("Before a run: plan=true") lists the assumption
 
 - Series and episodes: the experiment's own (experiments/spec.py), or the one match of a plain run;
   with resume=RUN_DIR only the episodes still to play.
-- Wall time: each series costs SERIES_OVERHEAD_S (server start, logins) plus per episode its
-  `episode_length` (real time), EPISODE_OVERHEAD_S (arena reset, pre- and post-game of built-in
-  teams) and, for LLM teams, the pre-game's chain of LLM calls at an assumed latency; the series
-  are then scheduled as runner.run_all does (`parallel` at once, in order, each after the series it
-  starts from), plus RUN_OVERHEAD_S once. The overheads were measured with
-  `python benchmarks/plan_accuracy.py --overheads` (figures in docs/experiments.md).
+- Wall time, on the clock the run plays (plan_clock.py): each series costs its clock's series
+  overhead (server start, logins) plus per episode its game seconds times the clock's wall seconds per
+  game second (1 on the real clock; on the lockstep clock lockstep's measured cost, scaled by this
+  machine's speed now and by the matches sharing its cores), the clock's episode overhead (arena
+  reset, pre- and post-game of built-in teams) and, for LLM teams, the pre-game's chain of LLM calls
+  at an assumed latency (on the lockstep clock also the game's calls: the world waits for them); the
+  series are then scheduled as runner.run_all does (`parallel` at once, in order, each after the
+  series it starts from), plus the run's overhead once. The real clock's overheads were measured with
+  `python benchmarks/plan_accuracy.py --overheads`, lockstep's with `--clock lockstep` (figures in
+  docs/experiments.md).
 - LLM calls per team and episode: cot, one call in the pre-game (up to `attempts` when answers
   cannot be used); tacticrafter, in the pre-game the causal model (if on), the opponent model (if
   on, from the second episode), the tactics (unless preset or frozen) and one action call per
@@ -31,17 +35,13 @@ from pathlib import Path
 from typing import Any
 
 from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.how_many import how_many
+from pillagerbench.experiments.plan_clock import COSTS, Machine
 from pillagerbench.experiments.spec import SeriesSpec, build_series, launch_order
 from pillagerbench.llm.tokens import count_tokens
 from pillagerbench.teams.entrant import entrant_of
 
-# Measured by `python benchmarks/plan_accuracy.py --overheads` (do_nothing vs do_nothing, one series of
-# two 20 s episodes per scenario, parallel=1), twice, on the 2-core development machine at load average 4-5
-# (docs/experiments.md, "Before a run"): the mean of the four series and two runs.
-SERIES_OVERHEAD_S = 8.0  # a series' arena server start, world load, bot logins (5.2-7.9 s MW, 6.1-12.6 s DD)
-EPISODE_OVERHEAD_S = 0.45  # per episode beyond episode_length: arena and player reset, pre/post-game (0.15-0.93 s)
-RUN_OVERHEAD_S = 2.6  # once per run: the command's start, config composition, checks (2.0 and 3.1 s)
 # Assumed, not measured (no provider is reachable here): seconds per LLM call in a pre-game chain
 LATENCY_LOW_S = 2.0
 OUTPUT_TOKENS_PER_S = 50.0  # the high end's latency: the output cap at this rate, plus LATENCY_LOW_S
@@ -62,6 +62,7 @@ class Calls:
     out_high: int = 0
     chain_low: float = 0.0  # seconds of pre-game LLM calls in sequence
     chain_high: float = 0.0
+    game_chain_high: float = 0.0  # seconds of the game's LLM calls in sequence (the lockstep world waits)
 
     def add(self, n_low: int, n_high: int, prompt: tuple[int, int], cap: int) -> None:
         self.low, self.high = self.low + n_low, self.high + n_high
@@ -94,6 +95,7 @@ class SeriesPlan:
     teams: dict[str, str]  # side -> "team" or "team (LLM provider model)"
     wall_low: float
     wall_high: float
+    game_wall_s: float = 0.0  # wall seconds one episode's game takes (its clock's cost, plan_clock.py)
 
 
 @dataclass
@@ -108,6 +110,9 @@ class Plan:
     models: dict[str, ModelCost]
     retries: int = 0  # an episode spoiled on our side is played again up to this many times (not estimated)
     how_many: list[str] = field(default_factory=list)  # episodes a question needs (how_many.py)
+    clock: str = "real"  # the clock the wall time assumes (plan_clock.py)
+    clock_line: str = ""  # what the clock's wall time assumed (plan_clock.ClockCost.says)
+    overheads: tuple[float, float, float] = (0.0, 0.0, 0.0)  # wall seconds per series, episode, run
 
     @property
     def episodes(self) -> int:
@@ -211,6 +216,7 @@ def team_calls(team: str, options: dict, llm: Any, scenario: str, episodes: rang
         later = players * (iterations - 1)  # in the game: a critic and an action call per later iteration
         calls.add(0, later, action_prompt, act)
         calls.add(0, later, critic_prompt, crit)
+        calls.game_chain_high += (iterations - 1) * (_latency_high(act) + _latency_high(crit))  # players at once
         calls.chain_low += chain_low
         calls.chain_high += chain_high
     return calls
@@ -225,7 +231,7 @@ def _sides(cfg: RunConfig) -> list[tuple[str, str, dict, Any]]:
     from pillagerbench.teams import declared_options, find_team
 
     out = []
-    for side in ("red", "blue"):
+    for side in SIDES:
         name = cfg.side(side).name
         cls = find_team(name)
         options = {**declared_options(name, cls), **cfg.side(side).options}
@@ -270,7 +276,7 @@ def _specs(cfg: RunConfig, argv: list[str]) -> tuple[str, list[SeriesSpec], dict
     return f"run {scenario}: red {red} vs blue {blue}", [spec], {}
 
 
-def _parallel(cfg: RunConfig, cpus: int | None, load: float | None) -> tuple[int, str | None]:
+def _parallel(cfg: RunConfig, clock: str, cpus: int | None, load: float | None) -> tuple[int, str | None]:
     """Series at once, as the run would choose (a plain run plays one match)."""
     from pillagerbench.experiments.runner import local_parallel
 
@@ -280,51 +286,96 @@ def _parallel(cfg: RunConfig, cpus: int | None, load: float | None) -> tuple[int
         if cfg.parallel:
             return cfg.parallel, None
         return 1, "launcher=ray without parallel: planned as 1 at once (give parallel=N)"
-    return local_parallel(cfg, cpus=cpus, load=load)
+    return local_parallel(cfg, clock=clock, cpus=cpus, load=load)
 
 
-def build_plan(cfg: RunConfig, argv: list[str], *, cpus: int | None = None, load: float | None = None) -> Plan:
+def _machine(clock: str, cpus: int | None, load: float | None, speed_ms: float | None) -> Machine:
+    """This machine as the plan assumes it; the speed probe runs only for a lockstep plan."""
+    import os
+
+    from pillagerbench.host.machine import core_speed_ms
+
+    if load is None:
+        load = os.getloadavg()[0] if hasattr(os, "getloadavg") else 0.0
+    if speed_ms is None and clock == "lockstep":
+        speed_ms = core_speed_ms()
+    return Machine(cpus or os.cpu_count() or 1, load, speed_ms)
+
+
+@dataclass
+class _Chains:
+    """One series' LLM calls in sequence, in seconds: the pre-game's (the larger side's: they think at
+    once) and the game's (both sides' summed: on the lockstep clock the world waits for each)."""
+
+    low: float = 0.0
+    high: float = 0.0
+    game_high: float = 0.0
+
+    def add(self, calls: Calls) -> None:
+        self.low, self.high = max(self.low, calls.chain_low), max(self.high, calls.chain_high)
+        self.game_high += calls.game_chain_high
+
+
+def build_plan(
+    cfg: RunConfig,
+    argv: list[str],
+    *,
+    cpus: int | None = None,
+    load: float | None = None,
+    speed_ms: float | None = None,
+) -> Plan:
+    """The plan of a run; `cpus`, `load` and `speed_ms` (host/machine.core_speed_ms) stand for this
+    machine's when given."""
+    from pillagerbench.experiments.runner import clock_of
     from pillagerbench.llm.prices import price_of
 
     title, specs, finished = _specs(cfg, argv)
-    parallel, note = _parallel(cfg, cpus, load)
+    clock = clock_of(specs) if specs else cfg.clock.mode
+    parallel, note = _parallel(cfg, clock, cpus, load)
+    machine = _machine(clock, cpus, load, speed_ms)
+    at_once = max(1, min(parallel, len(specs)))  # matches sharing the cores
     models: dict[str, ModelCost] = {}
     plans, low, high = [], {}, {}
-    length = cfg.episode_length
     for s in specs:
         todo = range(finished.get(s.id, 0), s.episodes)
-        series = s.config
-        upstream = series.protocol == "upstream"
-        chain_low = chain_high = 0.0
-        teams = {}
+        chains, teams = _Chains(), {}
         for side, name, options, llm in _sides(s.config):
             teams[side] = entrant_of(s.config.stored(), side)["label"]  # the entrant, as its records will name it
             if llm is None:
                 continue
-            calls = team_calls(name, options, llm, s.scenario, todo, upstream)
+            calls = team_calls(name, options, llm, s.scenario, todo, s.config.protocol == "upstream")
             if not calls.high:
                 continue
             label = f"{llm.provider} {llm.model}"
             teams[side] = f"{teams[side]} (LLM {label})"
             models.setdefault(label, ModelCost(label, price_of(llm))).calls += calls
-            chain_low, chain_high = max(chain_low, calls.chain_low), max(chain_high, calls.chain_high)
+            chains.add(calls)
+        cost = COSTS[s.config.clock.mode]
         n = len(todo)
-        base = (SERIES_OVERHEAD_S if n else 0.0) + n * (series.episode_length + EPISODE_OVERHEAD_S)
-        low[s.id], high[s.id] = base + chain_low, base + chain_high
-        plans.append(SeriesPlan(s, n, teams, low[s.id], high[s.id]))
+        per_episode = s.config.episode_length * cost.per_game_s(s.scenario, s.config.clock, at_once, machine)
+        per_series, beyond_game, _ = cost.overheads(at_once, machine, len(specs))
+        base = (per_series if n else 0.0) + n * (per_episode + beyond_game)
+        game_high = chains.game_high if cost.game_calls_wait else 0.0
+        low[s.id], high[s.id] = base + chains.low, base + chains.high + game_high
+        plans.append(SeriesPlan(s, n, teams, low[s.id], high[s.id], per_episode))
+    cost = COSTS[clock]
+    overheads = cost.overheads(at_once, machine, len(specs))
     return Plan(
         title=title,
         series=plans,
-        episode_length=length,
+        episode_length=cfg.episode_length,
         parallel=parallel,
         parallel_note=note,
-        wall_low=RUN_OVERHEAD_S + schedule(specs, low, parallel),
-        wall_high=RUN_OVERHEAD_S + schedule(specs, high, parallel),
+        wall_low=overheads[2] + schedule(specs, low, parallel),
+        wall_high=overheads[2] + schedule(specs, high, parallel),
         models=models,
         retries=cfg.retries,
         how_many=how_many(
             sorted({s.scenario for s in specs}), cfg.plan_width, cfg.plan_difference, _per_episode(models, plans)
         ),
+        clock=clock,
+        overheads=overheads,
+        clock_line=cost.says(cfg.clock if not specs else specs[0].config.clock, at_once, machine),
     )
 
 
@@ -367,11 +418,15 @@ def lines(plan: Plan) -> list[str]:
     )
     out.append(f"parallel: {plan.parallel} at once" + (f" ({plan.parallel_note})" if plan.parallel_note else ""))
     wall = duration(plan.wall_low)
+    cost = COSTS[plan.clock]
     if plan.wall_high > plan.wall_low + 1:
-        wall = f"{wall} to {duration(plan.wall_high)} (LLM pre-game time at {LATENCY_LOW_S:g} s a call to the output cap at {OUTPUT_TOKENS_PER_S:g} tokens/s)"
+        thinking = "pre-game and game" if cost.game_calls_wait else "pre-game"
+        wall = f"{wall} to {duration(plan.wall_high)} (LLM {thinking} time at {LATENCY_LOW_S:g} s a call to the output cap at {OUTPUT_TOKENS_PER_S:g} tokens/s)"
+    out.append(plan.clock_line)
+    series, episode, _ = plan.overheads
     out.append(
-        f"wall time: {wall}; per series {SERIES_OVERHEAD_S:g} s and per episode {EPISODE_OVERHEAD_S:g} s beyond "
-        "the game (measured, benchmarks/plan_accuracy.py)"
+        f"wall time: {wall}; per series {series:.3g} s and per episode {episode:.3g} s "
+        "beyond the game (measured, benchmarks/plan_accuracy.py)"
     )
     if not plan.models:
         out.append("LLM calls: none (no team of this run uses an LLM)")

@@ -30,7 +30,7 @@ from pillagerbench.config.schema import RunConfig, RunnerConfig, default
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
 from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series, launch_order
-from pillagerbench.host.machine import choose_parallel
+from pillagerbench.host.machine import CHOOSE_PARALLEL
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.rundir import (
     ExperimentFile,
@@ -46,13 +46,24 @@ IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run an
 STOPPED = "stopped"  # a series' status when it stopped past outage_wait_s (experiments/outage.py)
 
 
-def local_parallel(cfg: RunnerConfig, *, cpus: int | None = None, load: float | None = None) -> tuple[int, str | None]:
-    """Matches at once on this machine: the user's `parallel` if given, else as many as the measured
-    headroom allows (pillagerbench/host/machine.py), with one line saying so when that is not the CPU count."""
+def local_parallel(
+    cfg: RunnerConfig, *, clock: str = "real", cpus: int | None = None, load: float | None = None
+) -> tuple[int, str | None]:
+    """Matches at once on this machine: the user's `parallel` if given, else the clock's choice
+    (pillagerbench/host/machine.py: on the real clock as many as the measured headroom allows, on the
+    lockstep clock as many as the cores run without slowing each other), with one line saying so when
+    that is not the CPU count."""
     if cfg.parallel:
         return cfg.parallel, None
-    choice = choose_parallel(cpus, load)
+    choice = CHOOSE_PARALLEL[clock](cpus, load)
     return choice.parallel, (choice.explain() if choice.parallel != choice.cpus else None)
+
+
+def clock_of(specs: list[SeriesSpec]) -> str:
+    """The clock an experiment's series play on: lockstep when every one does, else real (whose
+    choice of `parallel` holds back for lag)."""
+    lockstep = bool(specs) and all(s.config.clock.mode == "lockstep" for s in specs)
+    return "lockstep" if lockstep else "real"
 
 
 def make_experiment_dir(cfg: RunConfig) -> Path:
@@ -178,12 +189,10 @@ async def run_all(
                 else:
                     text = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))
                     dirs[s.id].mkdir(parents=True, exist_ok=True)
-                    (dirs[s.id] / "series_error.txt").write_text(text)
+                    where = RunDir(dirs[s.id]).series_error_path
+                    where.write_text(text)
                     results[s.id] = {"id": s.id, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
-                    print(
-                        f"[{s.id}] series failed: {type(exc).__name__}: {exc} (see {dirs[s.id] / 'series_error.txt'})",
-                        flush=True,
-                    )
+                    print(f"[{s.id}] series failed: {type(exc).__name__}: {exc} (see {where})", flush=True)
     finally:
         for fut in running:
             fut.cancel()
@@ -203,7 +212,7 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
     launcher = cfg.launcher
     closer = None
     if launcher == "local":
-        parallel, why = local_parallel(cfg)
+        parallel, why = local_parallel(cfg, clock=clock_of(specs))
         if why:
             print(why, flush=True)
         launch = local_launcher(run_dir)

@@ -83,6 +83,11 @@ class RunDir:
         return self.path / N.LIVE
 
     @property
+    def series_error_path(self) -> Path:
+        """A series that raised: its traceback."""
+        return self.path / N.SERIES_ERROR
+
+    @property
     def series_path(self) -> Path:
         return self.path / N.SERIES
 

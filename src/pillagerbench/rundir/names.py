@@ -22,6 +22,7 @@ LOGS = "logs"
 DISCARDED = "discarded"
 REPORT = "report"
 CALIBRATION = "calibration.json"  # σ_blue measured from the run (pillagerbench calibrate)
+SERIES_ERROR = "series_error.txt"  # a series that raised: its traceback (experiments/runner.py)
 SERVER_LOG = "server"  # server.log, server.1.log, ...
 EPISODE = "episode_"  # episode_NNN
 
