@@ -226,3 +226,16 @@ def test_a_team_or_scenario_named_by_a_number_is_one_line_about_the_name():
         check_run_config(load_config(["red=7"]))
     [line] = str(err.value).splitlines()
     assert line.startswith("red=7: unknown team '7'; known: ")
+
+
+def test_the_runners_keys_are_declared_once_and_left_out_one_way():
+    """config/schema.py RUNNER_KEYS: every key the runner reads but a series does not (RunnerConfig's, but
+    `display`), each a key of RunConfig; RunConfig.for_series is the one way a series' config leaves them."""
+    from pillagerbench.config.compose import load_config
+    from pillagerbench.config.schema import RUNNER_KEYS, RunConfig, RunnerConfig
+
+    assert set(RunnerConfig.model_fields) - {"display"} <= set(RUNNER_KEYS) <= set(RunConfig.model_fields)
+    full = RunConfig.of(load_config(["parallel=2", "run_dir=x", "plan=true"]))
+    series = full.for_series().stored()
+    assert not set(RUNNER_KEYS) & set(series) and set(full.stored()) - set(series) <= set(RUNNER_KEYS)
+    assert series["display"] == full.stored()["display"]

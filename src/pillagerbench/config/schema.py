@@ -12,7 +12,7 @@ from __future__ import annotations
 import copy
 import socket
 from importlib import resources
-from typing import Any, Literal
+from typing import Any, Final, Literal
 
 from omegaconf import OmegaConf
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator
@@ -189,6 +189,11 @@ class RunnerConfig(BaseModel):
     display: Literal["auto", "live", "plain"] = written("display")
 
 
+# the keys of a run that are its runner's, not its series': a series' own config leaves them out
+# (RunConfig.for_series); `display` stays, as each series shows its own episodes
+RUNNER_KEYS: Final = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
+
+
 class RunConfig(RunnerConfig):
     """The whole configuration, typed: the command line and conf/*.yaml composed (config.load_config),
     or a run's stored config (a manifest's, a series'). Every default is conf/config.yaml's (`written`:
@@ -246,9 +251,10 @@ class RunConfig(RunnerConfig):
         """The configuration as composed or stored (what records write: manifest.json, experiment.json)."""
         return copy.deepcopy(self._stored)
 
-    def without(self, keys: tuple[str, ...]) -> RunConfig:
-        """This configuration without the top-level `keys` (a series' config: the runner's keys left out)."""
-        return RunConfig.of({k: v for k, v in self._stored.items() if k not in keys})
+    def for_series(self) -> RunConfig:
+        """A series' own configuration: this one without the runner's keys (RUNNER_KEYS), the one way they
+        are left out (a plain run's, an experiment's series, a league's match, a resumed run's)."""
+        return RunConfig.of({k: v for k, v in self._stored.items() if k not in RUNNER_KEYS})
 
     def select(self, key: str) -> Any:
         """A dotted key's value as stored (None if absent): conditions.conditions_of reads rules so."""

@@ -23,7 +23,6 @@ from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.display import MatchDisplay
 from pillagerbench.experiments.outage import Stopped
 from pillagerbench.experiments.series import run_series
-from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.match.run import scenario_from_config
 from pillagerbench.rundir import RunDir, SeriesSpec, plain_series, progress
@@ -40,7 +39,7 @@ def make_run_dir(cfg: RunConfig) -> Path:
 def run_match(cfg: RunConfig) -> int:
     """A new plain run from the command's config."""
     run_dir = make_run_dir(cfg)
-    return play_run(plain_series(cfg.without(RUNNER_KEYS), run_dir.name), run_dir, cfg)
+    return play_run(plain_series(cfg.for_series(), run_dir.name), run_dir, cfg)
 
 
 def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:

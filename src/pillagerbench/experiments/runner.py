@@ -29,7 +29,7 @@ from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig, RunnerConfig, default
 from pillagerbench.experiments.progress import ExperimentProgress
 from pillagerbench.experiments.series import run_series
-from pillagerbench.experiments.spec import RUNNER_KEYS, SeriesSpec, build_series, launch_order
+from pillagerbench.experiments.spec import SeriesSpec, build_series, launch_order
 from pillagerbench.host.machine import CHOOSE_PARALLEL
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.rundir import (
@@ -105,7 +105,7 @@ def write_experiment(run_dir: Path, top: dict[str, Any], argv: list[str], specs:
 
 def load_experiment(run_dir: Path) -> tuple[str, list[SeriesSpec], dict[str, Path]]:
     """The series of a run directory: an experiment's, or the one series of a plain `pillagerbench run`."""
-    found = read_series(run_dir, RUNNER_KEYS)
+    found = read_series(run_dir)
     if found is None:
         raise ConfigError(f"resume={run_dir}: not a run directory (no experiment.json or manifest.json)")
     name, series = found

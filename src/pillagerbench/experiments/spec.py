@@ -30,13 +30,12 @@ from typing import Any
 
 from pillagerbench.config.compose import ConfigError, load_config, to_dict
 from pillagerbench.config.registry import Registry
-from pillagerbench.config.schema import ExperimentConfig, RunConfig
+from pillagerbench.config.schema import RUNNER_KEYS, ExperimentConfig, RunConfig
 from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 
 # keys of the top-level config that belong to the experiment machinery, not to one series
-RUNNER_KEYS = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
 # command-line overrides an experiment chooses itself for each series
 SERIES_GROUPS = ("scenario", "red", "blue", "team@red", "team@blue", "+scenario")
 
@@ -103,7 +102,7 @@ class _Composer:
             own = [o for o in self.overrides if not (llm and override_key(o) == "llm")]
             extra = [f"scenario={scenario}", f"red={red}", f"blue={blue}"] + ([f"llm={llm}"] if llm else [])
             cfg = to_dict(load_config(own + extra))
-            self.cache[key] = RunConfig.of({k: v for k, v in cfg.items() if k not in RUNNER_KEYS})
+            self.cache[key] = RunConfig.of(cfg).for_series()
         return self.cache[key]
 
 

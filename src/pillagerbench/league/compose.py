@@ -1,19 +1,27 @@
-"""The run config of one league match, and the checks of an entrant, from league.yaml's entries.
+"""The run config of one league match, the checks of an entrant and its identity, from league.yaml's entries.
 
 An entrant's team options go to its side (`red.KEY`); its LLM (a preset plus options) becomes its
-side's own `llm` node (`red.llm`), so two LLM entrants with different models can meet."""
+side's own `llm` node (`red.llm`), so two LLM entrants with different models can meet. The entrant a
+roster entry plays as (`entrant_of_entry`: rundir/entrant.py's type, whose id a round's league.json
+stamps) is read from the config composed for it on red against do_nothing, without game overrides (the
+stamp keeps those apart): the same entrant its episodes record."""
 
 from __future__ import annotations
 
+import json
+from dataclasses import asdict
 from functools import cache
 from typing import Any
 
 from pillagerbench.config.compose import ConfigError, load_config, to_dict
 from pillagerbench.config.schema import RunConfig, merged
-from pillagerbench.experiments.spec import RUNNER_KEYS
-from pillagerbench.league.spec import Entrant
+from pillagerbench.league.spec import DEFAULT_SCENARIOS, RosterEntry
 from pillagerbench.match.validate import check_run_config
+from pillagerbench.rundir.entrant import Entrant
 from pillagerbench.teams import find_team
+from pillagerbench.teams.entrant import entrant_of
+
+OPPONENT = RosterEntry(name="do_nothing", team="do_nothing")  # the side an entry is composed against
 
 
 @cache
@@ -21,29 +29,29 @@ def _preset(name: str) -> dict[str, Any]:
     return to_dict(load_config([f"llm={name}"]).llm)
 
 
-def _side(cfg: dict[str, Any], side: str, entrant: Entrant) -> None:
+def _side(cfg: dict[str, Any], side: str, entrant: RosterEntry) -> None:
     cfg[side] = merged(cfg[side], entrant.options)
     if entrant.llm or entrant.llm_options:
         own = _preset(entrant.llm) if entrant.llm else {}
         cfg[side]["llm"] = merged(own, entrant.llm_options)
 
 
-def match_config(scenario: str, red: Entrant, blue: Entrant, game: tuple[str, ...] = ()) -> RunConfig:
+def match_config(scenario: str, red: RosterEntry, blue: RosterEntry, game: tuple[str, ...] = ()) -> RunConfig:
     """The full config of a match (checked: one ConfigError line per problem)."""
     cfg = to_dict(load_config([*game, f"scenario={scenario}", f"red={red.team}", f"blue={blue.team}"]))
     _side(cfg, "red", red)
     _side(cfg, "blue", blue)
     check_run_config(cfg)
-    return RunConfig.of({k: v for k, v in cfg.items() if k not in RUNNER_KEYS})
+    return RunConfig.of(cfg).for_series()
 
 
-def playable(entrant: Entrant, scenarios: list[str]) -> list[str]:
+def playable(entrant: RosterEntry, scenarios: list[str]) -> list[str]:
     """The league scenarios the entrant's team can play (ConfigError if the team does not exist)."""
     cls = find_team(entrant.team)
     return [s for s in scenarios if cls.scenarios is None or s in cls.scenarios]
 
 
-def check_entrant(entrant: Entrant, scenarios: list[str], game: tuple[str, ...] = ()) -> None:
+def check_entrant(entrant: RosterEntry, scenarios: list[str], game: tuple[str, ...] = ()) -> None:
     """ConfigError (one line) when the entrant cannot play in this league."""
     try:
         where = playable(entrant, scenarios)
@@ -54,11 +62,27 @@ def check_entrant(entrant: Entrant, scenarios: list[str], game: tuple[str, ...] 
             f"entrant {entrant.name!r}: team {entrant.team} plays none of the league's scenarios "
             f"({', '.join(scenarios)}); it plays {', '.join(find_team(entrant.team).scenarios or [])}"
         )
-    opponent = Entrant(name="do_nothing", team="do_nothing")
     try:
-        match_config(where[0], entrant, opponent, game)
+        match_config(where[0], entrant, OPPONENT, game)
     except ConfigError as exc:
         first = str(exc).splitlines()[0]
         if first.startswith("red"):  # the entrant played red in the checked config
             first = "team" + first[3:]
         raise ConfigError(f"entrant {entrant.name!r}: {first}") from None
+
+
+def entrant_of_entry(entry: RosterEntry) -> Entrant:
+    """The entrant a roster entry plays as (its name aside): ConfigError (one line) when it cannot play."""
+    key = asdict(entry)
+    key.pop("name")
+    try:
+        return _entrant(json.dumps(key, sort_keys=True, default=str))
+    except ConfigError as exc:
+        raise ConfigError(f"entrant {entry.name!r}: {str(exc).splitlines()[0]}") from None
+
+
+@cache
+def _entrant(key: str) -> Entrant:
+    entry = RosterEntry(name="", **json.loads(key))
+    scenario = (find_team(entry.team).scenarios or DEFAULT_SCENARIOS)[0]  # any scenario: none changes a side
+    return entrant_of(match_config(scenario, entry, OPPONENT).stored(), "red")

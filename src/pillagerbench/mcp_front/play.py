@@ -30,7 +30,6 @@ from pillagerbench.config.schema import RunConfig
 from pillagerbench.config.sides import SIDES
 from pillagerbench.experiments.plain_run import make_run_dir
 from pillagerbench.experiments.series import run_series
-from pillagerbench.experiments.spec import RUNNER_KEYS
 from pillagerbench.match import preflight
 from pillagerbench.match.run import scenario_from_config
 from pillagerbench.match.validate import check_run_config
@@ -118,7 +117,7 @@ class McpRun:
         self.run_dir = run_dir = make_run_dir(cfg)
         run_dir.mkdir(parents=True, exist_ok=True)
         say(f"{caller.name} {caller.version} plays {self.args.side}; run directory: {run_dir}")
-        spec = plain_series(cfg.without(RUNNER_KEYS), run_dir.name)
+        spec = plain_series(cfg.for_series(), run_dir.name)
         self.task = asyncio.create_task(self._play(spec, run_dir))
 
     async def _play(self, spec: SeriesSpec, run_dir: Path) -> None:

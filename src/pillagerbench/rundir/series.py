@@ -65,10 +65,10 @@ def write_series(rundir: RunDir, spec: SeriesSpec) -> None:
 
 
 def read_series(
-    run_dir: str | Path, runner_keys: tuple[str, ...] = ()
+    run_dir: str | Path,
 ) -> tuple[str, list[tuple[SeriesSpec, Path]]] | None:
     """The name and the series (spec and directory) of a run directory: an experiment's, or the one
-    series of a plain run (its config without `runner_keys`); None for a directory that is not a run."""
+    series of a plain run (its config as a series': RunConfig.for_series); None for a directory that is not a run."""
     rundir = RunDir(run_dir)
     if rundir.is_experiment():
         data = read_experiment(rundir.path)  # whichever version wrote it
@@ -77,7 +77,7 @@ def read_series(
     manifest = rundir.manifest()
     if manifest is None:
         return None
-    config = RunConfig.of(manifest.config).without(runner_keys)
+    config = RunConfig.of(manifest.config).for_series()
     return "run", [(plain_series(config, rundir.path.name), rundir.path)]
 
 
