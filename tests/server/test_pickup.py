@@ -103,3 +103,20 @@ async def test_spawn_item_and_player_order_refuse_bad_input(arena, bots, area):
         await arena.player_order(names=["alice", "nobody"])
     with pytest.raises(Exception, match="distinct"):
         await arena.player_order(names=["alice", "alice"])
+
+
+async def test_an_item_picked_up_as_it_falls_leaves_no_entity_behind_in_the_bots(arena, bots, area):
+    """flying-squid sent a falling item's move after its pickup had destroyed it (its entity tick awaits
+    the physics): mineflayer made a nameless entity of the id, kept for the match (every bot, at every
+    such pickup of a match: js/server/plugins/entities.js)."""
+    alice, bob = bots
+    await area.put(alice, 4, 4)
+    await area.put(bob, 6, 4)
+    drops = 12
+    for _ in range(drops):  # at the top of alice's reach, so it is picked up in its first ticks of falling
+        await arena.spawn_item(item="wheat_seeds", pos=area.at(4.5, 6.2, 4.5), delay_ticks=0)
+        await asyncio.sleep(0.15)
+    assert await wait_until(lambda: equals(count(arena, "alice", "wheat_seeds"), drops))
+    await asyncio.sleep(0.5)  # anything the server still sent of them has arrived
+    nameless = "return Object.values(bot.entities).filter(e => !e.name).length"
+    assert [await b.eval(nameless) for b in (alice, bob)] == [0, 0]

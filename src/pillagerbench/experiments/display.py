@@ -4,6 +4,7 @@ lines (every 10 s of game) in logs."""
 from __future__ import annotations
 
 import sys
+from collections import deque
 
 from rich.console import Console
 from rich.live import Live
@@ -12,6 +13,8 @@ from rich.table import Table
 from pillagerbench.config.schema import default
 from pillagerbench.experiments.outage import Status
 
+SHOWN = 5  # finished episodes the live panel shows
+
 
 class MatchDisplay:
     def __init__(self, title: str, mode: str = default("display")):
@@ -19,7 +22,7 @@ class MatchDisplay:
         self.console = Console(stderr=False)
         self.live_mode = mode == "live" or (mode == "auto" and sys.stdout.isatty())
         self.live: Live | None = None
-        self.finished: list[str] = []
+        self.finished: deque[str] = deque(maxlen=SHOWN)  # the last episodes shown (a day of play keeps no more)
         self.waiting: Status | None = None  # the series waits for its provider or team server (experiments/outage.py)
         self.probes_shown = 0
 
@@ -37,7 +40,7 @@ class MatchDisplay:
         table = Table(title=self.title)
         for col in ("episode", "clock", "red", "blue"):
             table.add_column(col, justify="right")
-        for line in self.finished[-5:]:
+        for line in self.finished:
             table.add_row(*line.split("|"))
         if s:
             table.add_row(str(s["episode"]), f"{s['t']:>3.0f}/{s['length']:.0f} s", f"{s['red']:g}", f"{s['blue']:g}")
