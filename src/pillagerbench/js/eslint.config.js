@@ -10,7 +10,9 @@ module.exports = [
     languageOptions: { sourceType: 'commonjs' },
     rules: {
       // related properties share a line here (tables of rules, event payloads): not our style
-      '@stylistic/object-property-newline': 'off'
+      '@stylistic/object-property-newline': 'off',
+      // the rule Python's functions follow (tests/test_function_length.py): 80 lines at most
+      'max-lines-per-function': ['error', { max: 80, skipBlankLines: true, skipComments: true, IIFEs: true }]
     }
   }
 ]

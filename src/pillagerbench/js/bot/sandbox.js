@@ -59,47 +59,11 @@ const MOVEMENT_OPTIONS = ['canDig', 'digCost', 'placeCost', 'allow1by1towers', '
 function makeFacade (bot, run, { chat, save, report }) {
   const sync = (fn) => function (...args) { run.check(); return fn(...args) }
   const async = (fn) => async function (...args) { run.check(); return run.race(fn(...args)) }
-  const wrapListener = (listener) => function (...args) {
-    if (!run.active) return
-    try {
-      const r = listener(...args)
-      if (r && typeof r.catch === 'function') r.catch(err => { if (!isStop(err)) report(err) })
-    } catch (err) { if (!isStop(err)) report(err) }
-  }
+  const wrapListener = (listener) => guardListener(run, report, listener)
   const owned = new Map() // agent listener -> [event, wrapped]
 
-  const pathfinder = {
-    goto: async (goal) => run.race(bot.pathfinder.goto(goal)),
-    setGoal: sync((goal, dynamic = false) => bot.pathfinder.setGoal(goal, dynamic)),
-    stop: sync(() => bot.pathfinder.stop()),
-    isMoving: () => bot.pathfinder.isMoving(),
-    isMining: () => bot.pathfinder.isMining(),
-    isBuilding: () => bot.pathfinder.isBuilding(),
-    get goal () { return bot.pathfinder.goal },
-    setMovements: sync((options = {}) => {
-      const m = defaultMovements(bot)
-      for (const k of MOVEMENT_OPTIONS) if (options[k] !== undefined) m[k] = options[k]
-      bot.pathfinder.setMovements(m)
-    })
-  }
-
-  // Upstream's plugins (mineflayer-collectblock, mineflayer-tool, mineflayer-pvp), behind the same
-  // run checks; stopping a run also cancels their tasks (main.js halt).
-  const collectBlock = {
-    collect: async((target, options = {}) => bot.collectBlock.collect(target, collectOptions(options))),
-    cancelTask: async(() => bot.collectBlock.cancelTask())
-  }
-  const tool = {
-    equipForBlock: async((block, options = {}) => bot.tool.equipForBlock(block, toolOptions(options)))
-  }
-  const pvp = {
-    attack: async((entity) => bot.pvp.attack(entity)),
-    stop: async(() => bot.pvp.stop()),
-    forceStop: sync(() => bot.pvp.forceStop()),
-    get target () { return bot.pvp.target },
-    get followRange () { return bot.pvp.followRange },
-    get attackRange () { return bot.pvp.attackRange }
-  }
+  const pathfinder = pathfinderFacade(bot, run, sync)
+  const { collectBlock, tool, pvp } = pluginFacades(bot, sync, async)
 
   const facade = {
     get username () { return bot.username },
@@ -125,6 +89,80 @@ function makeFacade (bot, run, { chat, save, report }) {
     collectBlock,
     tool,
     pvp,
+    ...botQueries(bot, sync),
+    chat: sync((m) => chat(m)),
+    save: sync((name) => save(String(name))),
+    ...botActions(bot, async),
+    on: sync((event, listener) => {
+      const w = wrapListener(listener); owned.set(listener, [event, w]); run.listen(bot, String(event), w); return facade
+    }),
+    once: sync((event, listener) => {
+      const w = wrapListener((...a) => { run.unlisten(bot, String(event), w); owned.delete(listener); return listener(...a) })
+      owned.set(listener, [event, w]); run.listen(bot, String(event), w); return facade
+    }),
+    removeListener: (event, listener) => {
+      const o = owned.get(listener)
+      if (o) { run.unlisten(bot, o[0], o[1]); owned.delete(listener) }
+      return facade
+    }
+  }
+  facade.addListener = facade.on
+  facade.off = facade.removeListener
+  return facade
+}
+
+// An agent's listener, called only while the run is active; what it throws (or rejects with) is reported.
+function guardListener (run, report, listener) {
+  return function (...args) {
+    if (!run.active) return
+    try {
+      const r = listener(...args)
+      if (r && typeof r.catch === 'function') r.catch(err => { if (!isStop(err)) report(err) })
+    } catch (err) { if (!isStop(err)) report(err) }
+  }
+}
+
+function pathfinderFacade (bot, run, sync) {
+  return {
+    goto: async (goal) => run.race(bot.pathfinder.goto(goal)),
+    setGoal: sync((goal, dynamic = false) => bot.pathfinder.setGoal(goal, dynamic)),
+    stop: sync(() => bot.pathfinder.stop()),
+    isMoving: () => bot.pathfinder.isMoving(),
+    isMining: () => bot.pathfinder.isMining(),
+    isBuilding: () => bot.pathfinder.isBuilding(),
+    get goal () { return bot.pathfinder.goal },
+    setMovements: sync((options = {}) => {
+      const m = defaultMovements(bot)
+      for (const k of MOVEMENT_OPTIONS) if (options[k] !== undefined) m[k] = options[k]
+      bot.pathfinder.setMovements(m)
+    })
+  }
+}
+
+// Upstream's plugins (mineflayer-collectblock, mineflayer-tool, mineflayer-pvp), behind the same
+// run checks; stopping a run also cancels their tasks (main.js halt).
+function pluginFacades (bot, sync, async) {
+  const collectBlock = {
+    collect: async((target, options = {}) => bot.collectBlock.collect(target, collectOptions(options))),
+    cancelTask: async(() => bot.collectBlock.cancelTask())
+  }
+  const tool = {
+    equipForBlock: async((block, options = {}) => bot.tool.equipForBlock(block, toolOptions(options)))
+  }
+  const pvp = {
+    attack: async((entity) => bot.pvp.attack(entity)),
+    stop: async(() => bot.pvp.stop()),
+    forceStop: sync(() => bot.pvp.forceStop()),
+    get target () { return bot.pvp.target },
+    get followRange () { return bot.pvp.followRange },
+    get attackRange () { return bot.pvp.attackRange }
+  }
+  return { collectBlock, tool, pvp }
+}
+
+// The facade's methods that ask the bot (and its synchronous acts), each behind sync's run check.
+function botQueries (bot, sync) {
+  return {
     blockAt: sync((p, extra) => bot.blockAt(p, extra)),
     findBlock: sync((o) => bot.findBlock(o)),
     findBlocks: sync((o) => bot.findBlocks(o)),
@@ -146,9 +184,13 @@ function makeFacade (bot, run, { chat, save, report }) {
     stopDigging: sync(() => bot.stopDigging()),
     deactivateItem: sync(() => bot.deactivateItem()),
     closeWindow: sync((w) => bot.closeWindow(w)),
-    inventoryUsed: sync(() => bot.inventory.slots.slice(9, 45).filter(Boolean).length),
-    chat: sync((m) => chat(m)),
-    save: sync((name) => save(String(name))),
+    inventoryUsed: sync(() => bot.inventory.slots.slice(9, 45).filter(Boolean).length)
+  }
+}
+
+// The facade's acts that take time, each behind async's run check and settling when the run stops.
+function botActions (bot, async) {
+  return {
     waitForTicks: async((n) => waitTicks(bot, n)),
     waitForChunksToLoad: async(() => bot.waitForChunksToLoad()),
     equip: async((i, d) => bot.equip(i, d)),
@@ -166,23 +208,8 @@ function makeFacade (bot, run, { chat, save, report }) {
     openContainer: async((b) => bot.openContainer(b)),
     openChest: async((b) => bot.openContainer(b)),
     openFurnace: async((b) => bot.openFurnace(b)),
-    craft: async((r, c, t) => bot.craft(r, c, t)),
-    on: sync((event, listener) => {
-      const w = wrapListener(listener); owned.set(listener, [event, w]); run.listen(bot, String(event), w); return facade
-    }),
-    once: sync((event, listener) => {
-      const w = wrapListener((...a) => { run.unlisten(bot, String(event), w); owned.delete(listener); return listener(...a) })
-      owned.set(listener, [event, w]); run.listen(bot, String(event), w); return facade
-    }),
-    removeListener: (event, listener) => {
-      const o = owned.get(listener)
-      if (o) { run.unlisten(bot, o[0], o[1]); owned.delete(listener) }
-      return facade
-    }
+    craft: async((r, c, t) => bot.craft(r, c, t))
   }
-  facade.addListener = facade.on
-  facade.off = facade.removeListener
-  return facade
 }
 
 // The options agent code may give the plugins: known keys only, plain values.

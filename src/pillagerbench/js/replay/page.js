@@ -3,15 +3,10 @@
 // The replay page (written by `pillagerbench replay`, see docs/replays.md): a top-down map of the
 // arena (map.js: players with facing and trail, items and mobs), a timeline, the chat and events feed and
 // both teams' scores, all from the data embedded in the page as JSON (id "replay-data"). No network.
-;(function () {
-  const D = JSON.parse(document.getElementById('replay-data').textContent)
-  const $ = (id) => document.getElementById(id)
 
-  const arena = window.arenaMap(D, $('map'), $('legend')) // the map: js/replay/map.js
-  const { sampleAt, sideOf, sideColour } = arena
-
-  // ---- feed ----
-  const feed = $('feed')
+// ---- feed ----
+// The feed's rows in `feed` (a click on one moves the time there) and drawFeed(t), which shows the rows up to t.
+function replayFeed (D, feed, setTime) {
   const rows = D.feed.map(([t, kind, text]) => {
     const row = document.createElement('div')
     row.className = 'ev ' + kind
@@ -36,11 +31,15 @@
     if (last !== lastShown && last >= 0) feed.scrollTop = feed.scrollHeight
     lastShown = last
   }
+  return { rows, drawFeed }
+}
 
-  // ---- scores ----
-  const chart = $('scores')
+// ---- scores ----
+// drawScores(t): both sides' scores over the episode on `chart`, the cursor at t, the scores at t in `scoreNow`.
+function scoresChart (D, chart, scoreNow, sideColour) {
   const cctx = chart.getContext('2d')
-  function drawScores (t) {
+  const duration = D.duration
+  return function drawScores (t) {
     const w = chart.width; const h = chart.height; const pad = 28
     cctx.fillStyle = '#fff'; cctx.fillRect(0, 0, w, h)
     const T = Math.max(D.length, duration, 1)
@@ -60,32 +59,42 @@
     cctx.strokeStyle = '#000'; cctx.setLineDash([4, 3]); cctx.beginPath(); cctx.moveTo(X(t), pad / 2); cctx.lineTo(X(t), h - pad); cctx.stroke(); cctx.setLineDash([])
     let cur = null
     for (const s of D.scores) if (s.t <= t) cur = s
-    $('score-now').textContent = Object.entries(D.sides).map(([k, s]) => `${k} ${s.team}: ${cur ? cur[k] : 0}`).join('   ')
+    scoreNow.textContent = Object.entries(D.sides).map(([k, s]) => `${k} ${s.team}: ${cur ? cur[k] : 0}`).join('   ')
   }
+}
 
-  // ---- players panel ----
-  function drawPlayers (t) {
-    const body = $('players')
-    body.textContent = ''
-    for (const [name, track] of Object.entries(D.tracks)) {
-      const s = sampleAt(track, t)
-      let runs = 0; let errors = 0
-      for (const p of D.programs[name] || []) {
-        if (p[0] > t) break
-        if (p[1] === 'start') runs++
-        if (p[1] === 'error') errors++
-      }
-      const tr = document.createElement('tr')
-      for (const v of [name, sideOf[name] || '', s && s[5] ? s[5] : '-', s ? `${s[1].toFixed(1)}, ${s[2].toFixed(1)}, ${s[3].toFixed(1)}` : '-', runs, errors]) {
-        const td = document.createElement('td'); td.textContent = v; tr.append(td)
-      }
-      tr.style.color = sideColour(sideOf[name])
-      body.append(tr)
+// ---- players panel ----
+function drawPlayers (D, arena, body, t) {
+  const { sampleAt, sideOf, sideColour } = arena
+  body.textContent = ''
+  for (const [name, track] of Object.entries(D.tracks)) {
+    const s = sampleAt(track, t)
+    let runs = 0; let errors = 0
+    for (const p of D.programs[name] || []) {
+      if (p[0] > t) break
+      if (p[1] === 'start') runs++
+      if (p[1] === 'error') errors++
     }
+    const tr = document.createElement('tr')
+    for (const v of [name, sideOf[name] || '', s && s[5] ? s[5] : '-', s ? `${s[1].toFixed(1)}, ${s[2].toFixed(1)}, ${s[3].toFixed(1)}` : '-', runs, errors]) {
+      const td = document.createElement('td'); td.textContent = v; tr.append(td)
+    }
+    tr.style.color = sideColour(sideOf[name])
+    body.append(tr)
   }
+}
 
-  // ---- time ----
-  function clock (t) { const s = Math.max(0, t); return `${Math.floor(s / 60)}:${(s % 60).toFixed(1).padStart(4, '0')}` }
+// ---- time ----
+function clock (t) { const s = Math.max(0, t); return `${Math.floor(s / 60)}:${(s % 60).toFixed(1).padStart(4, '0')}` }
+
+;(function () {
+  const D = JSON.parse(document.getElementById('replay-data').textContent)
+  const $ = (id) => document.getElementById(id)
+
+  const arena = window.arenaMap(D, $('map'), $('legend')) // the map: js/replay/map.js
+  const { rows, drawFeed } = replayFeed(D, $('feed'), setTime)
+  const drawScores = scoresChart(D, $('scores'), $('score-now'), arena.sideColour)
+
   const duration = D.duration
   const slider = $('time')
   slider.max = duration
@@ -96,7 +105,7 @@
     current = Math.max(0, Math.min(duration, Number(t)))
     slider.value = current
     $('clock').textContent = `${clock(current)} / ${clock(duration)}`
-    arena.draw(current); drawFeed(current); drawScores(current); drawPlayers(current)
+    arena.draw(current); drawFeed(current); drawScores(current); drawPlayers(D, arena, $('players'), current)
   }
   function frame (now) {
     if (!playing) return

@@ -22,107 +22,129 @@ const PUSH_EVERY = 4
 const IDLE_LIMIT_MS = 5000
 
 module.exports.server = function (serv, settings = {}) {
-  const idleLimitMs = settings.idleLimitMs ?? IDLE_LIMIT_MS
   serv.pb = serv.pb || {}
-  const members = new Map() // a bot's connection -> the last tick it has done
-  const holds = new Map() // who -> count
-  const waiters = [] // [tick, resolve]
-  // holdsOf: how many times holds were dropped (each whistle, each game's start): a rest begun before
-  // neither takes nor gives back a hold after (see rest)
-  const state = { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false, gameStart: 0, holdsOf: 0 }
-  const idleTimers = new Map() // idle:NAME -> the wall-clock timer that lets go of it
-  const letGo = {} // idle:NAME -> how many times this game the server let go of it
-  // idle:NAME of the players resting (a `rest` in progress). Python's `rest` (the control channel) can
-  // reach the server before the bot's IDLE for the run that just ended (its game connection): that late
-  // IDLE must not hold the world again until the rest is over.
-  const resting = new Set()
-  const retired = new Set() // idle:NAME of the players that hold nothing more this game (see retire)
-  const freed = new Set() // idle:NAME freed before the IDLE of its ended run came (see free): that IDLE is ignored
-  const inbox = new Map() // a bot's connection -> what it sent since the last tick, to be read at the next
-
-  const answers = [] // the answers of waits whose tick has come, until every bot has done that tick
-  const botsDone = () => [...members.values()].every(done => done >= state.tick)
-  const ready = () => holds.size === 0 && botsDone()
-
-  // A wait is answered (to Python) only once every bot has done the tick it waited for: what Python does
-  // next (a team's next run, a step of the game master's) then reaches each bot between this tick and
-  // the next, never before the bot has received this tick, where it would act one tick early.
-  function answer (fn) {
-    if (botsDone()) fn()
-    else answers.push(fn)
+  const lock = {
+    serv,
+    idleLimitMs: settings.idleLimitMs ?? IDLE_LIMIT_MS,
+    members: new Map(), // a bot's connection -> the last tick it has done
+    holds: new Map(), // who -> count
+    waiters: [], // [tick, resolve]
+    // holdsOf: how many times holds were dropped (each whistle, each game's start): a rest begun before
+    // neither takes nor gives back a hold after (see rest)
+    state: { tick: 0, speed: 1, anchor: null, busy: false, scheduled: false, game: false, gameStart: 0, holdsOf: 0 },
+    idleTimers: new Map(), // idle:NAME -> the wall-clock timer that lets go of it
+    letGo: {}, // idle:NAME -> how many times this game the server let go of it
+    // idle:NAME of the players resting (a `rest` in progress). Python's `rest` (the control channel) can
+    // reach the server before the bot's IDLE for the run that just ended (its game connection): that late
+    // IDLE must not hold the world again until the rest is over.
+    resting: new Set(),
+    retired: new Set(), // idle:NAME of the players that hold nothing more this game (see retire)
+    freed: new Set(), // idle:NAME freed before the IDLE of its ended run came (see free): that IDLE is ignored
+    inbox: new Map(), // a bot's connection -> what it sent since the last tick, to be read at the next
+    answers: [] // the answers of waits whose tick has come, until every bot has done that tick
   }
-  function flushAnswers () {
-    if (answers.length && botsDone()) for (const fn of answers.splice(0)) fn()
+  serv.pb.clock = { ...gameOps(lock), ...holdOps(lock), ...botOps(lock) }
+  if (clock.lockstep) {
+    serv._server.on('connection', (client) => listen(serv, client))
+    schedule(lock, 0)
   }
+}
 
-  function schedule (ms) {
-    if (state.scheduled) return
-    state.scheduled = true
-    const go = () => { state.scheduled = false; step() }
-    if (ms > 0) clock.real.setTimeout(go, ms)
-    else clock.real.setImmediate(go)
+// `lock`: the coordinator's state, made in the server's closure above.
+const botsDone = (lock) => [...lock.members.values()].every(done => done >= lock.state.tick)
+const ready = (lock) => lock.holds.size === 0 && botsDone(lock)
+
+// A wait is answered (to Python) only once every bot has done the tick it waited for: what Python does
+// next (a team's next run, a step of the game master's) then reaches each bot between this tick and
+// the next, never before the bot has received this tick, where it would act one tick early.
+function answer (lock, fn) {
+  if (botsDone(lock)) fn()
+  else lock.answers.push(fn)
+}
+function flushAnswers (lock) {
+  if (lock.answers.length && botsDone(lock)) for (const fn of lock.answers.splice(0)) fn()
+}
+
+function schedule (lock, ms) {
+  const state = lock.state
+  if (state.scheduled) return
+  state.scheduled = true
+  const go = () => { state.scheduled = false; step(lock) }
+  if (ms > 0) clock.real.setTimeout(go, ms)
+  else clock.real.setImmediate(go)
+}
+
+async function step (lock) {
+  const { serv, state, members } = lock
+  if (state.busy) return
+  if (!ready(lock)) { state.anchor = null; return } // waiting: pace anew from the tick that frees it
+  if (state.speed !== null) {
+    const now = clock.real.now()
+    if (!state.anchor) state.anchor = { real: now, tick: state.tick }
+    const wait = state.anchor.real + (state.tick + 1 - state.anchor.tick) * clock.TICK_MS / state.speed - now
+    if (wait > 1) return schedule(lock, wait)
   }
-
-  async function step () {
-    if (state.busy) return
-    if (!ready()) { state.anchor = null; return } // waiting: pace anew from the tick that frees it
-    if (state.speed !== null) {
-      const now = clock.real.now()
-      if (!state.anchor) state.anchor = { real: now, tick: state.tick }
-      const wait = state.anchor.real + (state.tick + 1 - state.anchor.tick) * clock.TICK_MS / state.speed - now
-      if (wait > 1) return schedule(wait)
+  state.busy = true
+  const sockets = [...members.keys()].map(c => c.socket).filter(Boolean)
+  for (const socket of sockets) socket.cork() // what a tick sends each bot: one write, not one per packet
+  try {
+    if (state.game && serv.pb.reseed) serv.pb.reseed(state.tick + 1 - state.gameStart)
+    readPackets(lock)
+    state.tick++
+    await clock.advance(clock.TICK_MS)
+    for (const client of members.keys()) {
+      try { client.write('custom_payload', { channel: CHANNELS.TICK, data: tickData(state.tick) }) } catch (_) {}
     }
-    state.busy = true
-    const sockets = [...members.keys()].map(c => c.socket).filter(Boolean)
-    for (const socket of sockets) socket.cork() // what a tick sends each bot: one write, not one per packet
-    try {
-      if (state.game && serv.pb.reseed) serv.pb.reseed(state.tick + 1 - state.gameStart)
-      readPackets()
-      state.tick++
-      await clock.advance(clock.TICK_MS)
-      for (const client of members.keys()) {
-        try { client.write('custom_payload', { channel: CHANNELS.TICK, data: tickData(state.tick) }) } catch (_) {}
-      }
-      if (state.tick % PUSH_EVERY === 0) serv.emit('control_event', { event: 'clock', tick: state.tick })
-      answerDue()
-    } finally {
-      for (const socket of sockets) socket.uncork()
-      state.busy = false
-    }
-    schedule(0)
+    if (state.tick % PUSH_EVERY === 0) serv.emit('control_event', { event: 'clock', tick: state.tick })
+    answerDue(lock)
+  } finally {
+    for (const socket of sockets) socket.uncork()
+    state.busy = false
   }
+  schedule(lock, 0)
+}
 
-  function answerDue () { // every wait whose tick has come
-    for (let i = waiters.length - 1; i >= 0; i--) {
-      if (waiters[i][0] <= state.tick) waiters.splice(i, 1)[0][1]()
-    }
+function answerDue (lock) { // every wait whose tick has come
+  const waiters = lock.waiters
+  for (let i = waiters.length - 1; i >= 0; i--) {
+    if (waiters[i][0] <= lock.state.tick) waiters.splice(i, 1)[0][1]()
   }
+}
 
-  // What the bots sent since the last tick, read now, bot by bot in the order of their names: the
-  // order in which the four connections happen to be read never decides who picked an item up first.
-  function readPackets () {
-    const order = [...inbox.keys()].sort((a, b) => String(a.username).localeCompare(String(b.username)))
-    for (const client of order) for (const fn of inbox.get(client).splice(0)) read(fn)
-  }
-  function read (fn) { // as the connection would have: a handler that throws is reported, the tick goes on
-    try { fn() } catch (err) { console.error(`[clock] a packet handler threw: ${err && err.stack ? err.stack : err}`) }
-  }
+// What the bots sent since the last tick, read now, bot by bot in the order of their names: the
+// order in which the four connections happen to be read never decides who picked an item up first.
+function readPackets (lock) {
+  const inbox = lock.inbox
+  const order = [...inbox.keys()].sort((a, b) => String(a.username).localeCompare(String(b.username)))
+  for (const client of order) for (const fn of inbox.get(client).splice(0)) read(fn)
+}
+function read (fn) { // as the connection would have: a handler that throws is reported, the tick goes on
+  try { fn() } catch (err) { console.error(`[clock] a packet handler threw: ${err && err.stack ? err.stack : err}`) }
+}
 
-  // A game begins: what the server does every so many ticks (crop growth every 20, health regeneration)
-  // counts from here (serv.pb.tick0), not from whenever the server started, so that the same seed gives
-  // the same game (serv.tickCount itself only ever goes on). Not the hens' laying cycles (plugins/mobs.js):
-  // they run from the arena's build, as on the real clock, and may lay before the game begins.
-  function beginGame () {
-    state.gameStart = state.tick
-    state.gameEnd = null
-    for (const who of Object.keys(letGo)) delete letGo[who]
-    serv.pb.tick0 = serv.tickCount
-  }
+// A game begins: what the server does every so many ticks (crop growth every 20, health regeneration)
+// counts from here (serv.pb.tick0), not from whenever the server started, so that the same seed gives
+// the same game (serv.tickCount itself only ever goes on). Not the hens' laying cycles (plugins/mobs.js):
+// they run from the arena's build, as on the real clock, and may lay before the game begins.
+function beginGame (lock) {
+  const state = lock.state
+  state.gameStart = state.tick
+  state.gameEnd = null
+  for (const who of Object.keys(lock.letGo)) delete lock.letGo[who]
+  lock.serv.pb.tick0 = lock.serv.tickCount
+}
 
-  const describe = () => ({ mode: clock.lockstep ? 'lockstep' : 'real', tick: clock.lockstep ? state.tick : serv.tickCount, speed: state.speed, holds: [...holds.keys()], bots: members.size, let_go: { ...letGo } })
-  const lockstepOnly = (op) => { if (!clock.lockstep) throw new ControlError(`op ${op} needs clock=lockstep (this server runs on the real clock)`) }
+function describeClock (lock) {
+  const { serv, state, holds, members, letGo } = lock
+  return { mode: clock.lockstep ? 'lockstep' : 'real', tick: clock.lockstep ? state.tick : serv.tickCount, speed: state.speed, holds: [...holds.keys()], bots: members.size, let_go: { ...letGo } }
+}
+const lockstepOnly = (op) => { if (!clock.lockstep) throw new ControlError(`op ${op} needs clock=lockstep (this server runs on the real clock)`) }
 
-  serv.pb.clock = {
+// serv.pb.clock's ops of the game: its state, its pace, its start and its whistle.
+function gameOps (lock) {
+  const { state, holds, waiters, idleTimers, resting, retired, freed } = lock
+  const describe = () => describeClock(lock)
+  return {
     describe,
     // The tick of the game in progress (0 at its start) on the lockstep clock, and after its whistle the
     // whistle's (the clock runs on then at whatever pace: what happens after is not the game's); null on
@@ -150,7 +172,7 @@ module.exports.server = function (serv, settings = {}) {
       }
       if (unpaced === true) state.speed = null
       state.anchor = null
-      if (clock.lockstep) schedule(0)
+      if (clock.lockstep) schedule(lock, 0)
       if (game === true && clock.lockstep) return this.startGame()
       return describe()
     },
@@ -159,13 +181,20 @@ module.exports.server = function (serv, settings = {}) {
     // reset took on the wall clock, and a bot short of a chunk searched its paths differently). Then every
     // bot is idle (held) until its first run, and the answer waits for every bot (see answer()).
     async startGame () {
-      await serv.pb.squareChunks?.() // js/server/plugins/chunks.js
-      await new Promise(resolve => waiters.push([state.tick + 1, () => answer(resolve), null]))
+      await lock.serv.pb.squareChunks?.() // js/server/plugins/chunks.js
+      await new Promise(resolve => waiters.push([state.tick + 1, () => answer(lock, resolve), null]))
       state.game = true
-      beginGame()
-      for (const client of members.keys()) this.idle(client)
+      beginGame(lock)
+      for (const client of lock.members.keys()) this.idle(client)
       return describe()
-    },
+    }
+  }
+}
+
+// serv.pb.clock's holds: Python's (hold, release, wait_tick) and the players' rests, retirements and frees.
+function holdOps (lock) {
+  const { state, holds, waiters, resting, retired, freed } = lock
+  return {
     hold (who) {
       lockstepOnly('hold')
       holds.set(who, (holds.get(who) || 0) + 1)
@@ -176,7 +205,7 @@ module.exports.server = function (serv, settings = {}) {
       const n = (holds.get(who) || 0) - 1
       if (n > 0) holds.set(who, n)
       else this.releaseAll(who) // an idle hold's wall-clock limit goes with it
-      schedule(0)
+      schedule(lock, 0)
       return state.tick
     },
     // Answer at `tick` (at once if it has come); with `who`, hold the clock for it there (a step of the
@@ -185,7 +214,7 @@ module.exports.server = function (serv, settings = {}) {
     waitTick (tick, who, release) {
       lockstepOnly('wait_tick')
       const reached = (holder) => { if (holder) holds.set(holder, (holds.get(holder) || 0) + 1); return state.tick }
-      const reply = (holder, resolve) => { const t = reached(holder); answer(() => resolve(t)) }
+      const reply = (holder, resolve) => { const t = reached(holder); answer(lock, () => resolve(t)) }
       const got = tick <= state.tick
         ? new Promise(resolve => reply(who, resolve))
         : new Promise(resolve => { const w = [tick, () => reply(w[2], resolve), who || null]; waiters.push(w) })
@@ -207,10 +236,10 @@ module.exports.server = function (serv, settings = {}) {
         if (mine) for (const who of names) resting.delete(who)
         for (const who of names) if (mine && state.game) this.holdIdle(who)
         const t = state.tick
-        answer(() => resolve(t))
+        answer(lock, () => resolve(t))
       }, null]))
       for (const who of names) { resting.add(who); this.releaseAll(who) }
-      if (ticks <= 0) answerDue()
+      if (ticks <= 0) answerDue(lock)
       return back
     },
     // Their team's play is over, or the game's time is (with scoring=upstream the game plays on past the
@@ -233,7 +262,14 @@ module.exports.server = function (serv, settings = {}) {
         else freed.add(who)
       }
       return state.tick
-    },
+    }
+  }
+}
+
+// serv.pb.clock's bots: their connections joining, doing ticks, going idle and busy, leaving.
+function botOps (lock) {
+  const { state, members, holds, idleTimers, letGo, resting, retired, freed, inbox } = lock
+  return {
     idle (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} idle ${client.username} game=${state.game}`)
       if (freed.delete(`idle:${client.username}`)) return
@@ -246,9 +282,9 @@ module.exports.server = function (serv, settings = {}) {
       idleTimers.set(who, clock.real.setTimeout(() => {
         idleTimers.delete(who)
         letGo[who] = (letGo[who] || 0) + 1
-        console.error(`[clock] ${who} let go after ${idleLimitMs} ms of wall time: its team neither ran nor rested it`)
+        console.error(`[clock] ${who} let go after ${lock.idleLimitMs} ms of wall time: its team neither ran nor rested it`)
         this.releaseAll(who)
-      }, idleLimitMs))
+      }, lock.idleLimitMs))
     },
     busy (client) {
       if (process.env.PB_TRACE) console.error(`[clock] ${state.tick} busy ${client.username}`)
@@ -258,30 +294,26 @@ module.exports.server = function (serv, settings = {}) {
     releaseAll (who) {
       const t = idleTimers.get(who)
       if (t) { clock.real.clearTimeout(t); idleTimers.delete(who) }
-      if (holds.delete(who)) schedule(0)
+      if (holds.delete(who)) schedule(lock, 0)
     },
     join (client) {
       members.set(client, state.tick)
       inbox.set(client, queueing(client))
-      schedule(0)
+      schedule(lock, 0)
     },
     done (client, tick) {
       if (!members.has(client) || tick === null) return
       members.set(client, Math.max(members.get(client), tick))
-      flushAnswers()
-      schedule(0)
+      flushAnswers(lock)
+      schedule(lock, 0)
     },
     leave (client) {
       for (const fn of (inbox.get(client) || []).splice(0)) read(fn)
       inbox.delete(client)
       resting.delete(`idle:${client.username}`)
       this.releaseAll(`idle:${client.username}`)
-      if (members.delete(client)) { flushAnswers(); schedule(0) }
+      if (members.delete(client)) { flushAnswers(lock); schedule(lock, 0) }
     }
-  }
-  if (clock.lockstep) {
-    serv._server.on('connection', (client) => listen(serv, client))
-    schedule(0)
   }
 }
 

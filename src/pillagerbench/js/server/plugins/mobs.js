@@ -18,7 +18,7 @@ module.exports.server = function (serv) {
     summon: (name, pos) => {
       if (!MOBS[name]) throw new ControlError(`unknown mob '${name}' (valid: ${Object.keys(MOBS).join(', ')})`)
       const mob = serv.spawnMob(reg.entitiesByName[name].id, serv.overworld, pos, { velocity: new Vec3(0, 0, 0) })
-      farmAnimal(mob)
+      farmAnimal(serv, mob)
       return mob.id
     },
     list: () => Object.values(serv.entities).filter(e => e.type === 'mob' && !e.dead)
@@ -44,31 +44,37 @@ module.exports.server = function (serv) {
     }
   })
 
-  // Our animals stand still (no mob AI; flying-squid's physics lifted them off the ground), have
-  // their real health and die into their loot.
-  function farmAnimal (e) {
-    e.velocity = new Vec3(0, 0, 0)
-    e.size = null // no physics tick for it (flying-squid's lifted mobs off the ground); spawn packets still work
-    e.health = MOBS[e.name].health
-    e.takeDamage = serv.guarded('mob damage', ({ damage = 1, attacker } = {}) => {
-      if (e.dead) return
-      e.health -= damage
-      if (e.health > 0) {
-        e._writeOthers('entity_status', { entityId: e.id, entityStatus: 2 })
-        return
-      }
-      e.dead = true
-      e._writeOthers('entity_status', { entityId: e.id, entityStatus: 3 })
-      const drops = MOBS[e.name].loot.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
-      serv.pb.spawnDrops(e.world, e.position.floored(), drops, 'mob')
-      serv.emit('control_event', {
-        event: 'mob_killed', mob: e.name, player: attacker || null,
-        drops: drops.map(d => [reg.items[d.id].name, d.count])
-      })
-      setTimeout(() => serv.destroyEntity(e), 800) // entities.js tells every player
-    })
-  }
+  layEggs(serv, eggFarms)
+}
 
+// Our animals stand still (no mob AI; flying-squid's physics lifted them off the ground), have
+// their real health and die into their loot.
+function farmAnimal (serv, e) {
+  const reg = serv.registry
+  e.velocity = new Vec3(0, 0, 0)
+  e.size = null // no physics tick for it (flying-squid's lifted mobs off the ground); spawn packets still work
+  e.health = MOBS[e.name].health
+  e.takeDamage = serv.guarded('mob damage', ({ damage = 1, attacker } = {}) => {
+    if (e.dead) return
+    e.health -= damage
+    if (e.health > 0) {
+      e._writeOthers('entity_status', { entityId: e.id, entityStatus: 2 })
+      return
+    }
+    e.dead = true
+    e._writeOthers('entity_status', { entityId: e.id, entityStatus: 3 })
+    const drops = MOBS[e.name].loot.map(d => ({ id: reg.itemsByName[d.item].id, count: serv.pb.rollCount(d.count) })).filter(d => d.count > 0)
+    serv.pb.spawnDrops(e.world, e.position.floored(), drops, 'mob')
+    serv.emit('control_event', {
+      event: 'mob_killed', mob: e.name, player: attacker || null,
+      drops: drops.map(d => [reg.items[d.id].name, d.count])
+    })
+    setTimeout(() => serv.destroyEntity(e), 800) // entities.js tells every player
+  })
+}
+
+// The hens of the egg farms lay, each tick.
+function layEggs (serv, eggFarms) {
   // On the lockstep clock hens lay during games only, each one's cycle under way drawn at the game's first
   // tick (from that tick's seeded draws): between games the clock keeps real time's pace, so a cycle
   // counted from the arena's build would lay at a tick the wall clock chose, and its draws would move

@@ -17,8 +17,6 @@ module.exports.server = function (serv) {
   const windows = require('prismarine-windows')(serv.registry)
   serv.pb = serv.pb || {}
 
-  const clone = (it) => it ? new Item(it.type, it.count, it.metadata, it.nbt) : null
-
   // Spawn an item entity thrown by a player, in the direction they look.
   serv.pb.dropItem = (player, type, count) => {
     const yaw = (player.yaw * 360 / 256) * Math.PI / 180
@@ -32,9 +30,48 @@ module.exports.server = function (serv) {
     return entity
   }
 
+  const views = inventoryViews(Item)
+  const containers = containerWindows(serv, windows, views)
+  serv.pb.openContainer = containers.openContainer
+  serv.pb.closeContainer = containers.closeContainer
+  serv.pb.returnToInventory = (player, it) => {
+    const left = serv.pb.addItem(player.inventory, it.type, it.count)
+    if (left > 0) serv.pb.dropItem(player, it.type, left)
+  }
+  serv.pb.sendWindow = views.sendWindow
+  serv.pb.handleClick = windowClicks(serv, Item, views)
+}
+
+// A container's window mirrors the player's inventory slots 9..44 after its own: pulled in before a
+// click, pushed back after; a window is sent whole.
+function inventoryViews (Item) {
+  const clone = (it) => it ? new Item(it.type, it.count, it.metadata, it.nbt) : null
+
+  function pullInventory (player, w) {
+    for (let s = 9; s <= 44; s++) w.updateSlot(w.inventoryStart + s - 9, clone(player.inventory.slots[s]))
+  }
+  function pushInventory (player, w) {
+    for (let s = 9; s <= 44; s++) {
+      const mine = w.slots[w.inventoryStart + s - 9]
+      if (!Item.equal(mine, player.inventory.slots[s])) player.inventory.updateSlot(s, clone(mine))
+    }
+  }
+
+  function sendWindow (player, w) {
+    const windowId = w === player.inventory ? 0 : w.id
+    player._client.write('window_items', { windowId, items: w.slots.map(it => Item.toNotch(it)) })
+    player._client.write('set_slot', { windowId: -1, slot: -1, item: Item.toNotch(w.selectedItem) })
+  }
+  return { clone, pullInventory, pushInventory, sendWindow }
+}
+
+// Opening and closing containers.
+function containerWindows (serv, windows, views) {
+  const { clone, pullInventory, pushInventory, sendWindow } = views
+
   // Container kinds: { type, title, slots (array kept by the owner), takeResult?, beforeClick? (refresh the
   // view from the owner's state), afterClick? (store the view back), onClose? }
-  serv.pb.openContainer = (player, spec) => {
+  const openContainer = (player, spec) => {
     closeContainer(player)
     player.pbWindowId = (player.pbWindowId % 100) + 1
     const w = windows.createWindow(player.pbWindowId, spec.type, spec.title)
@@ -56,7 +93,6 @@ module.exports.server = function (serv) {
     c.spec.onClose?.(c.w, player)
     if (c.w.selectedItem) returnCursor(player, c.w)
   }
-  serv.pb.closeContainer = closeContainer
 
   // Items held on the cursor or left in a 2x2/3x3 grid go back to the inventory (or drop if full).
   function returnCursor (player, w) {
@@ -65,29 +101,14 @@ module.exports.server = function (serv) {
     const left = serv.pb.addItem(player.inventory, it.type, it.count)
     if (left > 0) serv.pb.dropItem(player, it.type, left)
   }
-  serv.pb.returnToInventory = (player, it) => {
-    const left = serv.pb.addItem(player.inventory, it.type, it.count)
-    if (left > 0) serv.pb.dropItem(player, it.type, left)
-  }
+  return { openContainer, closeContainer }
+}
 
-  function pullInventory (player, w) {
-    for (let s = 9; s <= 44; s++) w.updateSlot(w.inventoryStart + s - 9, clone(player.inventory.slots[s]))
-  }
-  function pushInventory (player, w) {
-    for (let s = 9; s <= 44; s++) {
-      const mine = w.slots[w.inventoryStart + s - 9]
-      if (!Item.equal(mine, player.inventory.slots[s])) player.inventory.updateSlot(s, clone(mine))
-    }
-  }
+// handleClick(player, click): a window click, applied to the server's own slots.
+function windowClicks (serv, Item, views) {
+  const { pullInventory, pushInventory, sendWindow } = views
 
-  function sendWindow (player, w) {
-    const windowId = w === player.inventory ? 0 : w.id
-    player._client.write('window_items', { windowId, items: w.slots.map(it => Item.toNotch(it)) })
-    player._client.write('set_slot', { windowId: -1, slot: -1, item: Item.toNotch(w.selectedItem) })
-  }
-  serv.pb.sendWindow = sendWindow
-
-  serv.pb.handleClick = (player, click) => {
+  const handleClick = (player, click) => {
     const { windowId, slot, mouseButton, mode, action } = click
     // (flying-squid's player.inventory window has id 1 internally; on the wire it is window 0)
     const c = windowId === 0 ? { w: player.inventory, spec: player.pbInventorySpec } : player.pbContainer
@@ -129,6 +150,7 @@ module.exports.server = function (serv) {
     w.acceptClick(click)
   }
   const mode0 = (click) => click.mode === 0
+  return handleClick
 }
 
 module.exports.player = function (player, serv) {
