@@ -197,13 +197,14 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys, args, says):
 
 
 def test_a_league_reads_a_round_handed_over_as_a_bundle(tmp_path, capsys):
+    from pillagerbench.league.compose import entrant_of_entry
     from pillagerbench.league.rounds import MATCHES, STAMP
-    from pillagerbench.league.spec import Entrant, League, save_league
+    from pillagerbench.league.spec import League, RosterEntry, save_league
 
-    league = League(entrants=[Entrant(t, t) for t in ("do_nothing", "passive", "balanced")])
+    league = League(entrants=[RosterEntry(t, t) for t in ("do_nothing", "passive", "balanced")])
     save_league(tmp_path / "league", league)
     played = write_run(tmp_path / "round_elsewhere", "mushroom_war", "passive", "balanced", [(20, 10)] * 3)
-    stamp = {"entrants": {e.name: e.fingerprint() for e in league.entrants[1:]}, "game": []}
+    stamp = {"entrants": {e.name: entrant_of_entry(e).id for e in league.entrants[1:]}, "game": []}
     (played / STAMP).write_text(json.dumps(stamp))
     bundle = tmp_path / "league" / MATCHES / "elsewhere.tar.gz"
     assert cli.main(["export", str(played), "--out", str(bundle)]) == 0

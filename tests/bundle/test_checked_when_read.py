@@ -116,14 +116,15 @@ def test_the_same_suite_under_its_released_name_is_no_mismatch(run, tmp_path, ca
 
 
 def test_the_league_refuses_a_handed_over_bundle_that_fails_unless_no_verify(tmp_path, capsys):
+    from pillagerbench.league.compose import entrant_of_entry
     from pillagerbench.league.rounds import MATCHES, STAMP
-    from pillagerbench.league.spec import Entrant, League, save_league
+    from pillagerbench.league.spec import League, RosterEntry, save_league
 
-    league = League(entrants=[Entrant(t, t) for t in ("do_nothing", "passive", "balanced")])
+    league = League(entrants=[RosterEntry(t, t) for t in ("do_nothing", "passive", "balanced")])
     save_league(tmp_path / "league", league)
     played = write_run(tmp_path / "elsewhere", "mushroom_war", "passive", "balanced", [(20, 10)] * 3, suite=SUITE)
     (played / STAMP).write_text(
-        json.dumps({"entrants": {e.name: e.fingerprint() for e in league.entrants[1:]}, "game": []})
+        json.dumps({"entrants": {e.name: entrant_of_entry(e).id for e in league.entrants[1:]}, "game": []})
     )
     handed = tmp_path / "league" / MATCHES / "elsewhere.tar.gz"
     handed.parent.mkdir()

@@ -95,9 +95,7 @@ def test_the_default_agent_plays_until_the_run_is_over(tmp_path: Path) -> None:
     assert len(calls) >= 7 and calls[4]["refused"].endswith("is too short")
     assert calls[5]["tick_start"] == calls[6]["tick_start"]  # one turn's calls start on one tick
     [record] = RunDir(run_dir).records()
-    assert (
-        record.status == "ok" and record.red_entrant["label"] == f"agent:react/{inspect_ai.__version__}@mockllm/model"
-    )
+    assert record.status == "ok" and record.red_entrant.label == f"agent:react/{inspect_ai.__version__}@mockllm/model"
     assert sample.scores is not None
     assert sample.scores["series_score"].value["points"] == record.red_score
 
@@ -116,7 +114,7 @@ def test_a_solver_of_ones_own_plays_until_a_limit_and_the_series_finishes_withou
     run_dir = Path(sample.metadata["run_dir"])
     assert [c["tool"] for c in red_calls(run_dir)] == ["mineBlock"] * len(events)
     [record] = RunDir(run_dir).records()  # the whole episode, played on without the agent
-    assert record.status == "ok" and record.red_entrant["label"].startswith("agent:my_agent/")
+    assert record.status == "ok" and record.red_entrant.label.startswith("agent:my_agent/")
     assert record.problems["red"] == ["the agent left: its players did nothing for the rest of the episode"]
     assert sample.scores is not None and sample.scores["series_score"].value["points"] == record.red_score
 
@@ -154,5 +152,5 @@ def test_an_agent_framework_plays_through_inspects_agent_bridge(tmp_path: Path) 
     sample = play(tmp_path, outputs(), solver=solver)
     run_dir = Path(sample.metadata["run_dir"])
     [record] = RunDir(run_dir).records()
-    assert record.status == "ok" and record.red_entrant["label"].startswith("agent:openai_agents_team/")
+    assert record.status == "ok" and record.red_entrant.label.startswith("agent:openai_agents_team/")
     assert "mineBlock" in [c["tool"] for c in red_calls(run_dir)]  # the SDK's calls reached the seat

@@ -43,7 +43,7 @@ def test_inspect_eval_plays_an_episode_and_the_run_directory_reports(tmp_path: P
     assert "cot.json" in episode["code"]["red"] and episode["status"] == "ok"
     run_dir = Path(sample.metadata["run_dir"])
     [record] = RunDir(run_dir).records()
-    assert record.red_entrant["label"] == "cot@mockllm/model"
+    assert record.red_entrant.label == "cot@mockllm/model"
     assert json.loads((run_dir / "manifest.json").read_text())["config"]["clock"]["mode"] == "lockstep"
     assert run_dir.parent.parent == tmp_path / "runs"  # the Inspect run: one experiment directory
     report = subprocess.run(

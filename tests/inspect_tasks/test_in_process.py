@@ -33,8 +33,8 @@ def test_model_against_model_plays_and_scores_as_the_report(tmp_path: Path) -> N
     records = RunDir(run_dir).records()
     assert len(records) == 1 and records[0].status == "ok"
     # model against model: both sides are the LLM team, each asking its own role's model
-    assert (records[0].red_entrant["team"], records[0].blue_entrant["team"]) == ("cot", "cot")
-    assert records[0].red_entrant["label"] == "cot@mockllm/model"
+    assert (records[0].red_entrant.team, records[0].blue_entrant.team) == ("cot", "cot")
+    assert records[0].red_entrant.label == "cot@mockllm/model"
     calls = [json.loads(line) for line in (run_dir / "llm_calls.jsonl").read_text().splitlines()]
     assert {c["team"] for c in calls if not c["error_type"]} == {"red", "blue"}
     # the transcript: every prompt and answer (Inspect's model events), and the code each player ran

@@ -7,7 +7,7 @@ import csv
 
 from pillagerbench.league.board import write_board
 from pillagerbench.league.ratings import Rating, ranks
-from pillagerbench.league.spec import Entrant, League
+from pillagerbench.league.spec import League, RosterEntry
 
 TEAMS = ["do_nothing", "passive", "balanced", "aggressive", "slimy"]
 
@@ -18,7 +18,7 @@ def test_equal_ratings_share_a_rank_and_the_next_one_skips():
 
 
 def test_the_empty_board_ties_every_entrant_and_says_no_rounds_yet(tmp_path):
-    league = League(entrants=[Entrant(t, t) for t in TEAMS])
+    league = League(entrants=[RosterEntry(t, t) for t in TEAMS])
     write_board(tmp_path, league)
     rows = list(csv.DictReader((tmp_path / "leaderboard.csv").open()))
     assert sorted(r["entrant"] for r in rows) == sorted(TEAMS)
@@ -38,7 +38,7 @@ def test_the_board_has_bradley_terry_ratings_with_intervals_and_the_pools_view(t
         write_run(tmp_path / "r2", "mushroom_war", "do_nothing", "balanced", [(0, 14), (0, 15)], suite="s@a"),
     ]
     monkeypatch.setattr(results, "round_dirs", lambda league_dir: rounds)
-    league = League(entrants=[Entrant(t, t) for t in ("do_nothing", "passive", "balanced")])
+    league = League(entrants=[RosterEntry(t, t) for t in ("do_nothing", "passive", "balanced")])
     write_board(tmp_path, league)
     rows = {r["entrant"]: r for r in csv.DictReader((tmp_path / "leaderboard.csv").open())}
     for column in ("BT rating", "BT 95% low", "BT 95% high", "lottery share", "Nash margin", "LLM cost/win"):

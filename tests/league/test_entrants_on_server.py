@@ -55,7 +55,7 @@ def test_every_episode_records_the_entrant_its_config_gives(league):
         config = json.loads((series / "manifest.json").read_text())["config"]
         (record,) = [json.loads(x) for x in (series / "episodes.jsonl").read_text().splitlines()]
         for side in ("red", "blue"):
-            assert record[f"{side}_entrant"] == entrant_of(config, side)
+            assert record[f"{side}_entrant"] == entrant_of(config, side).to_dict()
         labels = {record["red_entrant"]["label"], record["blue_entrant"]["label"]}
         assert labels == {"cot@gpt-4o", "cot@gpt-4o-mini"}
         assert record["red_entrant"]["id"] != record["blue_entrant"]["id"]

@@ -14,7 +14,7 @@ from pillagerbench.league import results
 from pillagerbench.league.board import write_board
 from pillagerbench.league.rounds import write_round
 from pillagerbench.league.schedule import Pairing
-from pillagerbench.league.spec import Entrant, League, load_league
+from pillagerbench.league.spec import League, RosterEntry, load_league
 from tests.metrics.fake_runs import write_run
 
 TEAMS = ("do_nothing", "passive")
@@ -32,7 +32,7 @@ def rounds(tmp_path, monkeypatch):
 @pytest.mark.parametrize("split, rated, left", [("test", 2, "3 on split paper"), ("paper", 3, "2 on split test")])
 def test_the_board_rates_its_split_only_and_says_which(rounds, split, rated, left):
     rounds.mkdir()
-    write_board(rounds, League(entrants=[Entrant(t, t) for t in TEAMS], split=split))
+    write_board(rounds, League(entrants=[RosterEntry(t, t) for t in TEAMS], split=split))
     board = {r["entrant"]: r for r in csv.DictReader((rounds / "leaderboard.csv").open())}
     assert board["passive"]["episodes"] == str(rated) and {r["split"] for r in board.values()} == {split}
     md = (rounds / "leaderboard.md").read_text()
@@ -43,7 +43,7 @@ def test_the_board_rates_its_split_only_and_says_which(rounds, split, rated, lef
 
 
 def test_a_test_league_plays_every_match_on_fresh_test_layouts(tmp_path):
-    league = League(entrants=[Entrant(t, t) for t in TEAMS], split="test")
+    league = League(entrants=[RosterEntry(t, t) for t in TEAMS], split="test")
     _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), {})
     assert [(s.config.layout, s.config.split) for s in specs] == [("paper", "test")] * 2
     league.split = "paper"
@@ -52,7 +52,7 @@ def test_a_test_league_plays_every_match_on_fresh_test_layouts(tmp_path):
 
 
 def test_every_match_is_played_with_its_side_swapped_twin_on_the_same_seed(tmp_path):
-    league = League(entrants=[Entrant(t, t) for t in TEAMS], split="dev")
+    league = League(entrants=[RosterEntry(t, t) for t in TEAMS], split="dev")
     _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), {})
     assert [(s.red, s.blue) for s in specs] == [tuple(TEAMS), tuple(reversed(TEAMS))]
     assert specs[0].seed == specs[1].seed and specs[0].config.split == "dev"  # dev layouts follow the seed

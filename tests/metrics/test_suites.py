@@ -13,7 +13,7 @@ import pytest
 from pillagerbench.cli import commands as cli
 from pillagerbench.league import results
 from pillagerbench.league.board import write_board
-from pillagerbench.league.spec import Entrant, League
+from pillagerbench.league.spec import League, RosterEntry
 from pillagerbench.metrics.runs import ReportError
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.rundir import EpisodeRecord
@@ -74,7 +74,7 @@ def test_every_table_of_a_mixed_report_says_so(two, tmp_path, capsys):
 
 def test_the_league_refuses_mixed_rounds_unless_asked(two, tmp_path, monkeypatch):
     monkeypatch.setattr(results, "round_dirs", lambda league_dir: list(two))
-    league = League(entrants=[Entrant(t, t) for t in ("do_nothing", "passive")])
+    league = League(entrants=[RosterEntry(t, t) for t in ("do_nothing", "passive")])
     with pytest.raises(ReportError, match="refusing to mix suite versions or conditions"):
         write_board(tmp_path, league)
     league.mix_suites = True

@@ -69,7 +69,7 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
     page = (tmp_path / "report" / "report.html").read_text()
     rows = {r["run"]: r for r in table_after(page, "Provenance: what each run is, from its manifests")}
     config = json.loads((llm / "manifest.json").read_text())["config"]
-    ids = {side: entrant_of(config, side)["id"] for side in ("red", "blue")}  # derived: records before entrants
+    ids = {side: entrant_of(config, side).id for side in ("red", "blue")}  # derived: records before entrants
     assert rows[str(llm)] == {
         "run": str(llm),
         "what": "run",

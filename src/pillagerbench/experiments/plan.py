@@ -340,7 +340,7 @@ def build_plan(
         todo = range(finished.get(s.id, 0), s.episodes)
         chains, teams = _Chains(), {}
         for side, name, options, llm in _sides(s.config):
-            teams[side] = entrant_of(s.config.stored(), side)["label"]  # the entrant, as its records will name it
+            teams[side] = entrant_of(s.config.stored(), side).label  # the entrant, as its records will name it
             if llm is None:
                 continue
             calls = team_calls(name, options, llm, s.scenario, todo, s.config.protocol == "upstream")

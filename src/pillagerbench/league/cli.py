@@ -21,8 +21,8 @@ from pillagerbench.league.compose import check_entrant
 from pillagerbench.league.play import RUNNER, play
 from pillagerbench.league.rounds import check_stamps
 from pillagerbench.league.spec import (
-    Entrant,
     League,
+    RosterEntry,
     league_path,
     load_league,
     parse_value,
@@ -61,7 +61,7 @@ def new_league(league_dir: Path, args: list[str]) -> League:
         )
     league = with_overrides(League(), ours)
     names = dict.fromkeys(n for sc in league.scenarios for n in builtin_teams(sc))
-    league.entrants = [Entrant(name=n, team=n) for n in names]
+    league.entrants = [RosterEntry(name=n, team=n) for n in names]
     for e in league.entrants:
         check_entrant(e, league.scenarios)
     return league
@@ -89,7 +89,7 @@ def add(league_dir: Path, args: list[str]) -> None:
     team, llm = pairs.pop("team", None), pairs.pop("llm", None)
     if not team:
         raise ConfigError(f"add {name}: team=TEAM is required (see `pillagerbench teams`)")
-    entrant = Entrant(
+    entrant = RosterEntry(
         name=name,
         team=str(team),
         options={k: v for k, v in pairs.items() if not k.startswith("llm.")},

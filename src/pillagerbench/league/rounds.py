@@ -1,8 +1,10 @@
 """A league's matches: one experiment run directory per round, `LEAGUE_DIR/matches/round_NNN/`
 (experiment.json, series/<id>/ ... as any experiment, so parallel play, Ray and resume work
-unchanged), plus `league.json`: the game overrides the round was played with and a fingerprint of
-each entrant it involved (team, options, model). A round whose stamp disagrees with league.yaml
-belongs to another league and is refused, never overwritten. Rounds played elsewhere can be handed
+unchanged), plus `league.json`: the game overrides the round was played with and the identity of
+each entrant it involved: its entrant id (rundir/entrant.py: team, models, options; league/compose.py
+`entrant_of_entry`), or in a round played before the entrant type the 16 hex digits of its league.yaml
+entry (`RosterEntry.old_fingerprint`), which is checked as it was made. A round whose stamp disagrees
+with league.yaml belongs to another league and is refused, never overwritten. Rounds played elsewhere can be handed
 over as results bundles (`pillagerbench export ROUND_DIR --out LEAGUE_DIR/matches/NAME.tar.gz`): the
 board and the scheduler read them as rounds, their stamps checked the same; the budget counts only
 what was played here."""
@@ -15,9 +17,9 @@ from pathlib import Path
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.spec import SeriesSpec, slug
-from pillagerbench.league.compose import match_config
+from pillagerbench.league.compose import entrant_of_entry, match_config
 from pillagerbench.league.schedule import Pairing
-from pillagerbench.league.spec import League
+from pillagerbench.league.spec import OLD_STAMP, League, RosterEntry
 from pillagerbench.league.splits import match_split
 from pillagerbench.rundir import RunDir
 from pillagerbench.rundir.bundle import bundle_runs
@@ -44,9 +46,9 @@ def check_stamps(league_dir: Path, league: League, game: tuple[str, ...] | None)
         if not (d / STAMP).exists():
             raise ConfigError(f"{d}: no {STAMP}; not a round of a league (move it out of {MATCHES}/)")
         stamp = json.loads((d / STAMP).read_text())
-        for name, fingerprint in stamp["entrants"].items():
+        for name, identity in stamp["entrants"].items():
             e = league.entrant(name)
-            if e is not None and e.fingerprint() != fingerprint:
+            if e is not None and not _same(e, identity):
                 raise ConfigError(
                     f"{d.name}: entrant {name!r} was another team, options or model there than in league.yaml; "
                     "this directory belongs to a different league.yaml (rename the entrant, or use a new league)"
@@ -56,6 +58,13 @@ def check_stamps(league_dir: Path, league: League, game: tuple[str, ...] | None)
                 f"{d.name} was played with game overrides [{' '.join(stamp['game'])}], this command gives "
                 f"[{' '.join(game)}]; play with the same ones (their scores would not compare)"
             )
+
+
+def _same(entry: RosterEntry, identity: str) -> bool:
+    """Whether a round's stamp names this entry: its entrant id, or its old fingerprint (OLD_STAMP)."""
+    if len(identity) == OLD_STAMP:
+        return entry.old_fingerprint() == identity
+    return entrant_of_entry(entry).id == identity
 
 
 def write_round(
@@ -89,7 +98,8 @@ def write_round(
                 )
             )
     involved = {n for p in pairings for n in (p.red, p.blue)}
-    stamp = {"game": list(game), "entrants": {n: e.fingerprint() for n in sorted(involved) if (e := league.entrant(n))}}
+    entrants = {n: entrant_of_entry(e).id for n in sorted(involved) if (e := league.entrant(n))}
+    stamp = {"game": list(game), "entrants": entrants}
     run_dir.mkdir(parents=True, exist_ok=True)
     (run_dir / STAMP).write_text(json.dumps(stamp, indent=1))  # first: a round counts once experiment.json exists
     top = {**runner, "experiment": {"name": f"league {run_dir.name}", "design": "league"}}

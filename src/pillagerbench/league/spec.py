@@ -33,21 +33,27 @@ from pillagerbench.league.splits import check_split
 LEAGUE_FILE = "league.yaml"
 BUDGET_KEYS = ("episodes", "hours", "llm_tokens", "llm_cost_usd")
 DEFAULT_SCENARIOS = ["mushroom_war"]
+OLD_STAMP = 16  # the length of an entrant's identity in a round's league.json before the entrant type
 
 
 @dataclass
-class Entrant:
+class RosterEntry:
+    """One entrant of the roster as league.yaml writes it: its name in the league, its team, options and
+    LLM (a preset and options). Its identity is the entrant it plays as (rundir/entrant.py), computed from
+    the config the league composes for it (league/compose.py `entrant_of_entry`)."""
+
     name: str
     team: str
     options: dict[str, Any] = field(default_factory=dict)
     llm: str | None = None  # an llm preset (conf/llm/NAME.yaml)
     llm_options: dict[str, Any] = field(default_factory=dict)
 
-    def fingerprint(self) -> str:
-        """What makes this entrant this entrant: team, options and model (not its name)."""
+    def old_fingerprint(self) -> str:
+        """The identity league.json stamped before the entrant type (16 hex digits of league.yaml's
+        entry without its name); only read to check the stamps of rounds played then (league/rounds.py)."""
         d = asdict(self)
         d.pop("name")
-        return hashlib.sha256(json.dumps(d, sort_keys=True, default=str).encode()).hexdigest()[:16]
+        return hashlib.sha256(json.dumps(d, sort_keys=True, default=str).encode()).hexdigest()[:OLD_STAMP]
 
 
 @dataclass
@@ -60,12 +66,12 @@ class League:
     budget: dict[str, float | None] = field(
         default_factory=lambda: {"episodes": 400.0} | dict.fromkeys(BUDGET_KEYS[1:])
     )
-    entrants: list[Entrant] = field(default_factory=list)
+    entrants: list[RosterEntry] = field(default_factory=list)
     mix_suites: bool = False  # rate episodes of different suite versions together (the board says so)
     no_verify: bool = False  # read handed-over bundles (matches/*.tar.gz) that fail their checks (the board says so)
     split: str = "paper"  # the layouts its matches are played and rated on (league/splits.py)
 
-    def entrant(self, name: str) -> Entrant | None:
+    def entrant(self, name: str) -> RosterEntry | None:
         return next((e for e in self.entrants if e.name == name), None)
 
     def to_dict(self) -> dict:
@@ -79,7 +85,7 @@ def _checked(raw: dict, where: str) -> League:
     if unknown:
         raise ConfigError(f"{where}: unknown key {unknown[0]!r}; valid: {', '.join(League.__dataclass_fields__)}")
     try:
-        entrants = [Entrant(**e) for e in raw.get("entrants") or []]
+        entrants = [RosterEntry(**e) for e in raw.get("entrants") or []]
         league = League(**{**raw, "entrants": entrants})
         budget = {k: None for k in BUDGET_KEYS} | dict(league.budget or {})
         bad = sorted(set(budget) - set(BUDGET_KEYS))

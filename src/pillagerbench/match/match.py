@@ -30,6 +30,7 @@ from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.match.sides_clock import SidesClock
 from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
+from pillagerbench.rundir.entrant import Entrant
 from pillagerbench.scenarios import Scenario, upstream
 from pillagerbench.scenarios.layout import episode_layout
 from pillagerbench.server.clock import GameClock, RealClock
@@ -55,7 +56,7 @@ class Match:
         step_wait_s: float | None = None,
         split: str | None = None,
         conditions: dict[str, Any] | None = None,
-        entrants: dict[str, dict] | None = None,
+        entrants: dict[str, Entrant] | None = None,
         clock: ClockConfig | None = None,
     ):
         SCORINGS.find(scoring)
@@ -66,7 +67,7 @@ class Match:
         self.llms = llms or {}  # side key -> LLM client of that team (LLM teams only)
         self.run_dir, self.episode_length, self.seed = Path(run_dir), float(episode_length), seed
         self.on_tick = on_tick
-        self.entrants = entrants or {}  # side -> the entrant playing it (teams/entrant.py), on every record
+        self.entrants = entrants or {}  # side -> the entrant playing it (rundir/entrant.py), on every record
         self.players: dict[str, Player] = {}
         self.rundir = RunDir(run_dir)  # every path and record of the run directory
         self.last_records: dict[str, LastEpisode] = {}

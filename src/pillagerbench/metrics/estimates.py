@@ -92,7 +92,7 @@ def planned(series: list, *frames: pd.DataFrame) -> dict[tuple[str, str], int]:
     out: dict[tuple[str, str], int] = {}
     for s in series:
         if s.group is None or s.group == "training":
-            red = named.get((str(s.run), s.id)) or s.entrants["red"]["label"]
+            red = named.get((str(s.run), s.id)) or s.entrants["red"].label
             out[(red, s.scenario)] = out.get((red, s.scenario), 0) + int(s.episodes)
     return out
 

@@ -48,6 +48,7 @@ from pillagerbench.rundir import (
     spoiled,
 )
 from pillagerbench.rundir.bundle import BundleError, bundle_runs, is_bundle
+from pillagerbench.rundir.entrant import Entrant
 from pillagerbench.suite.conditions import describe
 from pillagerbench.suite.version import one_version
 
@@ -69,7 +70,8 @@ class SeriesInfo(SeriesSpec):
     version: str = "?"  # the scenario's version (its manifest)
     episode_length: float = 120.0
     manifest: Manifest | None = None  # the series' manifest.json (None when not started)
-    entrants: dict = field(default_factory=dict)  # side -> its entrant from the config (metrics/entrants.py)
+    # side -> its entrant from the config (metrics/entrants.py)
+    entrants: dict[str, Entrant] = field(default_factory=dict)
 
 
 @dataclass

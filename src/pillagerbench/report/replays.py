@@ -32,9 +32,8 @@ def write_all(series: list, out: Path) -> tuple[list[dict], list[Path]]:
         if not Path(s.dir).exists():
             continue
         for _, ep in RunDir(s.dir).episode_dirs():
-            red, blue = (
-                s.entrants.get(side, {}).get("label", name) for side, name in (("red", s.red), ("blue", s.blue))
-            )
+            shown = {side: e.label for side, e in s.entrants.items()}
+            red, blue = shown.get("red", s.red), shown.get("blue", s.blue)
             row = {"series": s.id, "episode": ep.name, "red": red, "blue": blue, "score": "", "replay": None}
             rec = EpisodeDir(ep).record()
             if rec is None:

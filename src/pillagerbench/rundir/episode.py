@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field, fields
 from typing import Any, NotRequired, TypedDict
 
+from pillagerbench.rundir.entrant import Entrant
 from pillagerbench.stats.result import DREW, LOST, WON, result
 from pillagerbench.suite.conditions import RULES, stamp, suite_defaults
 from pillagerbench.suite.version import UNVERSIONED, current
@@ -49,10 +50,10 @@ class EpisodeRecord:
     split: str = "paper"  # paper | dev | test | custom (scenarios/layout.py split_of)
     suite: str = field(default_factory=lambda: current()["label"])  # the rules it was played under (suite/version.py)
     conditions: dict[str, Any] = field(default_factory=dict)  # rules differing from the suite's (suite/conditions.py)
-    # who played each side: {label, id, team, models, options} (teams/entrant.py); None in records from
-    # before entrants (readers derive it from the series' config: metrics/entrants.py)
-    red_entrant: dict[str, Any] | None = None
-    blue_entrant: dict[str, Any] | None = None
+    # who played each side (rundir/entrant.py), written {label, id, team, models, options}; None in records
+    # from before entrants (readers derive it from the series' config: metrics/entrants.py)
+    red_entrant: Entrant | None = None
+    blue_entrant: Entrant | None = None
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EpisodeRecord:
@@ -63,6 +64,9 @@ class EpisodeRecord:
         entrants has none (its reader derives them from the config); unknown keys are dropped."""
         known = {f.name for f in fields(cls)}
         given = {k: v for k, v in data.items() if k in known and v is not None or k in _NULLABLE}
+        for key in ENTRANTS:
+            if isinstance(given.get(key), dict):
+                given[key] = Entrant.from_dict(given[key])
         rec = cls(**{**_UNNAMED, **given})  # a killed run's line may hold no more than its episode and status
         if not rec.scores and rec.red_score is not None and rec.blue_score is not None:
             rec.scores = {rec.scoring: {"red": rec.red_score, "blue": rec.blue_score}}
@@ -74,8 +78,12 @@ class EpisodeRecord:
 
     def to_dict(self) -> dict[str, Any]:
         """The record as it is written (episodes.jsonl, episode.json, a remote team's message): its
-        fields in their order."""
-        return asdict(self)
+        fields in their order, each entrant as its dict."""
+        out = asdict(self)
+        for key in ENTRANTS:
+            entrant = getattr(self, key)
+            out[key] = entrant.to_dict() if entrant is not None else None
+        return out
 
     @property
     def ok(self) -> bool:
@@ -94,6 +102,7 @@ def _recorded_rules(rec: EpisodeRecord) -> dict[str, Any]:
 
 
 OK = "ok"
+ENTRANTS = ("red_entrant", "blue_entrant")  # the fields that hold an Entrant
 FAILED = "failed"
 # what a line that names no more than its episode (and status) stands for
 _UNNAMED: dict[str, Any] = {"scenario": "", "red": "", "blue": ""}

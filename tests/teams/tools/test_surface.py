@@ -62,17 +62,14 @@ def test_an_outside_agent_is_its_declared_name_version_and_model():
         return entrant_of(config, "red")
 
     one = entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5")
-    assert one["label"] == "agent:claude-code/2.1@claude-sonnet-4-5"
-    assert one["models"] == {"team": "claude-sonnet-4-5"}
-    assert (
-        entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5", seat="other")["id"]
-        == one["id"]
-    )
+    assert one.label == "agent:claude-code/2.1@claude-sonnet-4-5"
+    assert one.models == {"team": "claude-sonnet-4-5"}
+    assert entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5", seat="other").id == one.id
     others = [
         entrant(agent="codex", agent_version="2.1", agent_model="claude-sonnet-4-5"),
         entrant(agent="claude-code", agent_version="2.2", agent_model="claude-sonnet-4-5"),
         entrant(agent="claude-code", agent_version="2.1"),
     ]
-    assert len({one["id"], *(e["id"] for e in others)}) == 4
-    assert others[2]["label"] == "agent:claude-code/2.1"
-    assert entrant(agent="x", agent_version="1", window_ms=0)["label"] == "agent:x/1(window_ms=0)"
+    assert len({one.id, *(e.id for e in others)}) == 4
+    assert others[2].label == "agent:claude-code/2.1"
+    assert entrant(agent="x", agent_version="1", window_ms=0).label == "agent:x/1(window_ms=0)"
