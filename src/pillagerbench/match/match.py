@@ -117,7 +117,7 @@ class Match:
         if self.clock_config.mode == "lockstep":
             per_1k = self.clock_config.ticks_per_1k_tokens
             sides = {side.key: list(side.player_names) for side in self.scenario.sides}
-            clock = SidesClock(self.server, self.server.control, per_1k, sides, self.clock_config.speed)
+            clock = SidesClock(self.server, self.server.control, per_1k, sides)
             await clock.start()
             self.clock = clock
 
@@ -278,6 +278,7 @@ class Match:
         """The game on its clock: lockstep at its speed (between games it keeps real time's pace, so
         idle bots cost no CPU), each team's LLM calls holding the world while in flight."""
         clock = self.clock
+        await clock.pace(self.clock_config.speed)
         await clock.begin(bystanders=[p.name for p in self.scenario.extra_players])
         for key, llm in self.llms.items():  # (on the real clock a hold and a charge are nothing)
             names = [s.player_names for s in self.scenario.sides if s.key == key][0]
@@ -291,6 +292,7 @@ class Match:
                 llm.thinking.after_game()
             if self.server.alive:
                 await clock.end()
+                await clock.pace(1.0)
 
     async def _post_game(self, rec: EpisodeRecord, contexts: dict) -> None:
         """Each team looks back on what it saw; what went wrong for a team goes in the record."""

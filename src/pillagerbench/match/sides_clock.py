@@ -25,9 +25,8 @@ class SidesClock(LockstepClock):
         events: Events | None,
         per_1k: float | None,
         sides: dict[str, list[str]],
-        speed: float | str | None = None,
     ):
-        super().__init__(server, events, per_1k, speed)
+        super().__init__(server, events, per_1k)
         self.sides = sides  # side key -> its players (self.masked: player -> let-gos while its side held the world)
         self._thinking: dict[str, int] = {}  # side -> its holds on (thinking)
         self._before: dict[str, dict[str, int]] = {}  # side -> the let-gos as its first hold began

@@ -52,6 +52,8 @@ class GameClock(Protocol):
 
     async def free_idle(self, players: list[str]) -> None: ...
 
+    async def pace(self, speed: float | str) -> None: ...
+
     async def begin(self, bystanders: Sequence[str] = ()) -> None: ...
 
     async def end(self) -> None: ...
@@ -108,6 +110,10 @@ class RealClock:
     async def free_idle(self, players: list[str]) -> None:
         return None
 
+    async def pace(self, speed: float | str) -> None:
+        """The wall clock has one pace."""
+        return None
+
     async def begin(self, bystanders: Sequence[str] = ()) -> None:
         return None
 
@@ -135,14 +141,10 @@ class LockstepClock:
         server: Control,
         events: Events | None,
         ticks_per_1k_tokens: float | None = None,
-        speed: float | str | None = None,
     ):
         self.server = server
         self.events = events
         self.ticks_per_1k_tokens = ticks_per_1k_tokens
-        # a game's pace (config clock.speed: "max", or times real time); None: the server's as it is. Between
-        # games the server keeps real time's pace, so idle bots cost no CPU
-        self.speed = speed
         self.tick = 0
         self.over = False  # after the whistle thinking holds the world no more
         self._held: dict[str, int] = {}  # who -> holds of thinking() still on
@@ -281,8 +283,12 @@ class LockstepClock:
             drop_holds=True, game=False
         )  # a step cancelled at the whistle may still be due a hold
         self.went_on = {who.removeprefix("idle:"): n for who, n in state.get("let_go", {}).items()}
-        if self.speed is not None:
-            await self.server.clock(speed=1.0)  # between games: real time's pace
+
+    async def pace(self, speed: float | str) -> None:
+        """How fast game time passes on the wall: a game's ("max", or times real time; config clock.speed),
+        and real time's between games (1.0), so idle bots cost no CPU. Asked before `begin` and after `end`,
+        as the match always did (inside them, an episode after the first did not repeat under its seed)."""
+        await self.server.clock(unpaced=True) if speed == "max" else await self.server.clock(speed=float(speed))
 
     async def begin(self, bystanders: Sequence[str] = ()) -> None:
         """A new game: thinking holds the world again, and so does a bot whose run has ended.
@@ -290,10 +296,6 @@ class LockstepClock:
         nothing (held, each would stop the world for the 5 s of wall time the server allows)."""
         self.over = False
         self._stepping.clear()
-        if self.speed is not None:
-            await self.server.clock(unpaced=True) if self.speed == "max" else await self.server.clock(
-                speed=float(self.speed)
-            )
         self._seen((await self.server.clock(drop_holds=True, game=True))["tick"])  # every bot idle: held
         for name in bystanders:
             await self.server.release(f"idle:{name}")
