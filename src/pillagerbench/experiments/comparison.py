@@ -10,7 +10,6 @@ and `run resume=` read its series as finished, and compare.json records the answ
 from __future__ import annotations
 
 import json
-import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -19,6 +18,7 @@ from pillagerbench.config.sides import other_side
 from pillagerbench.llm.ledger import read_ledger
 from pillagerbench.rundir import EpisodeRecord, RunDir, spoiled
 from pillagerbench.rundir.experiment import read_experiment, write_experiment_file
+from pillagerbench.rundir.whole import replace_json
 from pillagerbench.stats.result import result
 from pillagerbench.stats.sprt import BETTER, NOT_BETTER, UNDECIDED, Bounds, llr, verdict
 
@@ -53,16 +53,11 @@ class Comparison:
 
     def write(self, run_dir: Path, decided: dict[str, Any] | None = None) -> None:
         """compare.json (replaced whole: a kill leaves the old one or the new one)."""
-        _replace(
-            run_dir / FILE, {**asdict(self), "bounds": asdict(self.bounds), **({"decided": decided} if decided else {})}
+        replace_json(
+            run_dir / FILE,
+            {**asdict(self), "bounds": asdict(self.bounds), **({"decided": decided} if decided else {})},
+            indent=1,
         )
-
-
-def _replace(path: Path, data: dict[str, Any]) -> None:
-    """A JSON file replaced whole (a kill leaves the old one or the new one)."""
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(data, indent=1))
-    os.replace(tmp, path)
 
 
 def read(run_dir: Path) -> Comparison | None:
@@ -162,5 +157,5 @@ def settle(run_dir: Path, found: Answer) -> None:
     for sid, n in played.items():
         path = RunDir(RunDir(run_dir).series_dir(sid)).series_path
         if path.exists():
-            _replace(path, {**json.loads(path.read_text()), "episodes": n})
+            replace_json(path, {**json.loads(path.read_text()), "episodes": n}, indent=1)
     c.write(run_dir, {"verdict": found.verdict, "pairs": len(found.scores), "episodes": found.episodes})

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import os
 import re
 import time
 from collections.abc import Callable, Mapping
@@ -37,6 +36,7 @@ from pillagerbench.config.sides import SIDES
 from pillagerbench.llm.preflight import UNANSWERED
 from pillagerbench.llm.preflight import probe as llm_probe
 from pillagerbench.rundir import HARNESS, EpisodeRecord, RunDir, faults
+from pillagerbench.rundir.whole import replace_json
 from pillagerbench.teams import find_team
 
 FIRST_WAIT_S = 5.0  # the wait before the second probe; doubled after each probe that finds it out
@@ -121,9 +121,7 @@ def write_status(series_dir: Path, status: Status | None) -> None:
     if status is None:
         path.unlink(missing_ok=True)
         return
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(asdict(status)))
-    os.replace(tmp, path)
+    replace_json(path, asdict(status))
 
 
 def read_status(series_dir: Path) -> Status | None:

@@ -23,13 +23,13 @@ import shutil
 import time
 from dataclasses import asdict, replace
 from pathlib import Path
-from typing import Any
 
 from pillagerbench.rundir import names as N
 from pillagerbench.rundir.episode import EpisodeRecord, LastEpisode
 from pillagerbench.rundir.episode_dir import EpisodeDir
 from pillagerbench.rundir.live import Live
 from pillagerbench.rundir.manifest import Manifest
+from pillagerbench.rundir.whole import replace_json
 
 EPISODES = N.EPISODES
 LEDGER = N.LEDGER
@@ -51,12 +51,6 @@ def _record(line: str | bytes) -> EpisodeRecord:
     that is no record is an error of its own (KeyError), never taken for a torn one."""
     data = json.loads(line)
     return EpisodeRecord.from_dict({**data, "episode": int(data["episode"])})
-
-
-def _write_json_atomic(path: Path, data: Any) -> None:
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(data))
-    os.replace(tmp, path)
 
 
 class RunDir:
@@ -263,7 +257,7 @@ class RunDir:
             )
 
     def write_live(self, status: Live) -> None:
-        _write_json_atomic(self.live_path, asdict(replace(status, ts=time.time())))
+        replace_json(self.live_path, asdict(replace(status, ts=time.time())))
 
     def read_live(self) -> Live | None:
         """The episode being played (None when none is, or live.json is being replaced)."""

@@ -4,13 +4,13 @@ command's overrides and every series as a SeriesSpec's dict), read back whicheve
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict
 
 from pillagerbench.rundir.names import EXPERIMENT
+from pillagerbench.rundir.whole import replace_json
 
 
 class ExperimentFile(BaseModel):
@@ -30,10 +30,7 @@ class ExperimentFile(BaseModel):
 
 def write_experiment_file(run_dir: str | Path, data: ExperimentFile) -> None:
     """experiment.json, replaced whole (a settled compare rewrites it: a kill leaves the old or the new)."""
-    path = Path(run_dir) / EXPERIMENT
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text(json.dumps(data.to_json(), indent=1, default=str))
-    os.replace(tmp, path)
+    replace_json(Path(run_dir) / EXPERIMENT, data.to_json(), indent=1)
 
 
 def read_experiment(run_dir: str | Path) -> ExperimentFile:
