@@ -184,6 +184,19 @@ async def test_agent_codes_date_and_chance_are_the_games(world):
     assert draws[0] == draws[1] != [c for c in chats_by(events, player.name) if c.startswith("r ")][-1], draws
 
 
+async def test_a_settle_waits_for_the_servers_teleport(world):
+    """A settle answers only once a teleport the server forced has arrived since the last settle: a
+    bot already standing at the target must not answer before the teleport (and the look it sets) has
+    come, or a reset reads the look from before (this raced once in CI)."""
+    server, player, area = world
+    await player.reset(position=area.at(0, 4, 0))
+    here = (await player.observe())[0][1]["status"]["position"]
+    pos = [here["x"], here["y"], here["z"]]
+    assert await player.channel.settle(pos, 0.5, wait=5) is not True  # no teleport since the reset's settle
+    await server.teleport(player.name, pos, 0.0, 0.0)
+    assert await player.channel.settle(pos, 3, wait=6) is True
+
+
 async def test_a_reset_faces_a_lockstep_player_as_at_login(world):
     """The whistle stops a player on the wall clock, facing wherever that left it: on the lockstep clock
     each episode's reset turns it back to the look it logged in with (placement.LOGIN_LOOK), so a series'

@@ -95,6 +95,12 @@ let lag = null // physics-tick lag of this process (lag.js)
 let current = null // the active Run
 const buffered = [] // events that happened between runs, delivered with the next run
 let chatCount = 0
+// Position packets the server forced on this bot (mineflayer's 'forcedMove': a teleport, a correction),
+// and how many of them the last settle had seen: a settle waits for a new one, so a bot that already
+// stands at the teleport's target does not answer before the teleport (its look) has arrived.
+let forcedMoves = 0
+let settledMoves = 0
+bot.on('forcedMove', () => { forcedMoves++ })
 const pendingEcho = [] // our own chat lines not yet seen back from the server
 
 // ---- events --------------------------------------------------------------------------------
@@ -260,14 +266,18 @@ const OPS = {
     }
     return true
   },
-  // Wait until the bot stands near `pos` (after a teleport) and the ground under it is loaded.
+  // Wait until the server's teleport since the last settle has arrived, the bot stands near `pos`
+  // and the ground under it is loaded.
   settle: async ({ pos, timeout = 5 }) => {
     const deadline = Date.now() + timeout * 1000
     const target = pos ? new Vec3(pos[0], pos[1], pos[2]) : null
     while (Date.now() < deadline) {
       const here = bot.entity.position
       const below = bot.blockAt(here.offset(0, -1, 0))
-      if ((!target || here.distanceTo(target) < 1.5) && below) return true
+      if (forcedMoves > settledMoves && (!target || here.distanceTo(target) < 1.5) && below) {
+        settledMoves = forcedMoves
+        return true
+      }
       await waitTicks(bot, 1)
     }
     const p = bot.entity.position
