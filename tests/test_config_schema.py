@@ -16,12 +16,12 @@ from pydantic import BaseModel
 
 from pillagerbench.config.compose import ConfigError, config_options, load_config, to_dict
 from pillagerbench.config.schema import RETRIES, ExperimentConfig, RunConfig, default
-from pillagerbench.match.validate import check_run_config
+from pillagerbench.config.validate import check_run_config
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "pillagerbench"
 FIXTURE = Path(__file__).parent / "experiments" / "fixtures" / "run_6198d49"
 # the edge: where the command line and conf/ are composed, checked and typed (and help reads conf/)
-EDGE = {"config/compose.py", "config/schema.py", "match/validate.py", "cli/help.py"}
+EDGE = {"config/compose.py", "config/schema.py", "config/validate.py", "cli/help.py"}
 GROUPS = {
     "scenario",
     "red",

@@ -16,6 +16,7 @@ types (the typed configuration model); the registry type (item 3) rewrites the m
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "pillagerbench"
@@ -118,3 +119,39 @@ class Scenario:
         "Scenario.layout: Any",
         "Scenario.__init__(client: Any)",
     ]
+
+
+# The configuration is typed to its leaves (issue 53, item 1): outside config/ no module turns the typed
+# configuration back into a dict (`.stored()`, `plain(`) or composes one untyped (`to_dict(load_config`);
+# config/validate.py gives the typed RunConfig, its groups and the server's keys. The one exception is
+# rundir/manifest.py, the writer of a run's stored configuration and the reader of old manifests' (a dict).
+CONFIG_AS_DICT = re.compile(r"\.stored\(\)|\bplain\(|to_dict\(load_config")
+STORED_CONFIG = "rundir/manifest.py"
+# left to do (issue 53, item 1): the records' other writers of the stored configuration and the `llm`
+# node, still a dict (RunConfig.llm). This list may only shrink: an entry without a hit fails too.
+CONFIG_AS_DICT_LEFT = {"rundir/series.py", "experiments/runner.py", "llm/settings.py"}
+
+
+def _config_as_dict() -> dict[str, list[str]]:
+    found: dict[str, list[str]] = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        rel = path.relative_to(PACKAGE).as_posix()
+        if rel.startswith("config/"):
+            continue
+        for i, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            code = line.split("#", 1)[0]
+            if CONFIG_AS_DICT.search(code):
+                found.setdefault(rel, []).append(f"{rel}:{i}: {line.strip()}")
+    return found
+
+
+def test_no_configuration_dict_outside_config():
+    found = _config_as_dict()
+    new = [
+        hit for rel, hits in found.items() if rel != STORED_CONFIG and rel not in CONFIG_AS_DICT_LEFT for hit in hits
+    ]
+    assert not new, "take the typed RunConfig (config/validate.py, config/schema.py), not a dict of it:\n" + "\n".join(
+        new
+    )
+    done = sorted(CONFIG_AS_DICT_LEFT - set(found))
+    assert not done, f"no configuration dict left in {done}: take it off CONFIG_AS_DICT_LEFT"

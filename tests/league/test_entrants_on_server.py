@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 import yaml  # type: ignore[import-untyped]
 
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.llm.fake_server import FakeLLMServer
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
@@ -55,7 +56,7 @@ def test_every_episode_records_the_entrant_its_config_gives(league):
         config = json.loads((series / "manifest.json").read_text())["config"]
         (record,) = [json.loads(x) for x in (series / "episodes.jsonl").read_text().splitlines()]
         for side in ("red", "blue"):
-            assert record[f"{side}_entrant"] == entrant_of(config, side).to_dict()
+            assert record[f"{side}_entrant"] == entrant_of(RunConfig.of(config), side).to_dict()
         labels = {record["red_entrant"]["label"], record["blue_entrant"]["label"]}
         assert labels == {"cot@gpt-4o", "cot@gpt-4o-mini"}
         assert record["red_entrant"]["id"] != record["blue_entrant"]["id"]

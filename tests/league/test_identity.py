@@ -10,7 +10,8 @@ import json
 import yaml  # type: ignore[import-untyped]  # pyyaml ships no stubs
 
 from pillagerbench.cli.commands import main as cli_main
-from pillagerbench.config.compose import load_config, to_dict
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.runner import load_experiment
 from pillagerbench.league import play
 from pillagerbench.league.compose import entrant_of_entry, match_config
@@ -23,13 +24,13 @@ from tests.league.test_add_and_budget import play_by_hand
 def test_an_entry_is_the_entrant_its_config_plays():
     cot = RosterEntry("c", "cot", llm="fake", llm_options={"model": "m2"})
     assert entrant_of_entry(cot).label == "cot@m2"
-    config = match_config("mushroom_war", RosterEntry("x", "balanced"), cot).stored()
+    config = match_config("mushroom_war", RosterEntry("x", "balanced"), cot)
     assert entrant_of_entry(cot) == entrant_of(config, "blue")  # on either side, against anyone
     assert entrant_of_entry(
         RosterEntry("other name", "cot", llm="fake", llm_options={"model": "m2"})
     ) == entrant_of_entry(cot)
     plain = entrant_of_entry(RosterEntry("r", "random", options={"pause_s": 2.0}))
-    assert plain == entrant_of(to_dict(load_config(["red=random", "red.pause_s=2"])), "red")
+    assert plain == entrant_of(RunConfig.of(load_config(["red=random", "red.pause_s=2"])), "red")
     assert plain.label == "random(pause_s=2)"
 
 
@@ -46,7 +47,7 @@ def test_rounds_are_stamped_by_entrant_and_an_old_stamp_plays_on(tmp_path, capsy
     stamped = _stamp(first)["entrants"]
     for spec in load_experiment(first)[1]:  # the id each series' episodes record for its sides
         for side, name in (("red", spec.red), ("blue", spec.blue)):
-            assert stamped[name] == entrant_of(spec.config.stored(), side).id
+            assert stamped[name] == entrant_of(spec.config, side).id
 
     league = load_league(root)  # the round as a league before the entrant type stamped it
     old = {name: league.entrant(name).old_fingerprint() for name in stamped}

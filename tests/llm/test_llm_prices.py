@@ -7,10 +7,10 @@ from pathlib import Path
 import pytest
 
 from pillagerbench.config.compose import ConfigError, load_config
+from pillagerbench.config.validate import check_run_config
 from pillagerbench.llm import LLMClient, LLMConfigError, LLMSettings, summarize
 from pillagerbench.llm.fake_server import count_tokens
 from pillagerbench.llm.prices import format_cost, price_of, table_price
-from pillagerbench.match.validate import check_run_config
 from tests.support.cli import run_cli
 
 TABLE = "genai-prices 0.2.3"

@@ -8,6 +8,7 @@ import csv
 import json
 from pathlib import Path
 
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.metrics.calibration import calibration_from_runs
 from pillagerbench.metrics.generalization import unseen_arenas
 from pillagerbench.metrics.symmetry import side_symmetry
@@ -47,7 +48,7 @@ def test_an_old_record_gets_the_entrant_its_config_gives(tmp_path):
     run = cot_run(tmp_path / "old", "gpt-4o", [(3, 3)])
     config = json.loads((run / "manifest.json").read_text())["config"]
     df = load_runs([run]).episodes
-    assert list(df["red_entrant_id"]) == [entrant_of(config, "red").id]
+    assert list(df["red_entrant_id"]) == [entrant_of(RunConfig.of(config), "red").id]
     assert list(df["red_entrant"]) == ["cot@gpt-4o"] and list(df["blue_entrant"]) == ["balanced"]
     assert list(df["red_name"]) == ["cot"]  # the name the series gave the side
 

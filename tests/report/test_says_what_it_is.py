@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.metrics.calibration import REFERENCE_FALLBACK
 from pillagerbench.metrics.reference import REFERENCE_SCORES
 from pillagerbench.metrics.verified import load_runs
@@ -69,7 +70,9 @@ def test_the_provenance_of_every_run_reads_back_from_the_page(tmp_path):
     page = (tmp_path / "report" / "report.html").read_text()
     rows = {r["run"]: r for r in table_after(page, "Provenance: what each run is, from its manifests")}
     config = json.loads((llm / "manifest.json").read_text())["config"]
-    ids = {side: entrant_of(config, side).id for side in ("red", "blue")}  # derived: records before entrants
+    ids = {
+        side: entrant_of(RunConfig.of(config), side).id for side in ("red", "blue")
+    }  # derived: records before entrants
     assert rows[str(llm)] == {
         "run": str(llm),
         "what": "run",

@@ -11,7 +11,8 @@ import sys
 
 import pytest
 
-from pillagerbench.config.compose import load_config, to_dict
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.rundir import EpisodeRecord
 from pillagerbench.rundir.entrant import Entrant
 from pillagerbench.teams.entrant import entrant_of
@@ -46,7 +47,7 @@ BEFORE = {
 
 
 def red(*overrides: str) -> Entrant:
-    return entrant_of(to_dict(load_config(["llm=openai", *overrides])), "red")
+    return entrant_of(RunConfig.of(load_config(["llm=openai", *overrides])), "red")
 
 
 @pytest.mark.parametrize("overrides", list(BEFORE), ids=[" ".join(o) for o in BEFORE])
@@ -67,7 +68,7 @@ def test_one_team_on_two_models_is_two_entrants():
 
 
 def test_a_built_in_team_is_its_name_and_the_other_side_is_its_own_entrant():
-    cfg = to_dict(load_config(["red=balanced", "blue=passive"]))
+    cfg = RunConfig.of(load_config(["red=balanced", "blue=passive"]))
     assert entrant_of(cfg, "red").label == "balanced" and entrant_of(cfg, "red").models == {}
     assert entrant_of(cfg, "blue").label == "passive"
 
@@ -133,11 +134,12 @@ def test_a_record_keeps_its_entrants_dicts_and_an_old_one_loads():
 def test_the_id_is_the_same_in_another_process():
     overrides = ["llm=openai", "red=tacticrafter", "red.llm.model=gpt-4o", "red.opponent=false"]
     code = (
-        "import json, sys; from pillagerbench.config.compose import load_config, to_dict; "
+        "import json, sys; from pillagerbench.config.compose import load_config; "
+        "from pillagerbench.config.schema import RunConfig; "
         "from pillagerbench.teams.entrant import entrant_of; "
-        "print(json.dumps(entrant_of(to_dict(load_config(sys.argv[1:])), 'red').to_dict()))"
+        "print(json.dumps(entrant_of(RunConfig.of(load_config(sys.argv[1:])), 'red').to_dict()))"
     )
     out = subprocess.run([sys.executable, "-c", code, *overrides], capture_output=True, text=True, check=True)
     theirs = json.loads(out.stdout)
-    assert theirs == entrant_of(to_dict(load_config(overrides)), "red").to_dict()
+    assert theirs == entrant_of(RunConfig.of(load_config(overrides)), "red").to_dict()
     assert theirs["label"] == "tacticrafter@gpt-4o(no opponent)" and len(theirs["id"]) == 12

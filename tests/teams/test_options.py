@@ -14,7 +14,7 @@ import pytest
 from omegaconf import OmegaConf
 
 from pillagerbench.config.compose import config_options, load_config, team_yaml_options
-from pillagerbench.match.validate import team_problems
+from pillagerbench.config.validate import team_problems
 from pillagerbench.teams import BUILT_IN, TEAMS
 from pillagerbench.teams.options import defaults, options_model, yaml_lines
 

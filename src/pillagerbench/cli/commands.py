@@ -63,18 +63,17 @@ def run_main(argv: list[str]) -> int:
     """`pillagerbench run`: one match (experiments/plain_run.py: a one-series experiment), or many
     series with experiment= (experiments/); resume= finishes either. The command line and conf/ are
     composed and checked here, once, into the typed configuration every layer below takes."""
-    from pillagerbench.config.compose import load_config, to_dict
-    from pillagerbench.match import preflight
-    from pillagerbench.match.validate import check_run_config
+    from pillagerbench.config.validate import load_run
+    from pillagerbench.match import preflight  # the package registers the checks of the groups
 
-    composed = to_dict(load_config(argv))
-    experiment = composed.get("experiment") is not None or bool(composed.get("resume"))
-    cfg = check_run_config(composed, teams=not experiment)  # the whole config, before anything is created
+    cfg = load_run(argv)  # the whole config, before anything is created
     if cfg.plan:  # what the run would play, take and cost; plays nothing (experiments/plan.py)
         from pillagerbench.experiments.plan import main_plan
 
         return main_plan(cfg, argv)
-    if experiment:  # many series, parallel, resumable (they run the preflight on their series)
+    if (
+        cfg.experiment is not None or cfg.resume
+    ):  # many series, parallel, resumable (they run the preflight on their series)
         from pillagerbench.experiments.runner import main_experiment
 
         return main_experiment(cfg, argv)

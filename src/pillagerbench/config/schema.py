@@ -1,10 +1,11 @@
 """The configuration's schema, and the configuration typed: `RunConfig` (every top-level key, the
 groups `scenario`, `red`/`blue` and `llm`, each default written once, in conf/config.yaml, and taken
 from there: `written(key)`) is what the command's edge
-(cli, validate.check_run_config) makes of the command line and conf/, and what every layer below
+(cli, config/validate.py check_run_config) makes of the command line and conf/, and what every layer below
 takes, whole or in part (RunnerConfig, TeamConfig, ServerConfig, LLMCacheConfig, LLMLedgerConfig).
 `problems(model, data)` gives one line per problem, naming the key, the bad value and what is valid.
-Groups (scenario, teams) are checked against their registries in match/validate.py.
+Groups (scenario, layout, teams) are checked against their registries by the checks match/validate.py
+registers into config/validate.py, on the choices typed (`Choices`).
 """
 
 from __future__ import annotations
@@ -120,7 +121,7 @@ class ClockConfig(_Strict):
 
 
 class ScenarioConfig(BaseModel):
-    """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry in match/validate.py."""
+    """The `scenario` node (conf/scenario/NAME.yaml); the name is checked against the registry (config/validate.py)."""
 
     model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # scenario=5: unknown scenario, once
 
@@ -130,7 +131,7 @@ class ScenarioConfig(BaseModel):
 
 class TeamConfig(BaseModel):
     """A side's node (`red`, `blue`): the team's name, its own `llm` keys, and its options (every other
-    key, checked against the team's options model in match/validate.py)."""
+    key, checked against the team's options model: config/validate.py)."""
 
     model_config = ConfigDict(extra="allow", coerce_numbers_to_str=True)  # red=7: unknown team '7', once
 
@@ -141,6 +142,28 @@ class TeamConfig(BaseModel):
     def options(self) -> dict[str, Any]:
         """The team's constructor options: the node without `name` and `llm`."""
         return dict(self.model_extra or {})
+
+
+class Choices(BaseModel):
+    """What a run chooses by name (the scenario and its layout, each side's team with its options and
+    LLM), typed apart from the other keys so that the groups' checks (config/validate.py) run beside theirs."""
+
+    model_config = ConfigDict(extra="ignore")
+
+    scenario: ScenarioConfig
+    red: TeamConfig
+    blue: TeamConfig
+    llm: dict[str, Any]
+    layout: int | str = written("layout")
+    split: str | None = written("split")
+
+    def side(self, side: str) -> TeamConfig:
+        """The team node of `red` or `blue`."""
+        return {"red": self.red, "blue": self.blue}[side]
+
+    def llm_of(self, side: str) -> dict[str, Any]:
+        """The `llm` settings `side` plays with: the run's, with the side's own keys merged in."""
+        return merged(self.llm, self.side(side).llm)
 
 
 class ExperimentConfig(BaseModel):
@@ -214,7 +237,7 @@ class RunConfig(RunnerConfig):
     watch: int | None = Field(written("watch"), ge=0, le=65535)
     retries: int = Field(RETRIES, ge=0)
     outage_wait_s: float = Field(written("outage_wait_s"), ge=0, allow_inf_nan=False)  # experiments/outage.py
-    layout: int | str = written("layout")  # checked in full by validate.layout_problems
+    layout: int | str = written("layout")  # checked in full by config/validate.layout_problems
     split: str | None = written("split")
     resume: str | None = written("resume")
     calibration: str | None = written("calibration")
@@ -225,7 +248,7 @@ class RunConfig(RunnerConfig):
     clock: ClockConfig = ClockConfig()
     red: TeamConfig
     blue: TeamConfig
-    llm: dict[str, Any]  # the preset; checked per side that uses an LLM (match/validate.py, LLMConfig)
+    llm: dict[str, Any]  # the preset; checked per side that uses an LLM (config/validate.py, LLMConfig)
     experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
 
     _stored: dict[str, Any] = PrivateAttr(default_factory=dict)
@@ -246,6 +269,12 @@ class RunConfig(RunnerConfig):
         """This configuration with `changes` merged in key by key (a series' seed, a variant's team
         options `{"red": {...}}` ...), typed again."""
         return RunConfig.of(merged(self._stored, changes))
+
+    def with_llm(self, side: str, llm: dict[str, Any]) -> RunConfig:
+        """This configuration with `side`'s own `llm` node replaced whole (a league entrant's LLM)."""
+        stored = self.stored()
+        stored[side] = {**stored[side], "llm": llm}
+        return RunConfig.of(stored)
 
     def stored(self) -> dict[str, Any]:
         """The configuration as composed or stored (what records write: manifest.json, experiment.json)."""
@@ -272,6 +301,10 @@ class RunConfig(RunnerConfig):
     def llm_of(self, side: str) -> dict[str, Any]:
         """The `llm` settings `side` plays with: the run's, with the side's own keys merged in."""
         return merged(self.llm, self.side(side).llm)
+
+    def choices(self) -> Choices:
+        """What this configuration chooses by name, as the groups' checks take it (config/validate.py)."""
+        return Choices.model_validate(self._stored)
 
 
 def default(key: str) -> Any:

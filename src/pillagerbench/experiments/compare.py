@@ -23,7 +23,7 @@ import asyncio
 import time
 from pathlib import Path
 
-from pillagerbench.config.compose import ConfigError, load_config
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.experiments.comparison import FILE, Answer, Comparison, answer, read, settle
 from pillagerbench.experiments.outage import Stopped
@@ -65,12 +65,9 @@ def parse(argv: list[str]) -> tuple[Comparison | None, Path | None]:
 
 def configs(c: Comparison) -> dict[str, RunConfig]:
     """Each series' whole configuration, checked (one ConfigError line per problem, nothing played)."""
-    from pillagerbench.match.validate import check_run_config
+    from pillagerbench.config.validate import load_run
 
-    return {
-        sid: check_run_config(load_config([*c.game, f"red={red}", f"blue={blue}"]))
-        for sid, (red, blue) in c.series().items()
-    }
+    return {sid: load_run([*c.game, f"red={red}", f"blue={blue}"]) for sid, (red, blue) in c.series().items()}
 
 
 def specs(c: Comparison, cfgs: dict[str, RunConfig]) -> list[SeriesSpec]:

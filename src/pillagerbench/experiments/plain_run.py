@@ -71,7 +71,7 @@ def play_run(spec: SeriesSpec, run_dir: Path, cfg: RunConfig) -> int:
         print(line)
     for line in summarize_lag(records):
         print(line)
-    for line in spend_lines([(RunDir(run_dir).ledger_path, labels_of(spec.config.stored()))]):
+    for line in spend_lines([(RunDir(run_dir).ledger_path, labels_of(spec.config))]):
         print(line)
     if "outage" in summary:  # stopped past outage_wait_s (experiments/outage.py)
         print(Stopped(**summary["outage"]).line(run_dir, spec.episodes - done.used - done.given_up))

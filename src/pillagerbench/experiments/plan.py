@@ -340,7 +340,7 @@ def build_plan(
         todo = range(finished.get(s.id, 0), s.episodes)
         chains, teams = _Chains(), {}
         for side, name, options, llm in _sides(s.config):
-            teams[side] = entrant_of(s.config.stored(), side).label  # the entrant, as its records will name it
+            teams[side] = entrant_of(s.config, side).label  # the entrant, as its records will name it
             if llm is None:
                 continue
             calls = team_calls(name, options, llm, s.scenario, todo, s.config.protocol == "upstream")
@@ -457,11 +457,11 @@ def main_plan(cfg: RunConfig, argv: list[str]) -> int:
     checked as a run checks them (teams, options, LLM settings), without the preflight."""
     if cfg.experiment is not None and not cfg.resume:
         from pillagerbench.config.schema import check
-        from pillagerbench.match.validate import team_problems
+        from pillagerbench.config.validate import team_problems
 
         seen: dict[str, None] = {}
         for s in build_series(cfg, argv):
-            for line in team_problems(s.config.stored()):
+            for line in team_problems(s.config):
                 seen.setdefault(line, None)
         check(list(seen))
     for line in lines(build_plan(cfg, argv)):

@@ -246,16 +246,16 @@ async def execute(run_dir: Path, title: str, specs: list[SeriesSpec], dirs: dict
 
 
 def check_series(specs: list[SeriesSpec], dirs: dict[str, Path] | None = None) -> None:
-    """Before anything starts: each distinct series config checked whole (match/validate.py: teams, their
+    """Before anything starts: each distinct series config checked whole (config/validate.py: teams, their
     options, LLM settings), then the preflight (match/preflight.py: every LLM and team server answers),
     but for the sides a resumed series (its directory in `dirs`) waits for (experiments/outage.py)."""
     from pillagerbench.config.schema import check
+    from pillagerbench.config.validate import team_problems
     from pillagerbench.match import preflight
-    from pillagerbench.match.validate import team_problems
 
     seen: dict[str, None] = {}
     for s in specs:
-        for line in team_problems(s.config.stored()):
+        for line in team_problems(s.config):
             seen.setdefault(line, None)
     check(list(seen))
     waits = {s.id: waiting_sides(s.config, dirs[s.id]) for s in specs} if dirs else {}
@@ -356,7 +356,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         print(line)
     for line in lag_lines(specs, dirs):
         print(line)
-    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config.stored())) for s in specs):
+    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config)) for s in specs):
         print(line)
     for line in stopped:
         print(line)

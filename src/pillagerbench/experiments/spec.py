@@ -28,9 +28,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.registry import Registry
 from pillagerbench.config.schema import RUNNER_KEYS, ExperimentConfig, RunConfig
+from pillagerbench.config.validate import compose_run
 from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios import make_scenario
 from pillagerbench.scenarios.layout import PAPER, SPLITS
@@ -101,8 +102,7 @@ class _Composer:
         if key not in self.cache:
             own = [o for o in self.overrides if not (llm and override_key(o) == "llm")]
             extra = [f"scenario={scenario}", f"red={red}", f"blue={blue}"] + ([f"llm={llm}"] if llm else [])
-            cfg = to_dict(load_config(own + extra))
-            self.cache[key] = RunConfig.of(cfg).for_series()
+            self.cache[key] = compose_run(own + extra).for_series()
         return self.cache[key]
 
 

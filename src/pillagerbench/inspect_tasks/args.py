@@ -20,10 +20,10 @@ from typing import Any
 
 from inspect_ai._util.error import PrerequisiteError
 
-from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.sides import SIDES
+from pillagerbench.config.validate import layout_problems, load_run, team_problems
 from pillagerbench.experiments.spec import build_series, slug
-from pillagerbench.match.validate import check_run_config, layout_problems, team_problems
 from pillagerbench.rundir import SeriesSpec
 from pillagerbench.scenarios.layout import PAPER, SPLITS
 from pillagerbench.teams import TEAMS, find_team
@@ -157,14 +157,14 @@ def series(task: str, args: TaskArgs, roles: Iterable[str]) -> list[SeriesSpec]:
         raise TaskArgumentError(task, refused)
     argv = overrides(args, roles)
     try:
-        cfg = check_run_config(to_dict(load_config(argv)), teams=False)
+        cfg = load_run(argv, teams=False)
         specs = build_series(cfg, argv)
     except ConfigError as exc:
         raise TaskArgumentError(task, str(exc).splitlines()[0]) from None
     if args.layout is not None:
         specs = [on_layout(task, spec, args.layout) for spec in specs]
     for spec in specs:
-        problems = team_problems(spec.config.stored())  # each series' teams, their options and LLM settings, as a run's
+        problems = team_problems(spec.config)  # each series' teams, their options and LLM settings, as a run's
         problems = [p for p in problems if p not in UNSEATED]  # the agent's seat is opened per sample (seated.py)
         if problems:
             raise TaskArgumentError(task, problems[0])
@@ -199,10 +199,10 @@ def agent_problem(args: TaskArgs, roles: list[str]) -> str | None:
 
 def on_layout(task: str, spec: SeriesSpec, layout: str | int) -> SeriesSpec:
     """A series of the paper's arena played on `layout` instead (every episode), named by it."""
-    problems = layout_problems({**spec.config.stored(), "layout": layout, "split": None})
+    config = spec.config.updated({"layout": layout, "split": None})
+    problems = layout_problems(config)
     if problems:
         raise TaskArgumentError(task, problems[0])
-    config = spec.config.updated({"layout": layout, "split": None})
     name = spec.id.removesuffix(f"_{PAPER}") + f"_layout-{slug(Path(str(layout)).stem)}"
     return dataclasses.replace(spec, id=name, config=config)
 

@@ -13,10 +13,10 @@ from dataclasses import asdict
 from functools import cache
 from typing import Any
 
-from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig, merged
+from pillagerbench.config.validate import check_run_config, compose_run, llm_preset
 from pillagerbench.league.spec import DEFAULT_SCENARIOS, RosterEntry
-from pillagerbench.match.validate import check_run_config
 from pillagerbench.rundir.entrant import Entrant
 from pillagerbench.teams import find_team
 from pillagerbench.teams.entrant import entrant_of
@@ -26,23 +26,21 @@ OPPONENT = RosterEntry(name="do_nothing", team="do_nothing")  # the side an entr
 
 @cache
 def _preset(name: str) -> dict[str, Any]:
-    return to_dict(load_config([f"llm={name}"]).llm)
+    return llm_preset(name)
 
 
-def _side(cfg: dict[str, Any], side: str, entrant: RosterEntry) -> None:
-    cfg[side] = merged(cfg[side], entrant.options)
+def _side(cfg: RunConfig, side: str, entrant: RosterEntry) -> RunConfig:
+    cfg = cfg.updated({side: entrant.options})
     if entrant.llm or entrant.llm_options:
         own = _preset(entrant.llm) if entrant.llm else {}
-        cfg[side]["llm"] = merged(own, entrant.llm_options)
+        cfg = cfg.with_llm(side, merged(own, entrant.llm_options))
+    return cfg
 
 
 def match_config(scenario: str, red: RosterEntry, blue: RosterEntry, game: tuple[str, ...] = ()) -> RunConfig:
     """The full config of a match (checked: one ConfigError line per problem)."""
-    cfg = to_dict(load_config([*game, f"scenario={scenario}", f"red={red.team}", f"blue={blue.team}"]))
-    _side(cfg, "red", red)
-    _side(cfg, "blue", blue)
-    check_run_config(cfg)
-    return RunConfig.of(cfg).for_series()
+    cfg = compose_run([*game, f"scenario={scenario}", f"red={red.team}", f"blue={blue.team}"])
+    return check_run_config(_side(_side(cfg, "red", red), "blue", blue), teams=True).for_series()
 
 
 def playable(entrant: RosterEntry, scenarios: list[str]) -> list[str]:
@@ -85,4 +83,4 @@ def entrant_of_entry(entry: RosterEntry) -> Entrant:
 def _entrant(key: str) -> Entrant:
     entry = RosterEntry(name="", **json.loads(key))
     scenario = (find_team(entry.team).scenarios or DEFAULT_SCENARIOS)[0]  # any scenario: none changes a side
-    return entrant_of(match_config(scenario, entry, OPPONENT).stored(), "red")
+    return entrant_of(match_config(scenario, entry, OPPONENT), "red")

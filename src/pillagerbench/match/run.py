@@ -47,7 +47,6 @@ async def play_match(
         if cfg.clock.mode == "lockstep" and cfg.clock.speed == "max":
             print("live view: the lockstep clock runs unpaced (clock.speed=max); clock.speed=1 to watch", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
-    config = cfg.stored()
     match = Match(
         server,
         scenario,
@@ -61,7 +60,7 @@ async def play_match(
         conditions=conditions_of(cfg.select, scenario.key),
         on_tick=on_tick,
         llms=llms,
-        entrants={side: entrant_of(config, side) for side in teams},
+        entrants={side: entrant_of(cfg, side) for side in teams},
         clock=cfg.clock,
     )
     match.last_records.update(last or {})

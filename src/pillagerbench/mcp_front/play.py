@@ -25,14 +25,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pillagerbench.config.compose import ConfigError, load_config, to_dict
+from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.config.sides import SIDES
+from pillagerbench.config.validate import load_run
 from pillagerbench.experiments.plain_run import make_run_dir
 from pillagerbench.experiments.series import run_series
 from pillagerbench.match import preflight
 from pillagerbench.match.run import scenario_from_config
-from pillagerbench.match.validate import check_run_config
 from pillagerbench.mcp_front.front import LOOPBACK_HOSTS, Caller, serve
 from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, plain_series, progress
 from pillagerbench.teams.tools import Seat, ToolResult
@@ -92,7 +92,7 @@ def config_of(args: McpArgs, overrides: list[str], seat_key: str) -> RunConfig:
     chosen = [f"{args.side}=agent", f"{args.other}={args.opponent}", f"{args.side}.seat={seat_key}"]
     if args.agent_model:
         chosen.append(f"{args.side}.agent_model={args.agent_model}")
-    return check_run_config(to_dict(load_config([*overrides, *chosen])))
+    return load_run([*overrides, *chosen])
 
 
 def say(line: str) -> None:

@@ -207,19 +207,17 @@ def main(argv: list[str]) -> int:
         runs = load_runs(a.runs, a.mix_suites, not a.no_verify)
         out = Path(a.out) if a.out else beside(Path(a.runs[0]), CALIBRATION)
     else:  # play the calibration experiment first
-        from pillagerbench.config.compose import load_config
+        from pillagerbench.config.validate import load_run
         from pillagerbench.experiments.runner import main_experiment, make_experiment_dir
-        from pillagerbench.match.validate import check_run_config
 
         overrides = list(argv)
         if not any(o.startswith(("experiment=", "resume=")) for o in overrides):
             overrides.insert(0, "experiment=calibration")
-        composed = load_config(overrides)
-        cfg = check_run_config(composed, teams=False)
+        cfg = load_run(overrides, teams=False)
         if not cfg.resume and not cfg.run_dir:
-            composed.run_dir = str(make_experiment_dir(cfg))
-            overrides.append(f"run_dir={composed.run_dir}")
-            cfg = check_run_config(composed, teams=False)
+            made = str(make_experiment_dir(cfg))
+            overrides.append(f"run_dir={made}")
+            cfg = cfg.updated({"run_dir": made})
         code = main_experiment(cfg, overrides)
         if code:
             return code

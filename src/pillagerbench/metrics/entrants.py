@@ -21,7 +21,7 @@ from pillagerbench.teams.entrant import entrant_of
 
 def series_entrants(config: RunConfig) -> dict[str, Entrant]:
     """Each side's entrant under a series' resolved config (for records from before entrants)."""
-    return {side: entrant_of(config.stored(), side) for side in SIDES}
+    return {side: entrant_of(config, side) for side in SIDES}
 
 
 def columns(recorded: dict[str, Entrant | None], derived: dict[str, Entrant], names: dict[str, str]) -> dict[str, Any]:

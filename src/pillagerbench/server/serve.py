@@ -11,8 +11,7 @@ from __future__ import annotations
 
 import asyncio
 
-from pillagerbench.config.compose import load_config
-from pillagerbench.config.schema import ServerConfig, check, plain, problems, watch_problems
+from pillagerbench.config.validate import load_server
 from pillagerbench.server.process import MC_VERSION, ArenaServer
 
 
@@ -33,9 +32,8 @@ async def _serve(server: ArenaServer) -> None:
 
 
 def main(argv: list[str]) -> int:
-    cfg = load_config(argv)
-    check(problems(ServerConfig, cfg.server, "server") + watch_problems(cfg))
-    server = ArenaServer.from_config(ServerConfig.model_validate(plain(cfg.server)), watch=cfg.watch)
+    config, watch = load_server(argv)
+    server = ArenaServer.from_config(config, watch=watch)
     try:
         asyncio.run(_serve(server))
     except KeyboardInterrupt:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from pillagerbench.config.schema import Choices, RunConfig, TeamConfig
 from pillagerbench.config.sides import SIDES
 from pillagerbench.rundir.entrant import IDENTITY, Entrant, canonical
 from pillagerbench.teams.options import defaults, options_model
@@ -38,14 +39,16 @@ ALIASES: dict[str, dict[str, str]] = {
 ROLES_OPTION = "roles"  # an option of per-role settings, each of which may name its own model
 
 
-def _uses_llm(team: str, node: dict) -> bool:
+def _uses_llm(team: str, node: TeamConfig) -> bool:
     cls = TEAMS.get(team)
-    return bool(cls.uses_llm) if cls is not None else "llm" in node  # an outside team: it has an llm node
+    return (
+        bool(cls.uses_llm) if cls is not None else "llm" in node.model_fields_set
+    )  # an outside team: it has an llm node
 
 
-def _options(team: str, node: dict) -> dict[str, Any]:
+def _options(team: str, node: TeamConfig) -> dict[str, Any]:
     """The options that change play and differ from the team's defaults."""
-    opts = {k: v for k, v in node.items() if k not in ("name", "llm")}
+    opts = node.options
     for alias, target in ALIASES.get(team, {}).items():
         if opts.get(alias) is not None:
             opts[target] = opts[alias]
@@ -59,9 +62,9 @@ def _options(team: str, node: dict) -> dict[str, Any]:
     }
 
 
-def _models(config: dict, node: dict, options: dict[str, Any]) -> dict[str, str]:
-    """The team's model, and each role's that differs; role models leave `options`."""
-    llm = {**(config.get("llm") or {}), **(node.get("llm") or {})}
+def _models(llm: dict[str, Any], options: dict[str, Any]) -> dict[str, str]:
+    """The team's model (of `llm`, the settings the side plays with), and each role's that differs; role
+    models leave `options`."""
     model = str(llm.get("model") or "?")
     models = {"team": model}
     roles = options.pop(ROLES_OPTION, None) or {}
@@ -78,26 +81,27 @@ def _models(config: dict, node: dict, options: dict[str, Any]) -> dict[str, str]
     return models
 
 
-def _agent(team: str, node: dict, options: dict[str, Any]) -> dict[str, str]:
+def _agent(team: str, node: TeamConfig, options: dict[str, Any]) -> dict[str, str]:
     """An outside agent's model; the identity's options leave `options` but stay in it as the agent's name
     and version (two agents never share an entrant; its label is `agent:NAME/VERSION`)."""
     name_key, version_key, model_key = IDENTITY[team]
+    given = node.options
     options.pop(model_key, None)
-    model = node.get(model_key)
-    options[name_key], options[version_key] = str(node.get(name_key) or "unknown"), str(node.get(version_key) or "0")
+    model = given.get(model_key)
+    options[name_key], options[version_key] = str(given.get(name_key) or "unknown"), str(given.get(version_key) or "0")
     return {"team": str(model)} if model else {}
 
 
-def entrant_of(config: dict, side: str) -> Entrant:
-    """The entrant playing `side` ("red" or "blue") under a run's resolved config (a plain dict)."""
-    node = dict(config.get(side) or {})
-    team = str(node.get("name"))
+def entrant_of(config: Choices | RunConfig, side: str) -> Entrant:
+    """The entrant playing `side` ("red" or "blue") under a run's configuration."""
+    node = config.side(side)
+    team = node.name
     options = _options(team, node)
     if team in IDENTITY:
         return Entrant(team, _agent(team, node, options), options)
-    return Entrant(team, _models(config, node, options) if _uses_llm(team, node) else {}, options)
+    return Entrant(team, _models(config.llm_of(side), options) if _uses_llm(team, node) else {}, options)
 
 
-def labels_of(config: dict) -> dict[str, str]:
+def labels_of(config: Choices | RunConfig) -> dict[str, str]:
     """Each side's entrant label under a run's resolved config: what its records and tables call it."""
     return {side: entrant_of(config, side).label for side in SIDES}

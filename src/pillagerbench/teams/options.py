@@ -1,7 +1,7 @@
 """A team's options, declared once: a pydantic model per team (`Team.Options`), one field per option
 with its type, its range, its default and a one-line description (`Field(..., description=...)`).
 
-The team's constructor reads its options through the model; `match/validate.py` checks `red.KEY=VALUE`,
+The team's constructor reads its options through the model; `match/validate.py` (registered into config/validate.py) checks `red.KEY=VALUE`,
 `experiment.team_options.KEY=VALUE` and a league entrant's options against it; `pillagerbench teams`
 and `run --help` list its defaults. A built-in team's `conf/team/<name>.yaml` (Hydra needs one file
 per team to select `red=NAME`) repeats the fields as `key: default  # description`, and

@@ -7,6 +7,8 @@ from __future__ import annotations
 import jsonschema
 import pytest
 
+from pillagerbench.config.compose import load_config
+from pillagerbench.config.schema import RunConfig
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios import SCENARIOS, make_scenario
 from pillagerbench.teams.entrant import entrant_of
@@ -58,8 +60,9 @@ def test_a_primitive_call_is_the_line_of_code_it_stands_for():
 
 def test_an_outside_agent_is_its_declared_name_version_and_model():
     def entrant(**options):
-        config = {"llm": {"model": "gpt-4o"}, "red": {"name": "agent", "seat": "seat-1-x", **options}}
-        return entrant_of(config, "red")
+        given = {"seat": "seat-1-x", **options}
+        config = load_config(["red=agent", "llm.model=gpt-4o", *(f"red.{k}={v}" for k, v in given.items())])
+        return entrant_of(RunConfig.of(config), "red")
 
     one = entrant(agent="claude-code", agent_version="2.1", agent_model="claude-sonnet-4-5")
     assert one.label == "agent:claude-code/2.1@claude-sonnet-4-5"
