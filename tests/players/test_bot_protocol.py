@@ -124,9 +124,9 @@ def lines_problems(protocol: Declaration) -> list[str]:
     player = Player("lines", 1)
     answered: list[dict] = []
     player.channel.answer = answered.append  # type: ignore[method-assign]
-    player._spawned = asyncio.get_running_loop().create_future()
+    player.bot._spawned = asyncio.get_running_loop().create_future()
     for kind, example in protocol.lines.items():
-        player._dispatch({kind: example})
+        player.bot._dispatch({kind: example})
     return [f"line {msg} is not read by the player" for msg in answered]
 
 
@@ -290,7 +290,7 @@ async def test_before_its_login_a_bot_answers_only_the_login_op(server, tmp_path
             await player.channel._exchange(rid, {"id": rid, "op": "nap"}, 10)
         assert "proto2" not in {p["name"] for p in await server.players()}
         await player.start()  # the login op: it logs in
-        assert player.alive and await player.channel.ping() == "pong"
+        assert player.bot.alive and await player.channel.ping() == "pong"
         assert "proto2" in {p["name"] for p in await server.players()}
     finally:
         await player.close()

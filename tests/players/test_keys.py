@@ -53,8 +53,8 @@ async def test_a_secret_in_the_parents_environment_reaches_no_node_process_nor_a
         await player.start()
         try:
             await player.reset(position=[0, 4, 0], inventory={})
-            assert server.process is not None and player.proc is not None
-            for who, pid in (("server", server.process.pid), ("bot", player.proc.pid)):
+            assert server.process is not None and player.bot.proc is not None
+            for who, pid in (("server", server.process.pid), ("bot", player.bot.proc.pid)):
                 env = _environ(pid)
                 assert "NODE_PATH" in env and env.get("TZ") == "UTC", (who, sorted(env))  # the right process
                 assert "OPENAI_API_KEY" not in env and "PB_TEST_UNUSUAL_VARIABLE" not in env, (who, sorted(env))

@@ -25,12 +25,12 @@ async def test_a_launched_bot_logs_in_only_at_its_start_and_ends_if_closed_befor
     await asyncio.gather(waiting.launch(), closed.launch())
     await asyncio.sleep(3)  # time enough to load and log in, had it not waited
     online = {p["name"] for p in await server.players()}
-    assert not {"cue1", "cue2"} & online and waiting.proc.returncode is None
+    assert not {"cue1", "cue2"} & online and waiting.bot.proc.returncode is None
     await closed.close()  # never cued: its process ends
-    assert await asyncio.wait_for(closed.proc.wait(), 5) == 0
+    assert await asyncio.wait_for(closed.bot.proc.wait(), 5) == 0
     await waiting.start()
     try:
-        assert "cue1" in {p["name"] for p in await server.players()} and waiting.alive
+        assert "cue1" in {p["name"] for p in await server.players()} and waiting.bot.alive
     finally:
         await waiting.close()
 
@@ -107,7 +107,7 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     took = time.perf_counter() - t0
     # settled by the bot itself (at once: 7-30 ms measured, docs/players.md), not by the restart that
     # Player.stop falls back on after 2 s; the wall bound leaves a busy machine ample room
-    assert took < 1.5 and p.restarts == 0, (took, p.restarts)
+    assert took < 1.5 and p.bot.restarts == 0, (took, p.bot.restarts)
     assert events[-1][0] == "observe" and errors(events) == []
     x1 = last_observation(await p.observe())["status"]["position"]["x"]
     await asyncio.sleep(0.6)
@@ -124,7 +124,7 @@ async def test_stop_settles_fast_and_stops_everything(server, area, make_player)
     await p.stop()
     events = await asyncio.wait_for(run, 2)
     took = time.perf_counter() - t0
-    assert took < 1.5 and p.restarts == 0, (took, p.restarts)
+    assert took < 1.5 and p.bot.restarts == 0, (took, p.bot.restarts)
 
     async def slime_left() -> int:
         names = [(await server.get_block(pos=area.at(dx, 4, 6)))["name"] for dx in range(12)]

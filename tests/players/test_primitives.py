@@ -33,7 +33,7 @@ async def make_player(server, pool):
     reset (its code stopped, its inventory set) to stand at (dx, dz) of the test's area. Fails the test
     if its code restarted a player; the mobs it left are removed."""
     given: list[Player] = []
-    restarts = [p.restarts for p in pool]
+    restarts = [p.bot.restarts for p in pool]
 
     async def make(area: Area, dx: float = 0, dz: float = 0, inventory: dict | None = None) -> Player:
         p = pool[len(given)]
@@ -43,7 +43,7 @@ async def make_player(server, pool):
 
     yield make
     await server.remove_entities()
-    assert [p.restarts for p in pool] == restarts and all(p.alive for p in pool)
+    assert [p.bot.restarts for p in pool] == restarts and all(p.bot.alive for p in pool)
 
 
 async def test_mine_slime_and_mushroom_blocks(server, area, make_player):

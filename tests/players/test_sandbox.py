@@ -44,9 +44,9 @@ async def calm_pair(server, tmp_path_factory):
 @pytest.fixture
 def shared(calm_pair):
     """The module's pair; fails the test if its code restarted either bot."""
-    restarts = [p.restarts for p in calm_pair]
+    restarts = [p.bot.restarts for p in calm_pair]
     yield calm_pair
-    assert [p.restarts for p in calm_pair] == restarts and all(p.alive for p in calm_pair)
+    assert [p.bot.restarts for p in calm_pair] == restarts and all(p.bot.alive for p in calm_pair)
 
 
 async def _bystander_ok(other):
@@ -79,7 +79,7 @@ async def test_sync_endless_loop_is_stopped_without_restart(pair):
     events = await bad.run("let i = 0\nwhile (true) { i++ }")
     assert time.perf_counter() - t0 < 3
     assert "endless loop" in errors(events)[0]
-    assert bad.restarts == 0
+    assert bad.bot.restarts == 0
     await _bystander_ok(other)
 
 
@@ -91,7 +91,7 @@ async def test_async_endless_loop_restarts_the_bot(server, pair):
     events = await bad.run("await bot.waitForTicks(1)\nwhile (true) {}")
     took = time.perf_counter() - t0
     assert took < 6, took
-    assert bad.restarts == 1 and bad.alive
+    assert bad.bot.restarts == 1 and bad.bot.alive
     assert "blocked the bot" in errors(events)[0]
     assert events[-1][0] == "observe"
     assert await count(server, bad.name, "bread") == before  # state restored after the restart
@@ -100,7 +100,7 @@ async def test_async_endless_loop_restarts_the_bot(server, pair):
     events = await bad.run("bot.chat('back again')")  # the player works after the restart
     assert "back again" in chats_by(events, bad.name)
     events = await bad.run("while (true) { await Promise.resolve() }")  # microtask loop
-    assert "blocked the bot" in errors(events)[0] and bad.restarts == 2
+    assert "blocked the bot" in errors(events)[0] and bad.bot.restarts == 2
 
 
 async def test_unhandled_rejection(shared):
@@ -133,11 +133,11 @@ async def test_unhandled_rejection(shared):
 )
 async def test_escape_attempts(shared, code, expected):
     bad, other = shared
-    restarts = bad.restarts
+    restarts = bad.bot.restarts
     events = await bad.run(code)
     errs = errors(events)
     assert errs and errs[0].startswith(expected), errs
-    assert bad.restarts == restarts and bad.alive
+    assert bad.bot.restarts == restarts and bad.bot.alive
 
 
 async def test_a_bot_process_that_exits_mid_run_is_reported_and_restarted(pair):
@@ -150,12 +150,12 @@ async def test_a_bot_process_that_exits_mid_run_is_reported_and_restarted(pair):
         bad.run("bot.chat('started')\nawait bot.waitForTicks(400)", on_event=lambda e: running.set())
     )
     await asyncio.wait_for(running.wait(), 10)  # the code is running
-    assert bad.proc is not None
-    os.kill(bad.proc.pid, signal.SIGTERM)
+    assert bad.bot.proc is not None
+    os.kill(bad.bot.proc.pid, signal.SIGTERM)
     events = await asyncio.wait_for(run, 30)
     assert "the bot process ended" in errors(events)[0] and "restarted" in errors(events)[0], errors(events)
     assert last_observation(events)["inventory"] == {"bread": 1}
-    assert bad.alive and bad.restarts == 1
+    assert bad.bot.alive and bad.bot.restarts == 1
     assert "back again" in chats_by(await bad.run("bot.chat('back again')"), bad.name)
     await _bystander_ok(other)
 
@@ -166,7 +166,7 @@ async def test_memory_bomb(pair):
     errs = errors(events)
     assert errs, events
     assert "memory" in errs[0] or "endless loop" in errs[0] or "blocked the bot" in errs[0]
-    assert bad.alive
+    assert bad.bot.alive
     # allocating between awaits: the heap limit ends the process; it is restarted with its inventory
     events = await bad.run(
         "await bot.waitForTicks(1)\nconst a = []\n"
@@ -174,7 +174,7 @@ async def test_memory_bomb(pair):
     )
     assert "ran out of memory" in errors(events)[0]
     assert last_observation(events)["inventory"] == {"bread": 1}
-    assert bad.alive and bad.restarts >= 1
+    assert bad.bot.alive and bad.bot.restarts >= 1
     events = await bad.run("'x'.repeat(2 ** 30)")
     assert "Invalid string length" in errors(events)[0]
     await _bystander_ok(other)

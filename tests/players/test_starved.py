@@ -1,5 +1,5 @@
 """A bot silent past its watchdog (1 s without a heartbeat) is restarted either way; what it is blamed on
-is told by the CPU time its process got meanwhile (players/player.py): a bot the machine stopped
+is told by the CPU time its process got meanwhile (players/bot_process.py): a bot the machine stopped
 (SIGSTOP here, as a starved machine would leave it) got none and was starved, the machine's fault (kept
 in `stalls`: the match spoils the episode), while agent code in an endless loop burns its core and is
 still the code's. On both clocks, with real bots on the real server."""
@@ -44,7 +44,7 @@ async def stopped_for(player: Player, seconds: float) -> list:
     running = asyncio.Event()
     run = asyncio.create_task(player.run(LONG_WAIT, on_event=lambda e: running.set()))
     await asyncio.wait_for(running.wait(), 20)
-    pid = player.proc.pid if player.proc else 0
+    pid = player.bot.proc.pid if player.bot.proc else 0
     os.kill(pid, signal.SIGSTOP)
     t0 = time.monotonic()
     try:
@@ -60,44 +60,44 @@ async def stopped_for(player: Player, seconds: float) -> list:
 
 async def test_a_bot_the_machine_stopped_was_starved_not_looping(world):
     _, player = world
-    restarts = player.restarts
-    player.watchdog.take_stalls()
+    restarts = player.bot.restarts
+    player.bot.watchdog.take_stalls()
     events = await stopped_for(player, 3.0)
     (err,) = errors(events)
     assert "starved of CPU" in err and "not the code's" in err and "endless loop" not in err, err
-    assert player.restarts == restarts + 1 and player.alive
-    (stall,) = player.watchdog.take_stalls()
+    assert player.bot.restarts == restarts + 1 and player.bot.alive
+    (stall,) = player.bot.watchdog.take_stalls()
     assert stall.startswith(f"{player.name} was starved of CPU for ") and "restarted" in stall, stall
-    assert player.watchdog.take_stalls() == []  # taken once
+    assert player.bot.watchdog.take_stalls() == []  # taken once
 
 
 async def test_an_endless_loop_is_still_the_codes(world):
     _, player = world
-    restarts = player.restarts
-    player.watchdog.take_stalls()
+    restarts = player.bot.restarts
+    player.bot.watchdog.take_stalls()
     events = await player.run("await bot.waitForTicks(1)\nwhile (true) {}")
     (err,) = errors(events)
     assert "blocked the bot" in err and "an endless loop?" in err, err
-    assert player.restarts == restarts + 1 and player.alive
-    assert player.watchdog.take_stalls() == []  # the code's: no stall of ours
+    assert player.bot.restarts == restarts + 1 and player.bot.alive
+    assert player.bot.watchdog.take_stalls() == []  # the code's: no stall of ours
 
 
 async def test_a_bot_that_did_not_stop_in_time_is_a_stall(world):
     """A bot told to stop that does not within 2 s is restarted, a stall of ours: the bot is ours, and a team's
     loop is caught before by the watchdog (here turned off, so that the stop's own limit is what acts)."""
     _, player = world
-    player.watchdog.take_stalls()
+    player.bot.watchdog.take_stalls()
     running = asyncio.Event()
     run = asyncio.create_task(player.run(LONG_WAIT, on_event=lambda e: running.set()))
     await asyncio.wait_for(running.wait(), 20)
-    watchdog, player.watchdog_s = player.watchdog_s, 60.0
+    watchdog, player.bot.watchdog_s = player.bot.watchdog_s, 60.0
     try:
-        assert player.proc is not None
-        os.kill(player.proc.pid, signal.SIGSTOP)  # (its restart kills it)
+        assert player.bot.proc is not None
+        os.kill(player.bot.proc.pid, signal.SIGSTOP)  # (its restart kills it)
         await player.stop()
     finally:
-        player.watchdog_s = watchdog
+        player.bot.watchdog_s = watchdog
     events = await asyncio.wait_for(run, 30)
     assert errors(events) == ["Error: the bot did not stop within 2 s and was restarted"], errors(events)
-    assert player.watchdog.take_stalls() == [f"{player.name} did not stop within 2 s and was restarted"]
-    assert player.alive
+    assert player.bot.watchdog.take_stalls() == [f"{player.name} did not stop within 2 s and was restarted"]
+    assert player.bot.alive

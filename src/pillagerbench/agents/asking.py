@@ -80,10 +80,9 @@ class RoleLLM:
                 dataclasses.replace(base.settings, model=str(model)),
                 team=base.team,
                 ledger=base.ledger,
-                cache=base.cache,
+                transport=base.transport,
                 budget=base.budget,
                 thinking=base.thinking,
-                _sdk=base._sdk,
             )
         return self._clients[model]
 

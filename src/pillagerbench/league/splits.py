@@ -61,4 +61,4 @@ def on_split(runs: Runs, split: str) -> tuple[Runs, list[str]]:
         notes.append(f"left out: {left} (`board split={others.index[0]}` rates those; splits are never mixed)")
     kept = set(zip(df.loc[mine, "run"], df.loc[mine, "series"]))  # their ledgers too
     series = [s for s in runs.series if (str(s.run), s.id) in kept]
-    return replace(runs, episodes=df[mine], series=series), notes
+    return replace(runs, rows=[r for r in runs.rows if r.split == split], series=series), notes

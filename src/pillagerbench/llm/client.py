@@ -6,8 +6,10 @@
     plan = await red.complete_json("Reply in JSON ...", role="tactics")
     red.reset_episode()                                      # at the start of each episode
 
-Requests go out through provider.py, whose retries are ours (the SDK's max_retries is 0), so the
-ledger's `retries` is exact; it says what is retried and what is not.
+A client is one team's asking: the request it builds, its budget, the ledger's record of every call,
+the game clock's hold while it waits. The answer comes from its `Transport` (transport.py: the cache,
+else the provider through provider.py, whose retries are ours, so the ledger's `retries` is exact),
+shared by every client of a run.
 Every request carries the headers X-PillagerBench-Role and X-PillagerBench-Team (the fake
 server matches rules on the role).
 """
@@ -21,19 +23,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import openai
-
 from pillagerbench.config.schema import LLMCacheConfig, LLMLedgerConfig, RunConfig
 
 from . import errors as E
-from . import provider
 from .budget import Budget
 from .cache import LLMCache, normalize_mode
 from .ledger import Ledger
 from .parsing import parse_json, strip_think
 from .prices import Price, price_of, price_problem
-from .settings import INSPECT, LLMSettings
+from .settings import LLMSettings
 from .thinking import Thinking
+from .transport import Transport
 
 Messages = str | Sequence[Mapping[str, Any]]
 _UNSET: Any = object()
@@ -96,29 +96,25 @@ class LLMClient:
         team: str | None = None,
         ledger: Ledger | None = None,
         cache: LLMCache | None = None,
+        transport: Transport | None = None,
         budget: Budget | None = None,
         price: Price | None = None,
         thinking: Thinking | None = None,
-        _sdk: openai.AsyncOpenAI | None = None,
     ):
+        """Without a transport, the client opens its own (over `cache`, else none) and owns it and the ledger:
+        `aclose` closes them; a client given one (`for_team`, a role's model) shares them and closes neither."""
         self.settings = settings
         self.thinking = thinking if thinking is not None else Thinking()  # the game clock's hold (thinking.py)
         self.team = team
         self.price = price if price is not None else price_of(settings)  # llm/prices.py
         self.ledger = ledger
-        self.cache = cache if cache is not None else LLMCache(None, "off")
         self.budget = budget if budget is not None else self._default_budget()
-        self._owns_sdk = _sdk is None
-        self._sdk = _sdk or self._make_sdk(settings)
+        self._owns = transport is None
+        self.transport = transport if transport is not None else Transport.open(settings, cache)
 
-    @staticmethod
-    def _make_sdk(settings: LLMSettings) -> openai.AsyncOpenAI | None:
-        """The OpenAI SDK's client; None for llm=inspect, whose calls go through Inspect (inspect_model.py)."""
-        if settings.provider == INSPECT:
-            return None
-        return openai.AsyncOpenAI(
-            api_key=settings.api_key(), base_url=settings.base_url, max_retries=0, timeout=settings.timeout
-        )
+    @property
+    def cache(self) -> LLMCache:
+        return self.transport.cache
 
     @classmethod
     def from_config(
@@ -167,17 +163,9 @@ class LLMClient:
 
     def for_team(self, team: str, budget: Budget | None = None) -> LLMClient:
         """A client for one team: same provider connection, ledger and cache; its own budget."""
-        client = LLMClient(
-            self.settings,
-            team=team,
-            ledger=self.ledger,
-            cache=self.cache,
-            budget=budget,
-            price=self.price,
-            _sdk=self._sdk,
+        return LLMClient(
+            self.settings, team=team, ledger=self.ledger, transport=self.transport, budget=budget, price=self.price
         )
-        client._owns_sdk = False  # llm=inspect has no SDK client to share: the ledger stays this one's to close
-        return client
 
     def _default_budget(self) -> Budget:
         problem = price_problem(self.settings)
@@ -190,10 +178,10 @@ class LLMClient:
         self.budget.reset()
 
     async def aclose(self) -> None:
-        if self._owns_sdk and self._sdk is not None:
-            await self._sdk.close()
-        if self.ledger is not None and self._owns_sdk:
-            self.ledger.close()
+        if self._owns:
+            await self.transport.aclose()
+            if self.ledger is not None:
+                self.ledger.close()
 
     async def __aenter__(self) -> LLMClient:
         return self
@@ -255,25 +243,9 @@ class LLMClient:
         try:
             self.budget.reserve(**ctx)
             reserved = True
-            key, sample = self.cache.key(s.provider, request)
-            entry = self.cache.get(key) if self.cache.reads else None
-            if entry is not None:
-                return self._answer(role, request, entry["response"], start, 0, True, key, sample)
-            if self.cache.mode == "replay":
-                raise E.CacheMiss(
-                    f"replay: request not in the cache {self.cache.dir} (key {key}, sample {sample})", key=key, **ctx
-                )
-            if self._sdk is None:  # llm=inspect
-                from . import inspect_model
-
-                response = await inspect_model.send(s, request, role=role, team=self.team, ctx=ctx)
-            else:
-                response = await provider.send(self._sdk, s, request, role=role, team=self.team, ctx=ctx)
-            retries = response.pop("retries")
-            self.cache.put(
-                key, {"key": key, "sample": sample, "provider": s.provider, "request": request, "response": response}
-            )
-            return self._answer(role, request, response, start, retries, False, key, sample)
+            key, sample = self.transport.key(s, request)
+            got = await self.transport.fetch(s, request, key, sample, role=role, team=self.team, ctx=ctx)
+            return self._answer(role, request, got.response, start, got.retries, got.cache_hit, key, sample)
         except E.LLMError as err:
             self._log(role, request, None, start, getattr(err, "retries", 0), False, key, sample, err)
             self.budget.note_failure(err)

@@ -261,7 +261,7 @@ class Match:
 
         game = Game(self.server, self.scenario, self.teams, self.players, rec, out, self.episode_length, self.clock)
         for player in self.players.values():  # a restart before the game (its reset's) cost the game nothing
-            player.watchdog.take_stalls()
+            player.bot.watchdog.take_stalls()
         async with self._game_time():
             clean, late = await play_game(game, contexts, random.Random(rec.seed), parts, self.scoring)
         self._stalled(rec)
@@ -311,8 +311,8 @@ class Match:
         """Whether our machine stalled the game, and how (the episode is then spoiled: rundir/faults.py): on the
         lockstep clock the world went on without an idle bot at the server's wall-clock limit (a tick the wall
         clock chose; a seat's own `free` is no let-go), or a bot was restarted for the machine's sake (starved
-        of CPU, or it did not stop in time: players/player.py)."""
+        of CPU, or it did not stop in time: players/bot_process.py)."""
         reasons = self.clock.stalls(rec.problems)
-        reasons += [stall for player in self.players.values() for stall in player.watchdog.take_stalls()]
+        reasons += [stall for player in self.players.values() for stall in player.bot.watchdog.take_stalls()]
         if reasons:
             rec.stalled, rec.stall_reason = True, "; ".join(reasons)

@@ -11,7 +11,7 @@ from typing import Any
 
 import pandas as pd
 
-from pillagerbench.metrics.columns import Col
+from pillagerbench.metrics.rows import EpisodeRow
 from pillagerbench.rundir.faults import HARNESS, TEAM, Fault, faults
 
 __all__ = ["HARNESS", "TEAM", "COLUMNS", "FaultRow", "fault_note", "faults", "faults_table", "name_entrants", "tally"]
@@ -75,10 +75,10 @@ def fault_note(rows: list[FaultRow]) -> list[str]:
     ]
 
 
-def name_entrants(found: list[FaultRow], rows: list[dict[str, Any]]) -> None:
+def name_entrants(found: list[FaultRow], rows: list[EpisodeRow]) -> None:
     """Every fault's `entrant`: its side's entrant as the episode's row names it (both, for a fault of
     the whole episode); '' for an episode that has no row (failed, half-written)."""
-    sides = {(r[Col.RUN], r[Col.SERIES], r[Col.EPISODE]): (r[Col.RED], r[Col.BLUE]) for r in rows}
+    sides = {(r.run, r.series, r.episode): (r.red, r.blue) for r in rows}
     for f in found:
         red, blue = sides.get(f.where, ("", ""))
         f.entrant = {"red": red, "blue": blue}.get(f.side, f"{red} vs {blue}" if red else "")

@@ -29,11 +29,11 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from pillagerbench.match import SCORINGS
-from pillagerbench.metrics.columns import SIDES, Col
-from pillagerbench.metrics.entrants import columns, label_calls, name_sides, series_entrants
+from pillagerbench.metrics.columns import SIDES
+from pillagerbench.metrics.entrants import columns, series_entrants
 from pillagerbench.metrics.faults import FaultRow, name_entrants
 from pillagerbench.metrics.formulas import SCORE_SCALE
+from pillagerbench.metrics.rows import EpisodeRow, frame, named
 from pillagerbench.rundir import (
     EPISODES,
     EpisodeDir,
@@ -76,7 +76,7 @@ class SeriesInfo(SeriesSpec):
 
 @dataclass
 class Runs:
-    episodes: pd.DataFrame  # one row per usable episode
+    rows: list[EpisodeRow]  # one per usable episode, typed (metrics/rows.py)
     series: list[SeriesInfo]
     ledger: list[dict]  # red-team LLM calls, each with "label" (its red entrant's row), "scenario", "run", "series"
     skipped: list[tuple[str, str]] = field(default_factory=list)  # (where, why)
@@ -87,7 +87,12 @@ class Runs:
     suites: list[str] = field(default_factory=list)  # the suite versions of the episodes used
     bundles: list[Path] = field(default_factory=list)  # results bundles among the inputs
     unverified: list[Path] = field(default_factory=list)  # bundles read without their checks (--no-verify)
-    spoiled: pd.DataFrame = field(default_factory=pd.DataFrame)  # rows of episodes spoiled on our side (in no score)
+    spoiled_rows: list[EpisodeRow] = field(default_factory=list)  # episodes spoiled on our side (in no score)
+    episodes: pd.DataFrame = field(init=False)  # the table of `rows` (metrics/rows.py `frame`)
+    spoiled: pd.DataFrame = field(init=False)  # the table of `spoiled_rows`, the same columns
+
+    def __post_init__(self) -> None:
+        self.episodes, self.spoiled = frame(self.rows), frame(self.spoiled_rows)
 
 
 def mixed_notes(runs: Runs) -> list[str]:
@@ -164,7 +169,9 @@ def _series_of(run: Path, name: Path) -> list[SeriesInfo]:
     return out
 
 
-def _load_series(s: SeriesInfo, rows: list, skipped: list, found: list, spoilt: list) -> None:
+def _load_series(
+    s: SeriesInfo, rows: list[EpisodeRow], skipped: list, found: list[FaultRow], spoilt: list[EpisodeRow]
+) -> None:
     finished = _finished_episodes(s, skipped)
     scale = SCORE_SCALE.get(s.scenario, 1.0)
     used = 0
@@ -239,58 +246,53 @@ def _timeline(s: SeriesInfo, rec: EpisodeRecord, ep: EpisodeDir, skipped: list) 
     return timeline
 
 
-def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, scale: float, index: int) -> dict:
+def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, scale: float, index: int) -> EpisodeRow:
     """One episode's row of the table (`index`: its place among the series' used episodes, for curves)."""
     red_it = rec.iterations.get("red") or []
-    by_mode = rec.scores
-    alternatives = {
-        Col.by_scoring(side, mode): float(by_mode[mode][side]) * scale if mode in by_mode else np.nan
-        for mode in SCORINGS
-        for side in SIDES
-    }
-    return {
-        Col.RUN: str(s.run),
-        Col.DIR: str(ep),
-        Col.SERIES: s.id,
-        Col.SCENARIO: s.scenario,
-        Col.VERSION: s.version,
-        Col.EPISODE_LENGTH: s.episode_length,
-        Col.RED: s.red,  # the entrants' names once every row is read (metrics/entrants.py)
-        Col.BLUE: s.blue,
-        **columns({"red": rec.red_entrant, "blue": rec.blue_entrant}, s.entrants, {"red": s.red, "blue": s.blue}),
-        Col.RED_TEAM: s.red_team,
-        Col.BLUE_TEAM: s.blue_team,
-        Col.DESIGN: s.design,
-        Col.VARIANT: s.variant,
-        Col.REPETITION: s.repetition,
-        Col.GROUP: s.group,
-        Col.GROUP_X: s.group_x,
-        Col.EPISODE: i,
-        Col.INDEX: index,
-        Col.RED_RAW: float(rec.red_score or 0.0),
-        Col.BLUE_RAW: float(rec.blue_score or 0.0),
-        Col.SCALE: scale,
-        Col.RED_SCORE: float(rec.red_score or 0.0) * scale,
-        Col.BLUE_SCORE: float(rec.blue_score or 0.0) * scale,
-        Col.SCORING: rec.scoring,
-        Col.SUITE: rec.suite,
-        Col.STAMP: rec.stamp,  # the suite and the rules differing from its defaults (suite/conditions.py)
-        Col.RULES: describe(rec.conditions),
-        Col.CONDITIONS: dict(rec.conditions),
-        Col.LAYOUT: rec.layout,
-        Col.SEED: rec.seed,  # "paper", a seed or a layout file; split: paper | dev | test | custom
-        Col.SPLIT: rec.split,
-        **alternatives,
-        Col.TEAM_PROTOCOL: rec.protocol,
-        Col.ITERATIONS: float(np.mean(red_it)) if red_it else np.nan,
-        Col.PROBLEMS: {k: list(v) for k, v in rec.problems.items()},
-        Col.SERVER_TPS: rec.server_tps,
-        Col.LAGGED: bool(rec.lagged),
-        Col.LAG_REASON: rec.lag_reason,
-        Col.T: np.array([p["t"] for p in timeline], dtype=float),
-        Col.RED_T: np.array([p["red"] for p in timeline], dtype=float) * scale,
-        Col.BLUE_T: np.array([p["blue"] for p in timeline], dtype=float) * scale,
-    }
+    names = {"red": s.red, "blue": s.blue}  # the entrants' names once every row is read (rows.named)
+    return EpisodeRow(
+        run=str(s.run),
+        dir=str(ep),
+        series=s.id,
+        scenario=s.scenario,
+        version=s.version,
+        episode_length=s.episode_length,
+        red=s.red,
+        blue=s.blue,
+        **columns({"red": rec.red_entrant, "blue": rec.blue_entrant}, s.entrants, names),
+        red_team=s.red_team,
+        blue_team=s.blue_team,
+        design=s.design,
+        variant=s.variant,
+        repetition=s.repetition,
+        group=s.group,
+        group_x=s.group_x,
+        episode=i,
+        index=index,
+        red_raw=float(rec.red_score or 0.0),
+        blue_raw=float(rec.blue_score or 0.0),
+        scale=scale,
+        red_score=float(rec.red_score or 0.0) * scale,
+        blue_score=float(rec.blue_score or 0.0) * scale,
+        scoring=rec.scoring,
+        suite=rec.suite,
+        stamp=rec.stamp,  # the suite and the rules differing from its defaults (suite/conditions.py)
+        rules=describe(rec.conditions),
+        conditions=dict(rec.conditions),
+        layout=rec.layout,
+        seed=rec.seed,  # "paper", a seed or a layout file; split: paper | dev | test | custom
+        split=rec.split,
+        by_scoring={m: {side: float(points[side]) * scale for side in SIDES} for m, points in rec.scores.items()},
+        team_protocol=rec.protocol,
+        iterations=float(np.mean(red_it)) if red_it else np.nan,
+        problems={k: list(v) for k, v in rec.problems.items()},
+        server_tps=rec.server_tps,
+        lagged=bool(rec.lagged),
+        lag_reason=rec.lag_reason,
+        t=tuple(float(p["t"]) for p in timeline),
+        red_t=tuple(float(p["red"]) * scale for p in timeline),
+        blue_t=tuple(float(p["blue"]) * scale for p in timeline),
+    )
 
 
 def _check_comparable(series: list[SeriesInfo]) -> None:
@@ -308,7 +310,7 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
                 )
 
 
-def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
+def _suites(rows: list[EpisodeRow], mix_suites: bool) -> list[str]:
     """The stamps of the episodes (suite version and the rules differing from its defaults,
     suite/conditions.py), in order; more than one is refused unless `mix_suites`. A version is its hash: the
     same files named before and after their hash was recorded (`suite 1.0+dev@H`, `suite 1.0@H`) are
@@ -317,9 +319,9 @@ def _suites(rows: list[dict], mix_suites: bool) -> list[str]:
     names: dict[str, list[str]] = {}
     where: dict[str, list[str]] = {}
     for r in rows:
-        digest, _, conditions = r["stamp"].rpartition("@")[2].partition(" ")
+        digest, _, conditions = r.stamp.rpartition("@")[2].partition(" ")
         key = f"{one_version(digest)} {conditions}"  # the version (its hash, earlier ones too) and the conditions
-        for seen, item in ((names, r["stamp"]), (where, r["run"])):
+        for seen, item in ((names, r.stamp), (where, r.run)):
             if item not in seen.setdefault(key, []):
                 seen[key].append(item)
     labels = {key: " = ".join(found) for key, found in names.items()}
@@ -341,13 +343,13 @@ def _named(where: str, roots: dict[Path, Path]) -> str:
 
 def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
     """The runs as they are, bundles unchecked: readers use metrics/verified.py `load_runs`."""
-    series: list[Any] = []
-    skipped: list[Any] = []
-    rows: list[Any] = []
-    ledger: list[Any] = []
-    cals: list[Any] = []
+    series: list[SeriesInfo] = []
+    skipped: list[tuple[str, str]] = []
+    rows: list[EpisodeRow] = []
+    ledger: list[dict[str, Any]] = []
+    cals: list[Path] = []
     found: list[FaultRow] = []
-    spoilt: list[Any] = []
+    spoilt: list[EpisodeRow] = []
     inputs = [Path(p) for p in paths]
     roots = {name: run for run, name in _inputs(inputs)}
     for name, run in roots.items():
@@ -366,14 +368,14 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
-    name_sides(rows + spoilt)  # red and blue: the entrants, in every table (spoiled episodes' too)
-    name_entrants(found, rows + spoilt)  # the Failures table names them too
-    label_calls(ledger, rows)
+    every = named(rows + spoilt)  # red and blue: the entrants, in every table (spoiled episodes' too)
+    rows, spoilt = every[: len(rows)], every[len(rows) :]
+    name_entrants(found, every)  # the Failures table names them too
+    _label_calls(ledger, rows)
     suites = _suites(rows, mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
-    df = pd.DataFrame(rows)
     return Runs(
-        episodes=df,
+        rows=rows,
         series=series,
         ledger=ledger,
         skipped=skipped,
@@ -383,5 +385,12 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
         faults=found,
         suites=suites,
         bundles=[r for r in inputs if is_bundle(r)],
-        spoiled=pd.DataFrame(spoilt),
+        spoiled_rows=spoilt,
     )
+
+
+def _label_calls(ledger: list[dict[str, Any]], rows: list[EpisodeRow]) -> None:
+    """Every red-team LLM call labelled as its series' red rows are (calls carry `run` and `series`)."""
+    red = {(r.run, r.series): r.red for r in rows}
+    for call in ledger:
+        call["label"] = red.get((call["run"], call["series"]), call["label"])

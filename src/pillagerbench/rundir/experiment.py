@@ -24,13 +24,14 @@ class ExperimentFile(BaseModel):
     overrides: list[str] = []  # the command's overrides
     series: list[dict[str, Any]] = []  # every series as SeriesSpec.to_dict() (rundir/series.py reads them)
 
-    def to_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
+        """The file as it is written: the fields given, in their order (as every record's `to_dict`)."""
         return self.model_dump(exclude_unset=True)
 
 
 def write_experiment_file(run_dir: str | Path, data: ExperimentFile) -> None:
     """experiment.json, replaced whole (a settled compare rewrites it: a kill leaves the old or the new)."""
-    replace_json(Path(run_dir) / EXPERIMENT, data.to_json(), indent=1)
+    replace_json(Path(run_dir) / EXPERIMENT, data.to_dict(), indent=1)
 
 
 def read_experiment(run_dir: str | Path) -> ExperimentFile:
