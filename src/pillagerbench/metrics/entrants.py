@@ -5,7 +5,7 @@ from before entrants gets them from its series' config (the manifest), computed 
 old run directories and bundles still report. In the episodes table `red` and `blue` are the
 entrants' labels, which every table groups by: two entrants never share a row. Should two entrants
 read alike (a label hides a long value behind a hash), each label gets `#` and its id's first 6 hex
-digits. The name the series gave the side (an experiment's variant label, a league entrant's name)
+digits (metrics/rows.py `named`). The name the series gave the side (an experiment's variant label, a league entrant's name)
 stays in `red_name` and `blue_name`.
 """
 
@@ -33,29 +33,3 @@ def columns(recorded: dict[str, Entrant | None], derived: dict[str, Entrant], na
         label, id_ = (e.label, e.id) if e is not None else (names[side], names[side])
         out |= {Col.entrant(side): label, Col.entrant_id(side): id_, Col.series_name(side): names[side]}
     return out
-
-
-def display_names(rows: list[dict[str, Any]]) -> dict[str, str]:
-    """Entrant id -> the name its rows show: its label, or `label#id6` when another entrant reads alike."""
-    labels: dict[str, str] = {}
-    for r in rows:
-        for side in SIDES:
-            labels[r[Col.entrant_id(side)]] = r[Col.entrant(side)]
-    shared = {lab for lab in labels.values() if list(labels.values()).count(lab) > 1}
-    return {i: f"{lab}#{i[:6]}" if lab in shared else lab for i, lab in labels.items()}
-
-
-def name_sides(rows: list[dict[str, Any]]) -> dict[str, str]:
-    """Set every row's `red` and `blue` to its entrants' names; returns id -> name."""
-    names = display_names(rows)
-    for r in rows:
-        for side in SIDES:
-            r[Col.name(side)] = names[r[Col.entrant_id(side)]]
-    return names
-
-
-def label_calls(ledger: list[dict[str, Any]], rows: list[dict[str, Any]]) -> None:
-    """Every red-team LLM call labelled as its series' red rows are (calls carry `run` and `series`)."""
-    red = {(r[Col.RUN], r[Col.SERIES]): r[Col.RED] for r in rows}
-    for call in ledger:
-        call["label"] = red.get((call["run"], call["series"]), call["label"])
