@@ -26,27 +26,13 @@ from pillagerbench.llm import fake_server
 from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.rundir import EpisodeRecord, RunDir, SeriesSpec, faults, progress
 from tests.support.cli import kill_run, refused_in_process, start_cli
+from tests.support.waiting_cot import ANSWER, overrides
 
 ROOT = Path(__file__).resolve().parents[2]
-WAIT = "async function main(bot) {\n  await bot.waitForTicks(20)\n}"
-ANSWER = "Plan: wait.\n" + "\n".join(f"Code for bot {i}:\n```javascript\n{WAIT}\n```" for i in range(2))
 
 
 def game(fake: FakeLLMServer, episodes: int, *extra: str) -> list[str]:
-    return [
-        "scenario=mushroom_war",
-        "red=cot",
-        "blue=do_nothing",
-        "llm=fake",
-        f"llm.base_url={fake.url}",
-        "llm.max_retries=0",
-        "llm.timeout=10",
-        "episode_length=6",
-        "clock=lockstep",
-        f"episodes={episodes}",
-        "retries=0",
-        *extra,
-    ]
+    return overrides(fake, episodes, "retries=0", *extra)
 
 
 def down_after_one(fake: FakeLLMServer) -> None:

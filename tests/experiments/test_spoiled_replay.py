@@ -23,9 +23,8 @@ from pillagerbench.llm.fake_server import FakeLLMServer, Rule
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.report.build import build_report
 from pillagerbench.rundir import RunDir, SeriesSpec, faults, progress, spoiled
+from tests.support.waiting_cot import ANSWER, overrides
 
-WAIT = "async function main(bot) {\n  await bot.waitForTicks(20)\n}"
-ANSWER = "Plan: wait.\n" + "\n".join(f"Code for bot {i}:\n```javascript\n{WAIT}\n```" for i in range(2))
 PROVIDER = "provider unreachable"
 
 
@@ -34,23 +33,8 @@ def outage() -> Rule:
 
 
 def spec_of(fake: FakeLLMServer, episodes: int, retries: int, *extra: str) -> SeriesSpec:
-    cfg = load_config(
-        [
-            "scenario=mushroom_war",
-            "red=cot",
-            "blue=do_nothing",
-            "llm=fake",
-            f"llm.base_url={fake.url}",
-            "llm.max_retries=0",
-            "llm.timeout=10",
-            "episode_length=6",
-            "clock=lockstep",
-            f"episodes={episodes}",
-            f"retries={retries}",
-            "outage_wait_s=0",  # every try counts here; waiting out an outage: tests/experiments/test_outage.py
-            *extra,
-        ]
-    )
+    # every try counts here; waiting out an outage: tests/experiments/test_outage.py
+    cfg = load_config(overrides(fake, episodes, f"retries={retries}", "outage_wait_s=0", *extra))
     return SeriesSpec(
         "run", 0, "run", "mushroom_war", "cot", "do_nothing", "cot", "do_nothing", episodes, 0, RunConfig.of(cfg)
     )
