@@ -99,10 +99,10 @@ def test_the_command_lines_configuration_arrives_typed():
         "mushroom_war",
         30,
     )
-    assert cfg.llm_of("red")["model"] == "big" and cfg.llm_of("blue")["model"] == "local"
-    assert cfg.llm_of("red")["price"] == cfg.llm["price"]  # merged key by key, not replaced
+    assert cfg.llm_of("red").model == "big" and cfg.llm_of("blue").model == "local"
+    assert cfg.llm_of("red").price == cfg.llm.price  # merged key by key, not replaced
     assert cfg.red.options["attempts"] and not {"name", "llm"} & set(cfg.red.options)
-    assert cfg.llm["model"] == "local"
+    assert cfg.llm.model == "local"
 
 
 def test_the_records_keep_the_config_as_composed():
@@ -229,12 +229,21 @@ def test_a_team_or_scenario_named_by_a_number_is_one_line_about_the_name():
 
 
 def test_the_runners_keys_are_declared_once_and_left_out_one_way():
-    """config/schema.py RUNNER_KEYS: every key the runner reads but a series does not (RunnerConfig's, but
-    `display`), each a key of RunConfig; RunConfig.for_series is the one way a series' config leaves them."""
+    """config/schema.py RunnerConfig declares every key the runner reads, once; RUNNER_KEYS is derived from
+    it (all but `display`, which a series keeps), each a key of RunConfig; RunConfig.for_series is the one
+    way a series' config leaves them."""
     from pillagerbench.config.compose import load_config
     from pillagerbench.config.schema import RUNNER_KEYS, RunConfig, RunnerConfig
 
-    assert set(RunnerConfig.model_fields) - {"display"} <= set(RUNNER_KEYS) <= set(RunConfig.model_fields)
+    assert set(RUNNER_KEYS) == set(RunnerConfig.model_fields) - {"display"}
+    assert set(RunnerConfig.model_fields) <= set(RunConfig.model_fields)
+    tree = ast.parse((SRC / "config" / "schema.py").read_text(encoding="utf-8"))
+    listed = [
+        n
+        for n in ast.walk(tree)
+        if isinstance(n, ast.Tuple) and any(isinstance(e, ast.Constant) and e.value == "ray_address" for e in n.elts)
+    ]
+    assert not listed, "the runner's keys are RunnerConfig's fields, not a list beside them"
     full = RunConfig.of(load_config(["parallel=2", "run_dir=x", "plan=true"]))
     series = full.for_series().stored()
     assert not set(RUNNER_KEYS) & set(series) and set(full.stored()) - set(series) <= set(RUNNER_KEYS)

@@ -44,13 +44,13 @@ def test_main_benchmark_is_150_episodes_in_series_of_5():
 
 def test_variants_set_team_options_and_models():
     series = build("experiment=ablation_models", "experiment.team=do_nothing", "experiment.repetitions=1")
-    models = {s.red: s.config.llm["model"] for s in series}
+    models = {s.red: s.config.llm.model for s in series}
     assert models == {
         "gpt-4o": "gpt-4o-2024-08-06",
         "gemini-2.0-flash": "google/gemini-2.0-flash-001",
         "o3-mini": "openai/o3-mini",
     }
-    assert {s.config.llm["provider"] for s in series if s.red == "o3-mini"} == {"openrouter"}
+    assert {s.config.llm.provider for s in series if s.red == "o3-mini"} == {"openrouter"}
     series = build("experiment=ablation_modules", "experiment.team=do_nothing", "experiment.repetitions=1")
     opts = {s.red: s.config.red.options.get("enable_causal") for s in series}
     assert opts == {"tacticrafter": None, "tacticrafter_no_causal": False, "tacticrafter_no_opponent": None}

@@ -53,7 +53,7 @@ def test_each_epoch_has_its_own_seeds_and_names_the_real_model(monkeypatch: pyte
     first, second = epoch_spec(spec, 1), epoch_spec(spec, 2)
     assert first.seed == spec.seed != second.seed == second.config.seed
     assert (first.id, second.id) == (f"{spec.id}_epoch1", f"{spec.id}_epoch2")
-    assert first.config.red.llm["model"] == "mockllm/model" and not first.config.blue.llm
+    assert first.config.red.llm.model == "mockllm/model" and not first.config.blue.llm.given()
 
 
 def test_a_layout_replaces_the_split() -> None:

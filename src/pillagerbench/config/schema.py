@@ -16,7 +16,7 @@ from importlib import resources
 from typing import Any, Final, Literal
 
 from omegaconf import OmegaConf
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
 from pydantic_core import PydanticCustomError
 
 from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
@@ -96,6 +96,66 @@ class LLMConfig(_Strict):
         )
 
 
+class LLMKeys(BaseModel):
+    """An `llm` node as composed: the run's (the preset) or a side's own keys (`red.llm.model=...`). Every
+    key of LLMConfig, none required and no range checked here; the settings a side plays with (`llm_of`:
+    the run's with the side's merged in) are checked whole by LLMConfig, and only for a side whose team uses
+    an LLM (config/validate.py), so a run of two built-in teams is never refused for its unused preset. A
+    key LLMConfig does not know is kept (refused there) so that an old run's stored config still reads;
+    `given()` is the node as composed, its numbers as written (what the LLM layer reads, LLMSettings)."""
+
+    model_config = ConfigDict(extra="allow", coerce_numbers_to_str=True)  # llm.model=7: the model '7'
+
+    provider: str | None = None
+    base_url: str | None = None
+    model: str | None = None
+    api_key_env: str | None = None
+    temperature: float | None = None
+    max_tokens: int | None = None
+    timeout: float | None = None
+    max_retries: int | None = None
+    retry_backoff_s: float | None = None
+    retry_max_wait_s: float | None = None
+    system_role: str | None = None
+    send_temperature: bool | None = None
+    max_tokens_param: str | None = None
+    strip_think: bool | None = None
+    preflight: bool | None = None
+    extra_headers: dict[str, Any] | None = None
+    extra_body: dict[str, Any] | None = None
+    price: dict[str, Any] | None = None
+    budget: dict[str, Any] | None = None
+
+    _given: dict[str, Any] = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _as_composed(cls, data: Any, handler: Any) -> Any:
+        model = handler(data)
+        if isinstance(data, dict):
+            model._given = copy.deepcopy(data)
+        return model
+
+    @classmethod
+    def of(cls, data: Any) -> LLMKeys:
+        """The typed node of `data` (a composed node or a mapping), or one ConfigError line per problem."""
+        data = plain(data)
+        check(problems(cls, data, "llm"))
+        return cls.model_validate(data)
+
+    def given(self) -> dict[str, Any]:
+        """The keys given, as composed (an empty node: none)."""
+        return copy.deepcopy(self._given)
+
+    def over(self, own: LLMKeys) -> LLMKeys:
+        """These keys with `own` merged in key by key (a side's over the run's)."""
+        return LLMKeys.model_validate(merged(self._given, own._given))
+
+    def problems(self, where: str) -> list[str]:
+        """The problems of these keys as a side's whole LLM settings (LLMConfig), named under `where`."""
+        return problems(LLMConfig, self._given, where)
+
+
 RETRIES: int = written("retries")  # replays of a spoiled episode (rundir/schedule.py)
 
 
@@ -136,7 +196,8 @@ class TeamConfig(BaseModel):
     model_config = ConfigDict(extra="allow", coerce_numbers_to_str=True)  # red=7: unknown team '7', once
 
     name: str
-    llm: dict[str, Any] = {}  # keys of the run's `llm` this side plays with otherwise (red.llm.model=...)
+    # keys of the run's `llm` this side plays with otherwise (red.llm.model=...)
+    llm: LLMKeys = Field(default_factory=LLMKeys)
 
     @property
     def options(self) -> dict[str, Any]:
@@ -153,7 +214,7 @@ class Choices(BaseModel):
     scenario: ScenarioConfig
     red: TeamConfig
     blue: TeamConfig
-    llm: dict[str, Any]
+    llm: LLMKeys
     layout: int | str = written("layout")
     split: str | None = written("split")
 
@@ -161,9 +222,9 @@ class Choices(BaseModel):
         """The team node of `red` or `blue`."""
         return {"red": self.red, "blue": self.blue}[side]
 
-    def llm_of(self, side: str) -> dict[str, Any]:
+    def llm_of(self, side: str) -> LLMKeys:
         """The `llm` settings `side` plays with: the run's, with the side's own keys merged in."""
-        return merged(self.llm, self.side(side).llm)
+        return self.llm.over(self.side(side).llm)
 
 
 class ExperimentConfig(BaseModel):
@@ -202,7 +263,9 @@ class ExperimentConfig(BaseModel):
 
 
 class RunnerConfig(BaseModel):
-    """How an experiment's series are played (not what): the part of the configuration its runner reads."""
+    """How an experiment's series are played, and where: every key its runner reads, declared once here.
+    Each is the runner's alone (RUNNER_KEYS: a series' own config leaves it out, RunConfig.for_series)
+    but `display`, which each series keeps, as each shows its own episodes."""
 
     model_config = ConfigDict(extra="ignore")
 
@@ -210,11 +273,15 @@ class RunnerConfig(BaseModel):
     launcher: Literal["local", "ray"] = written("launcher")
     ray_address: str | None = written("ray_address")
     display: Literal["auto", "live", "plain"] = written("display")
+    run_dir: str | None = written("run_dir")
+    resume: str | None = written("resume")
+    calibration: str | None = written("calibration")
+    plan: bool = written("plan")
+    experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
 
 
-# the keys of a run that are its runner's, not its series': a series' own config leaves them out
-# (RunConfig.for_series); `display` stays, as each series shows its own episodes
-RUNNER_KEYS: Final = ("experiment", "parallel", "launcher", "ray_address", "resume", "calibration", "run_dir", "plan")
+# the keys of a run that are its runner's, not its series' (RunConfig.for_series leaves them out)
+RUNNER_KEYS: Final = tuple(key for key in RunnerConfig.model_fields if key != "display")
 
 
 class RunConfig(RunnerConfig):
@@ -230,7 +297,6 @@ class RunConfig(RunnerConfig):
     episodes: int = Field(written("episodes"), ge=1)
     episode_length: float = Field(float(written("episode_length")), gt=0)  # seconds of game per episode
     seed: int = written("seed")
-    run_dir: str | None = written("run_dir")
     scoring: Literal["clean", "upstream"] = written("scoring")
     protocol: Literal["pillagerbench", "upstream"] = written("protocol")
     paper: bool = written("paper")  # sets scoring and protocol to upstream's (config.compose.PAPER_SWITCHES)
@@ -239,17 +305,13 @@ class RunConfig(RunnerConfig):
     outage_wait_s: float = Field(written("outage_wait_s"), ge=0, allow_inf_nan=False)  # experiments/outage.py
     layout: int | str = written("layout")  # checked in full by config/validate.layout_problems
     split: str | None = written("split")
-    resume: str | None = written("resume")
-    calibration: str | None = written("calibration")
-    plan: bool = written("plan")
     plan_width: float = Field(default=written("plan_width"), gt=0)
     plan_difference: float = Field(default=written("plan_difference"), gt=0)
     scenario: ScenarioConfig
     clock: ClockConfig = ClockConfig()
     red: TeamConfig
     blue: TeamConfig
-    llm: dict[str, Any]  # the preset; checked per side that uses an LLM (config/validate.py, LLMConfig)
-    experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
+    llm: LLMKeys  # the preset; checked per side that uses an LLM (config/validate.py, LLMConfig)
 
     _stored: dict[str, Any] = PrivateAttr(default_factory=dict)
 
@@ -298,9 +360,9 @@ class RunConfig(RunnerConfig):
         """The team node of `red` or `blue`."""
         return {"red": self.red, "blue": self.blue}[side]
 
-    def llm_of(self, side: str) -> dict[str, Any]:
+    def llm_of(self, side: str) -> LLMKeys:
         """The `llm` settings `side` plays with: the run's, with the side's own keys merged in."""
-        return merged(self.llm, self.side(side).llm)
+        return self.llm.over(self.side(side).llm)
 
     def choices(self) -> Choices:
         """What this configuration chooses by name, as the groups' checks take it (config/validate.py)."""

@@ -50,7 +50,7 @@ _ERROR = re.compile(r"(?:^|last: )(\w+):")  # the error type in a failed episode
 
 
 def _probes_llm(cfg: RunConfig, side: str) -> bool:
-    return bool(getattr(find_team(cfg.side(side).name), "uses_llm", False) and cfg.llm_of(side).get("preflight", True))
+    return bool(getattr(find_team(cfg.side(side).name), "uses_llm", False) and cfg.llm_of(side).preflight is not False)
 
 
 def unreachable(rec: EpisodeRecord, cfg: RunConfig) -> dict[str, str]:

@@ -15,6 +15,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.schema import RunnerConfig
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.league.board import write_board
 from pillagerbench.league.compose import check_entrant
@@ -125,7 +126,7 @@ def main(argv: list[str]) -> int:
             print(path)
         return 0
     ours, other = _league_keys(_pairs(rest))
-    runner = {"parallel": None, "launcher": "local", "ray_address": None, "display": "auto"}
+    runner = RunnerConfig.model_validate({}).model_dump(include=set(RUNNER))  # the defaults, conf/config.yaml's
     runner |= {k: v for k, v in other.items() if k in RUNNER}
     game = tuple(a for a in rest if a.partition("=")[0] in other and a.partition("=")[0] not in RUNNER)
     for a in game:

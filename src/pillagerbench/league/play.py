@@ -22,7 +22,8 @@ from pillagerbench.league.splits import check_game, on_split
 from pillagerbench.league.standings import boards
 from pillagerbench.metrics.verified import check_bundles
 
-RUNNER = ("parallel", "launcher", "ray_address", "display")  # how to play, not what: free to change
+# how to play, not what: free to change between a league's rounds (the other keys of RunnerConfig are not a league's)
+RUNNER = ("parallel", "launcher", "ray_address", "display")
 
 
 def _unfinished(run_dir: Path) -> bool:

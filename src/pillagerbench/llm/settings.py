@@ -10,10 +10,13 @@ import importlib.util
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .errors import LLMConfigError
 from .redact import register_secret
+
+if TYPE_CHECKING:
+    from pillagerbench.config.schema import LLMKeys
 
 INSPECT = "inspect"  # the provider whose calls go through Inspect's model API (inspect_model.py)
 EVAL_MODEL = "eval"  # llm=inspect llm.model=eval: the Inspect evaluation's model (or the side's model role)
@@ -45,11 +48,12 @@ class LLMSettings:
     preflight: bool = True  # one short request before episode 0 (llm/preflight.py)
 
     @classmethod
-    def from_config(cls, cfg: Mapping[str, Any]) -> LLMSettings:
-        """From the `llm` node of the configuration (a composed node or a plain dict)."""
-        from pillagerbench.config.schema import plain
+    def from_config(cls, cfg: LLMKeys | Mapping[str, Any]) -> LLMSettings:
+        """From the `llm` settings a side plays with (typed: RunConfig.llm_of), or an `llm` node (a composed
+        node or a plain dict), its keys as composed."""
+        from pillagerbench.config.schema import LLMKeys
 
-        data: dict[str, Any] = plain(cfg)
+        data = (cfg if isinstance(cfg, LLMKeys) else LLMKeys.of(cfg)).given()
         price = data.pop("price", None) or {}
         data.setdefault("price_input_per_1m", price.get("input_per_1m"))
         data.setdefault("price_output_per_1m", price.get("output_per_1m"))

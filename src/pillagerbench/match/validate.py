@@ -9,7 +9,7 @@ use an LLM, and the LLM settings of every side that uses one. Each takes the cho
 from __future__ import annotations
 
 from pillagerbench.config.compose import ConfigError
-from pillagerbench.config.schema import Choices, LLMConfig, problems
+from pillagerbench.config.schema import Choices, problems
 from pillagerbench.config.sides import SIDES
 from pillagerbench.config.validate import GROUP_CHECKS, LAYOUT, SCENARIO, TEAMS
 from pillagerbench.llm.errors import LLMConfigError
@@ -46,9 +46,9 @@ def _team_problems(choices: Choices, side: str) -> list[str]:
     ]
     if not found:
         out += [f"{side}.{p}" for p in cls.check_options({**declared, **given})]
-    if node.llm and not cls.uses_llm:
+    if node.llm.given() and not cls.uses_llm:
         llm_teams = [n for n, c in TEAM_CLASSES.items() if c.uses_llm]
-        for key in node.llm:
+        for key in node.llm.given():
             out.append(f"{side}.llm.{key}: team {name} uses no LLM (teams that do: {', '.join(llm_teams)})")
     elif cls.uses_llm:
         out += _llm_problems(choices, side)
@@ -58,8 +58,8 @@ def _team_problems(choices: Choices, side: str) -> list[str]:
 def _llm_problems(choices: Choices, side: str) -> list[str]:
     """The LLM settings `side` plays with; settings that cannot work (llm=inspect without its extra);
     a dollar budget needs a known price."""
-    merged, where = choices.llm_of(side), f"{side}.llm" if choices.side(side).llm else "llm"
-    found = problems(LLMConfig, merged, where)
+    merged, where = choices.llm_of(side), f"{side}.llm" if choices.side(side).llm.given() else "llm"
+    found = merged.problems(where)
     if found:
         return found
     try:

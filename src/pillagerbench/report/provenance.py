@@ -54,7 +54,7 @@ def models(s: SeriesInfo) -> list[str]:
         llm = s.config.llm_of(side)
         roles = {r: o["model"] for r, o in (team.options.get("roles") or {}).items() if (o or {}).get("model")}
         extra = f" ({', '.join(f'{r}: {m}' for r, m in roles.items())})" if roles else ""
-        out.append(f"{label}: {llm.get('provider', '?')} {llm.get('model', '?')}{extra}")
+        out.append(f"{label}: {llm.provider or '?'} {llm.model or '?'}{extra}")
     return out
 
 

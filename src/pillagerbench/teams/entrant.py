@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from pillagerbench.config.schema import Choices, RunConfig, TeamConfig
+from pillagerbench.config.schema import Choices, LLMKeys, RunConfig, TeamConfig
 from pillagerbench.config.sides import SIDES
 from pillagerbench.rundir.entrant import IDENTITY, Entrant, canonical
 from pillagerbench.teams.options import defaults, options_model
@@ -62,10 +62,10 @@ def _options(team: str, node: TeamConfig) -> dict[str, Any]:
     }
 
 
-def _models(llm: dict[str, Any], options: dict[str, Any]) -> dict[str, str]:
+def _models(llm: LLMKeys, options: dict[str, Any]) -> dict[str, str]:
     """The team's model (of `llm`, the settings the side plays with), and each role's that differs; role
     models leave `options`."""
-    model = str(llm.get("model") or "?")
+    model = str(llm.model or "?")
     models = {"team": model}
     roles = options.pop(ROLES_OPTION, None) or {}
     rest = {}
