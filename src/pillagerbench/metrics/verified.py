@@ -74,6 +74,8 @@ def episode_problems(run: RunDir, rec: EpisodeRecord) -> list[str]:
     ):
         out.append(f"winner {rec.winner!r} does not follow from {rec.red_score}–{rec.blue_score}")
     beside = run.files(i).record()
+    if beside is None and run.record_path(i).exists():
+        out.append(f"{run.record_path(i).name}: unreadable (half written?)")
     if beside is not None and beside != rec:
         mine, theirs = rec.to_dict(), beside.to_dict()
         keys = sorted(k for k in mine if mine[k] != theirs[k])
