@@ -184,7 +184,7 @@ def test_calibrate_hands_the_experiment_a_checked_typed_config_with_its_run_dire
     monkeypatch.setattr(runner, "main_experiment", lambda cfg, argv: given.append((cfg, argv)) or 1)
     assert calibrate([f"run_dir={tmp_path / 'cal'}", "episode_length=30"]) == 1
     [(cfg, argv)] = given
-    assert isinstance(cfg, RunConfig) and cfg.experiment and cfg.experiment["name"] == "calibration"
+    assert isinstance(cfg, RunConfig) and cfg.experiment and cfg.experiment.name == "calibration"
     assert (cfg.run_dir, cfg.episode_length, argv[0]) == (str(tmp_path / "cal"), 30, "experiment=calibration")
     given.clear()
     monkeypatch.chdir(tmp_path)
@@ -206,8 +206,8 @@ def test_a_stored_config_that_does_not_read_is_one_line_per_problem():
 def test_every_experiment_reads_typed(name):
     from pillagerbench.experiments.spec import DESIGNS
 
-    exp = ExperimentConfig.of(RunConfig.of(load_config([f"experiment={name}"])).experiment)
-    assert exp.name == name and exp.design in DESIGNS and exp.repetitions
+    exp = RunConfig.of(load_config([f"experiment={name}"])).experiment
+    assert isinstance(exp, ExperimentConfig) and exp.name == name and exp.design in DESIGNS and exp.repetitions
 
 
 def test_a_bad_value_of_an_experiment_is_one_line():

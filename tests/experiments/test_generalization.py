@@ -47,7 +47,7 @@ def test_every_opponent_both_sides_on_the_papers_and_on_test_layouts():
         (("layout=7",), "'layout=7': experiment 'generalization' chooses each series' layout itself"),
         (("experiment.arenas.test=-1",), "a split (paper, dev, test) -> episodes (an integer ≥ 0)"),
         (("experiment.arenas.paper=0", "experiment.arenas.test=0"), "at least one above 0"),
-        (("experiment.sides=[left]",), "experiment.sides=['left']: each side is blue or red"),
+        (("experiment.sides=[left]",), "experiment.sides.0='left': input should be 'blue' or 'red'"),
         (
             ("experiment.arenas.hidden=2",),
             "experiment.arenas.hidden: no such key (experiment.arenas takes paper, test, dev)",

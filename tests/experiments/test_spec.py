@@ -101,8 +101,35 @@ def test_symmetry_plays_each_pairing_in_both_orders_and_mirrors_once():
 
 
 def test_symmetry_pairing_without_a_team_names_what_is_missing():
-    with pytest.raises(ConfigError, match=r"pairings\[0\] needs b"):
+    with pytest.raises(ConfigError) as err:
         build("experiment=symmetry", "experiment.pairings=[{scenario: mushroom_war, a: passive}]")
+    assert str(err.value) == "experiment.pairings.0.b: missing (a pairing takes scenario, a, b)"
+
+
+def test_an_unknown_key_of_a_variant_is_one_line_naming_the_keys_it_takes():
+    with pytest.raises(ConfigError) as err:
+        build("experiment=main_benchmark", "experiment.variants={fast: {team: cot, team_option: {attempts: 1}}}")
+    assert str(err.value) == (
+        "experiment.variants.fast.team_option: unknown key (a variant takes team, team_options, llm, llm_options)"
+    )
+
+
+def test_a_variant_plays_its_own_keys_over_the_experiments():
+    series = build(
+        "experiment=main_benchmark",
+        "experiment.team=cot",
+        "experiment.llm_options.model=base-model",
+        "experiment.team_options.attempts=2",
+        "experiment.variants={same: null, other: {team: do_nothing, team_options: {}}, own: {llm_options: {model: m2}}}",
+        "experiment.repetitions=1",
+        "experiment.scenarios=[mushroom_war]",
+    )
+    played = {s.red: (s.red_team, s.config.red.options, s.config.llm.model) for s in series}
+    assert played == {
+        "same": ("cot", {**played["same"][1], "attempts": 2}, "base-model"),
+        "other": ("do_nothing", {}, "base-model"),
+        "own": ("cot", played["same"][1], "m2"),
+    }
 
 
 def test_fidelity_plays_every_builtin_opponent_against_do_nothing_as_blue():
@@ -117,5 +144,5 @@ def test_fidelity_plays_every_builtin_opponent_against_do_nothing_as_blue():
 def test_fidelity_on_both_sides_and_a_bad_side():
     series = build("experiment=fidelity", "experiment.sides=[blue,red]", "experiment.scenarios=[mushroom_war]")
     assert len(series) == 8 and ("mushroom_war", "slimy", "do_nothing") in {(s.scenario, s.red, s.blue) for s in series}
-    with pytest.raises(ConfigError, match="each side is blue or red"):
+    with pytest.raises(ConfigError, match="experiment.sides.0='green': input should be 'blue' or 'red'"):
         build("experiment=fidelity", "experiment.sides=[green]")

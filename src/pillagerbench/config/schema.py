@@ -13,10 +13,21 @@ from __future__ import annotations
 import copy
 import socket
 from importlib import resources
-from typing import Any, Final, Literal
+from types import UnionType
+from typing import Any, ClassVar, Final, Literal, Union, get_args, get_origin
 
 from omegaconf import OmegaConf
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    PrivateAttr,
+    StrictInt,
+    ValidationError,
+    field_serializer,
+    field_validator,
+    model_validator,
+)
 from pydantic_core import PydanticCustomError
 
 from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
@@ -96,7 +107,25 @@ class LLMConfig(_Strict):
         )
 
 
-class LLMKeys(BaseModel):
+class _AsGiven(BaseModel):
+    """A node typed, and kept as composed beside (`given()`: what the records write, numbers as written)."""
+
+    _given: dict[str, Any] = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _as_composed(cls, data: Any, handler: Any) -> Any:
+        model = handler(data)
+        if isinstance(data, dict):
+            model._given = copy.deepcopy(data)
+        return model
+
+    def given(self) -> dict[str, Any]:
+        """The keys given, as composed (an empty node: none)."""
+        return copy.deepcopy(self._given)
+
+
+class LLMKeys(_AsGiven):
     """An `llm` node as composed: the run's (the preset) or a side's own keys (`red.llm.model=...`). Every
     key of LLMConfig, none required and no range checked here; the settings a side plays with (`llm_of`:
     the run's with the side's merged in) are checked whole by LLMConfig, and only for a side whose team uses
@@ -126,16 +155,6 @@ class LLMKeys(BaseModel):
     price: dict[str, Any] | None = None
     budget: dict[str, Any] | None = None
 
-    _given: dict[str, Any] = PrivateAttr(default_factory=dict)
-
-    @model_validator(mode="wrap")
-    @classmethod
-    def _as_composed(cls, data: Any, handler: Any) -> Any:
-        model = handler(data)
-        if isinstance(data, dict):
-            model._given = copy.deepcopy(data)
-        return model
-
     @classmethod
     def of(cls, data: Any, where: str = "llm") -> LLMKeys:
         """The typed node of `data` (a composed node or a mapping), or one ConfigError line per problem
@@ -143,10 +162,6 @@ class LLMKeys(BaseModel):
         data = plain(data)
         check(problems(cls, data, where))
         return cls.model_validate(data)
-
-    def given(self) -> dict[str, Any]:
-        """The keys given, as composed (an empty node: none)."""
-        return copy.deepcopy(self._given)
 
     def over(self, own: LLMKeys) -> LLMKeys:
         """These keys with `own` merged in key by key (a side's over the run's)."""
@@ -228,12 +243,54 @@ class Choices(BaseModel):
         return self.llm.over(self.side(side).llm)
 
 
-class ExperimentConfig(BaseModel):
-    """The `experiment` node (conf/experiment/NAME.yaml), each default written once. What a design
-    checks with a message of its own (its design, variants, pairings, sides, arenas) is read as given
-    and checked in experiments/spec.py."""
+class _Node(BaseModel):
+    """A node of the experiment whose keys are fixed: a key it lacks or does not take is refused in one line
+    naming the keys it takes (`WHAT takes ...`: problems())."""
 
-    model_config = ConfigDict(extra="ignore", coerce_numbers_to_str=True)  # a team named 7: unknown team '7'
+    model_config = ConfigDict(extra="forbid", coerce_numbers_to_str=True)  # a team named 7: unknown team '7'
+
+    WHAT: ClassVar[str]
+
+
+class Variant(_Node):
+    """One of an experiment's `variants` (its label the key): what it plays instead of the experiment's
+    team, team options, LLM preset and LLM keys; a key not given is the experiment's (`over`)."""
+
+    WHAT: ClassVar[str] = "a variant"
+
+    team: str | None = None
+    # the team's options: checked against the team's options model for each series (match/validate.py)
+    team_options: dict[str, Any] | None = None
+    llm: str | None = None  # an LLM preset; null = the run's llm=...
+    llm_options: LLMKeys | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _none_is_empty(cls, data: Any) -> Any:
+        return {} if data is None else data  # `label:` with nothing after it: the experiment's team as it is
+
+    def over(self, base: Variant) -> Variant:
+        """This variant's keys given over `base` (the experiment's own team, options and LLM)."""
+        return base.model_copy(update={key: getattr(self, key) for key in self.model_fields_set})
+
+
+class Pairing(_Node):
+    """One of the symmetry design's `pairings`: two teams, played in both orders in a scenario."""
+
+    WHAT: ClassVar[str] = "a pairing"
+
+    scenario: str = Field(min_length=1)
+    a: str = Field(min_length=1)
+    b: str = Field(min_length=1)
+
+
+class ExperimentConfig(_AsGiven, _Node):
+    """The `experiment` node (conf/experiment/NAME.yaml), each default written once, typed; kept as
+    composed (`given()`: experiment.json and the manifest write that). What names a registry's entry (its
+    design, teams, scenarios, the splits of `arenas`) is checked against it where the registry is known,
+    experiments/spec.py, with the key the user set."""
+
+    WHAT: ClassVar[str] = "an experiment"
 
     name: str
     design: str
@@ -241,26 +298,34 @@ class ExperimentConfig(BaseModel):
     episodes: int | None = Field(None, ge=0)  # per series (adaptation: train_episodes, generalization: arenas)
     repetitions: int | None = 1  # null or 0: once
     team: str | None = None
+    # the team's options: checked against the team's options model for each series (match/validate.py)
     team_options: dict[str, Any] | None = None
     llm: str | None = None  # an LLM preset for the experiment's team; null = the run's llm=...
-    llm_options: dict[str, Any] | None = None
-    variants: dict[str, Any] | None = None
+    llm_options: LLMKeys | None = None  # keys of that preset (or the run's llm) changed
+    variants: dict[str, Variant] | None = None  # label -> what it changes of the team above
     opponents: list[str] | None = None  # null = the scenario's built-in opponents
     red_teams: list[str] | None = None
     blue_teams: list[str] | None = None
-    pairings: list[Any] | None = None
-    sides: list[Any] | None = None
-    arenas: dict[str, Any] | None = None
+    pairings: list[Pairing] | None = None
+    sides: list[Literal["blue", "red"]] | None = None
+    arenas: dict[str, StrictInt] | None = None  # split -> episodes (splits: scenarios/layout.py SPLITS)
     checkpoint_every: int | None = None
     evaluate: bool = False
     train_episodes: int = 5
     from_run: str | None = None
 
+    @model_validator(mode="before")
     @classmethod
-    def of(cls, data: Any) -> ExperimentConfig:
-        """The typed experiment node of `data`, or one ConfigError line per problem."""
-        check(problems(cls, data, "experiment"))
-        return cls.model_validate(plain(data))
+    def _design_once_called_protocol(cls, data: Any) -> Any:
+        """A node stored before the design had its own word called it `protocol` (an old manifest's; for
+        experiment.json, rundir/experiment.py read_experiment); `given()` keeps it as stored."""
+        if isinstance(data, dict) and "design" not in data and "protocol" in data:
+            data = {("design" if key == "protocol" else key): value for key, value in data.items()}
+        return data
+
+    def own(self) -> Variant:
+        """The experiment's own team, team options, LLM preset and LLM keys: what every variant changes."""
+        return Variant(team=self.team, team_options=self.team_options or {}, llm=self.llm, llm_options=self.llm_options)
 
 
 class RunnerConfig(BaseModel):
@@ -278,11 +343,15 @@ class RunnerConfig(BaseModel):
     resume: str | None = written("resume")
     calibration: str | None = written("calibration")
     plan: bool = written("plan")
-    experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
+    experiment: ExperimentConfig | None = None  # the experiment design (experiments/spec.py builds its series)
+
+    @field_serializer("experiment")
+    def _experiment_as_given(self, experiment: ExperimentConfig | None) -> dict[str, Any] | None:
+        return None if experiment is None else experiment.given()
 
     def stored(self) -> dict[str, Any]:
         """The configuration as a run directory stores it (an experiment's manifest.json): the keys given
-        (a league round's runner keys and experiment, a compare's experiment alone)."""
+        (a league round's runner keys and experiment, a compare's experiment alone), each as given."""
         return self.model_dump(exclude_unset=True)
 
 
@@ -409,6 +478,30 @@ def _where(prefix: str, loc: tuple) -> str:
     return ".".join([prefix, *map(str, loc)] if prefix else map(str, loc))
 
 
+def _is_node(node: Any) -> bool:
+    return isinstance(node, type) and issubclass(node, _Node)
+
+
+def _bare(node: Any) -> Any:
+    """`X | None`: X."""
+    members = [a for a in get_args(node) if a is not type(None)] if get_origin(node) in (Union, UnionType) else []
+    return members[0] if len(members) == 1 else node
+
+
+def _holder(model: Any, loc: tuple) -> Any:
+    """The type that holds the last key of an error's `loc` (a model, or None), down `model`'s fields,
+    the values of its mappings and the items of its lists."""
+    node = model
+    for part in loc[:-1]:
+        node = _bare(node)
+        if isinstance(node, type) and issubclass(node, BaseModel):
+            field = node.model_fields.get(str(part))
+            node = field.annotation if field else None
+        else:
+            node = get_args(node)[-1] if get_origin(node) in (dict, list) else None
+    return _bare(node)
+
+
 def problems(model: type[BaseModel], data: Any, prefix: str = "") -> list[str]:
     """One line per problem of `data` (a dict or an OmegaConf node) against `model`."""
     if OmegaConf.is_config(data):
@@ -419,10 +512,10 @@ def problems(model: type[BaseModel], data: Any, prefix: str = "") -> list[str]:
         out = []
         for e in exc.errors(include_url=False):
             key = _where(prefix, e["loc"])
-            if e["type"] == "extra_forbidden":
-                out.append(f"{key}: unknown key")
-            elif e["type"] == "missing":
-                out.append(f"{key}: missing")
+            if e["type"] in ("extra_forbidden", "missing"):
+                node = _holder(model, e["loc"])  # an experiment's node names the keys it takes
+                takes = f" ({node.WHAT} takes {', '.join(node.model_fields)})" if _is_node(node) else ""
+                out.append(f"{key}: {'unknown key' if e['type'] == 'extra_forbidden' else 'missing'}{takes}")
             elif e["type"] == SECRET:
                 out.append(f"{key}: {e['msg']}")
             else:

@@ -274,7 +274,7 @@ def _specs(cfg: RunConfig, argv: list[str]) -> tuple[str, list[SeriesSpec], dict
     if cfg.experiment is not None:  # its series checked as a run checks them, without the preflight
         specs = build_series(cfg, argv)
         check(list(dict.fromkeys(line for s in specs for line in team_problems(s.config))))
-        return str(cfg.experiment["name"]), specs, {}
+        return cfg.experiment.name, specs, {}
     red, blue, scenario = cfg.red.name, cfg.blue.name, cfg.scenario.name
     spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, cfg.episodes, cfg.seed, cfg)
     return f"run {scenario}: red {red} vs blue {blue}", [spec], {}

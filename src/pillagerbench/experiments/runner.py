@@ -72,7 +72,8 @@ def make_experiment_dir(cfg: RunConfig) -> Path:
 
 
 def experiment_name(cfg: RunConfig) -> str:
-    return str((cfg.experiment or {})["name"])
+    assert cfg.experiment is not None, "an experiment's configuration names its experiment"
+    return cfg.experiment.name
 
 
 def write_experiment(run_dir: Path, config: RunnerConfig, argv: list[str], specs: list[SeriesSpec]) -> None:
@@ -82,9 +83,9 @@ def write_experiment(run_dir: Path, config: RunnerConfig, argv: list[str], specs
     run_dir.mkdir(parents=True, exist_ok=True)
     manifest = experiment_manifest(config, created=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
     data = ExperimentFile(
-        name=config.experiment["name"],
+        name=config.experiment.name,
         created=manifest.created,
-        experiment=config.experiment,
+        experiment=config.experiment.given(),
         overrides=list(argv),
         series=[s.to_dict() for s in specs],
     )

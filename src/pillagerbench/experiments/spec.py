@@ -30,7 +30,7 @@ from typing import Any
 
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.registry import Registry
-from pillagerbench.config.schema import RUNNER_KEYS, ExperimentConfig, RunConfig
+from pillagerbench.config.schema import RUNNER_KEYS, ExperimentConfig, RunConfig, Variant
 from pillagerbench.config.validate import compose_run
 from pillagerbench.rundir import RunDir, SeriesSpec, has_team_state, read_experiment
 from pillagerbench.scenarios import make_scenario
@@ -118,27 +118,21 @@ def _known_team(name: Any, key: str) -> str:
     return str(name)
 
 
-def _variants(exp: ExperimentConfig) -> dict[str, dict]:
-    base = {
-        "team": exp.team,
-        "team_options": exp.team_options or {},
-        "llm": exp.llm,
-        "llm_options": exp.llm_options or {},
-    }
-    raw = exp.variants
-    if not raw:
-        if not base["team"]:
+def _variants(exp: ExperimentConfig) -> dict[str, tuple[str, Variant]]:
+    """label -> (its team, what it plays): each variant's keys over the experiment's own team, options and
+    LLM (none given: one variant, the experiment's team, labelled by its name)."""
+    own = exp.own()
+    if not exp.variants:
+        if not own.team:
             raise ConfigError(f"experiment {exp.name!r} needs `team` (experiment.team=NAME)")
-        return {_known_team(base["team"], "experiment.team"): base}
+        return {(team := _known_team(own.team, "experiment.team")): (team, own)}
     out = {}
-    for label, v in raw.items():
-        v = v or {}
-        merged = dict(base)
-        merged.update({k: v[k] for k in ("team", "team_options", "llm", "llm_options") if k in v})
-        if not merged["team"]:
+    for label, given in exp.variants.items():
+        v = given.over(own)
+        if not v.team:
             raise ConfigError(f"variant {label!r} of experiment {exp.name!r} names no team")
-        _known_team(merged["team"], f"experiment.variants.{label}.team" if "team" in v else "experiment.team")
-        out[str(label)] = merged
+        key = f"experiment.variants.{label}.team" if "team" in given.model_fields_set else "experiment.team"
+        out[str(label)] = (_known_team(v.team, key), v)
     return out
 
 
@@ -147,11 +141,9 @@ def _opponents(chosen: list[str] | None, key: str, scenario: str) -> list[str]:
     return [_known_team(t, f"experiment.{key}") for t in chosen] if chosen else builtin_teams(scenario)
 
 
-def _sides(exp: ExperimentConfig, what: str, default: str) -> list[str]:
-    sides = list(exp.sides or [default])
-    if any(s not in ("blue", "red") for s in sides):
-        raise ConfigError(f"experiment.sides={sides}: each side is blue or red ({what}; e.g. [blue, red])")
-    return sides
+def _sides(exp: ExperimentConfig, default: str) -> list[str]:
+    """The sides `experiment.sides` names (each blue or red: config/schema.py), or else `default`."""
+    return list(exp.sides) if exp.sides else [default]
 
 
 def _arenas(exp: ExperimentConfig, overrides: list[str]) -> dict[str, int]:
@@ -197,17 +189,17 @@ class _Builder:
         *,
         red: str | None = None,
         blue: str | None = None,
-        variant: dict | None = None,
-        blue_variant: dict | None = None,
+        variant: Variant | None = None,
+        blue_variant: Variant | None = None,
         arena: str | None = None,
         **extra,
     ) -> SeriesSpec:
-        own = variant or blue_variant or {}  # the experiment's team: its model is the series' llm
+        own = variant or blue_variant  # the experiment's team: its model is the series' llm
         changes: dict[str, Any] = {
-            side: v.get("team_options") or {} for side, v in (("red", variant), ("blue", blue_variant)) if v
+            side: v.team_options or {} for side, v in (("red", variant), ("blue", blue_variant)) if v
         }
-        if own:
-            changes["llm"] = own.get("llm_options") or {}
+        if own is not None:
+            changes["llm"] = own.llm_options.given() if own.llm_options else {}
         if arena:  # every episode on the paper's layout, or each on a fresh one of the split
             changes |= {"layout": PAPER, "split": arena}
         extra["variant"] = extra.pop("variant_label", None)
@@ -220,7 +212,7 @@ class _Builder:
         if len(self.repetitions) > 1:
             parts.append(f"r{extra.get('repetition', 0)}")
         seed = self.seed * 1000 + index
-        cfg = self.compose(scenario, red_team, blue_team, own.get("llm")).updated(
+        cfg = self.compose(scenario, red_team, blue_team, own.llm if own is not None else None).updated(
             {**changes, "episodes": int(episodes), "seed": seed}
         )
         spec = SeriesSpec(
@@ -249,26 +241,19 @@ class _Builder:
                         self.add(sc, red, blue, self.episodes, repetition=rep)
 
     def symmetry(self) -> None:
-        pairings = self.exp.pairings or []
+        pairings = self.exp.pairings or []  # each {scenario, a, b} (config/schema.py Pairing)
         if not pairings:
             raise ConfigError(
                 f"experiment {self.exp.name!r} needs `pairings`: a list of {{scenario: NAME, a: TEAM, b: TEAM}}"
             )
-        for i, p in enumerate(pairings):
-            missing = [k for k in ("scenario", "a", "b") if not (p or {}).get(k)]
-            if missing:
-                raise ConfigError(
-                    f"experiment.pairings[{i}] needs {', '.join(missing)} "
-                    f"(a pairing is {{scenario: NAME, a: TEAM, b: TEAM}}), got {p}"
-                )
         for rep in self.repetitions:
             for p in pairings:
-                orders = [(p["a"], p["b"])] if p["a"] == p["b"] else [(p["a"], p["b"]), (p["b"], p["a"])]
+                orders = [(p.a, p.b)] if p.a == p.b else [(p.a, p.b), (p.b, p.a)]
                 for red, blue in orders:
-                    self.add(p["scenario"], red, blue, self.episodes, repetition=rep)
+                    self.add(p.scenario, red, blue, self.episodes, repetition=rep)
 
     def fidelity(self) -> None:
-        sides = _sides(self.exp, "the opponent's side", "blue")
+        sides = _sides(self.exp, "blue")
         for rep in self.repetitions:
             for sc in self.exp.scenarios:
                 for team in _opponents(self.exp.opponents, "opponents", sc):
@@ -279,29 +264,29 @@ class _Builder:
                         self.add(sc, red, blue, self.episodes, repetition=rep)
 
     def generalization(self) -> None:
-        arenas, sides = _arenas(self.exp, self.compose.overrides), _sides(self.exp, "the team's side", "red")
+        arenas, sides = _arenas(self.exp, self.compose.overrides), _sides(self.exp, "red")
         for rep in self.repetitions:
-            for label, v in _variants(self.exp).items():
+            for label, (team, v) in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
                     for opponent in _opponents(self.exp.opponents, "opponents", sc):
                         for side in sides:
-                            red, blue = (v["team"], opponent) if side == "red" else (opponent, v["team"])
-                            team: dict[str, Any] = (
+                            red, blue = (team, opponent) if side == "red" else (opponent, team)
+                            sided: dict[str, Any] = (
                                 {"red": label, "variant": v} if side == "red" else {"blue": label, "blue_variant": v}
                             )
                             for arena, episodes in arenas.items():
                                 self.add(
-                                    sc, red, blue, episodes, **team, arena=arena, variant_label=label, repetition=rep
+                                    sc, red, blue, episodes, **sided, arena=arena, variant_label=label, repetition=rep
                                 )
 
     def benchmark(self) -> None:
         for rep in self.repetitions:
-            for label, v in _variants(self.exp).items():
+            for label, (team, v) in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
                     for blue in _opponents(self.exp.opponents, "opponents", sc):
                         self.add(
                             sc,
-                            v["team"],
+                            team,
                             blue,
                             self.episodes,
                             red=label,
@@ -315,12 +300,12 @@ class _Builder:
         every = self.exp.checkpoint_every
         episodes = self.episodes
         for rep in self.repetitions:
-            for label, v in _variants(self.exp).items():
+            for label, (team, v) in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
                     play = self.add(
                         sc,
-                        v["team"],
-                        v["team"],
+                        team,
+                        team,
                         episodes,
                         red=label,
                         blue=label,
@@ -339,7 +324,7 @@ class _Builder:
                         for blue in _opponents(self.exp.opponents, "opponents", sc):
                             self.add(
                                 sc,
-                                v["team"],
+                                team,
                                 blue,
                                 1,
                                 red=label,
@@ -356,7 +341,7 @@ class _Builder:
         train = self.exp.train_episodes
         from_run = self.exp.from_run
         for rep in self.repetitions:
-            for label, v in _variants(self.exp).items():
+            for label, (team, v) in _variants(self.exp).items():
                 for sc in self.exp.scenarios:
                     opponents = _opponents(self.exp.opponents, "opponents", sc)
                     for trained_on in opponents:
@@ -369,7 +354,7 @@ class _Builder:
                         else:
                             t = self.add(
                                 sc,
-                                v["team"],
+                                team,
                                 trained_on,
                                 train,
                                 red=label,
@@ -384,7 +369,7 @@ class _Builder:
                             group = "same" if blue == trained_on else "different"
                             self.add(
                                 sc,
-                                v["team"],
+                                team,
                                 blue,
                                 1,
                                 red=label,
@@ -434,9 +419,9 @@ def find_checkpoint(run_dir: Path, scenario: str, red: str, blue: str, repetitio
 
 def build_series(cfg: RunConfig, argv: list[str] | None = None) -> list[SeriesSpec]:
     """The series of the experiment selected in cfg.experiment (argv: the user's overrides)."""
-    if not cfg.experiment:
+    exp = cfg.experiment
+    if exp is None:
         raise ConfigError("no experiment selected (experiment=NAME; see conf/experiment)")
-    exp = ExperimentConfig.of(cfg.experiment)
     try:
         play = DESIGNS.find(exp.design)
     except ConfigError as exc:

@@ -88,7 +88,7 @@ def experiment_manifest(config: RunnerConfig, created: str) -> Manifest:
         versions={"pillagerbench": __version__},
         git_revision=git_revision(),
         suite=current(),
-        experiment=config.experiment["name"],
+        experiment=config.experiment.name,
     )
 
 
