@@ -8,6 +8,8 @@ from __future__ import annotations
 import ast
 import json
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -248,3 +250,18 @@ def test_the_runners_keys_are_declared_once_and_left_out_one_way():
     series = full.for_series().stored()
     assert not set(RUNNER_KEYS) & set(series) and set(full.stored()) - set(series) <= set(RUNNER_KEYS)
     assert series["display"] == full.stored()["display"]
+
+
+def test_the_groups_checks_need_nothing_imported_first():
+    """A fresh process that imports only config/validate.py checks teams as a run does (the checks'
+    module is loaded on the first check), whatever the caller imported before."""
+    code = (
+        "from pillagerbench.config.compose import ConfigError\n"
+        "from pillagerbench.config.validate import load_run\n"
+        "print(load_run(['red=balanced']).red.name)\n"
+        "try:\n    load_run(['red=no_such_team'])\nexcept ConfigError as e:\n    print(str(e).splitlines()[0])\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    first, refused = proc.stdout.splitlines()
+    assert first == "balanced" and refused.startswith("red=no_such_team"), proc.stdout

@@ -5,13 +5,15 @@ one line naming the key, the bad value and what is valid; a ConfigError holds al
 The top-level keys are this package's (schema.py); the groups a configuration chooses by name (the
 scenario and its layouts; each side's team, its options and the LLM it plays with) are known to the
 layers that hold their registries, above this one. Each such check is registered here by its group's
-name (`GROUP_CHECKS`; match/validate.py registers them, and importing `pillagerbench.match` does) and
-takes the choices typed (`Choices`), never the composed configuration; a run is refused, not half
-checked, when one is missing.
+name (`GROUP_CHECKS`; match/validate.py registers them) and takes the choices typed (`Choices`), never
+the composed configuration. The module that registers them is loaded by name on the first check
+(`CHECKS_MODULE`, as a plugin: this package imports nothing above it), so a check never depends on
+what the caller happened to import first; a run is refused, not half checked, when one is still missing.
 """
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Callable, Sequence
 from typing import Any, Final
 
@@ -35,16 +37,17 @@ GroupCheck = Callable[[Choices], list[str]]
 GROUP_CHECKS: Registry[GroupCheck] = Registry("configuration group check")
 SCENARIO, LAYOUT, TEAMS = "scenario", "layout", "teams"  # the scenario; layout= and split=; both sides
 GROUPS: Final = (SCENARIO, LAYOUT, TEAMS)
+CHECKS_MODULE: Final = "pillagerbench.match.validate"  # registers every group's check when loaded
 
 
 def group_problems(cfg: Choices | RunConfig | Any, *groups: str) -> list[str]:
     """The problems the named groups' checks find in `cfg` (typed, or a composed configuration), each line
     once, in the groups' order."""
+    if any(g not in GROUP_CHECKS for g in groups):
+        importlib.import_module(CHECKS_MODULE)
     missing = [g for g in groups if g not in GROUP_CHECKS]
     if missing:  # a programming error: the run would be played half checked
-        raise RuntimeError(
-            f"no check of the configuration group(s) {missing} is registered: import pillagerbench.match"
-        )
+        raise RuntimeError(f"no check of the configuration group(s) {missing} is registered by {CHECKS_MODULE}")
     choices = cfg.choices() if isinstance(cfg, RunConfig) else cfg if isinstance(cfg, Choices) else _choices(cfg)
     found: list[str] = []
     for group in groups:
