@@ -38,11 +38,11 @@ def name_problem(name: object) -> str | None:
     return f"{name!r} is not a player name (3 to 16 letters, digits or _)"
 
 
-def seats_of(node: dict[str, Any], players: list[str]) -> list[str]:
-    """The players of a side (its team node, its scenario players) that people play."""
-    if str(node.get("name")) == HUMAN_TEAM:
+def seats_of(team: str, humans: object, players: list[str]) -> list[str]:
+    """The players of a side (its team's name, its `humans`, its scenario players) that people play."""
+    if team == HUMAN_TEAM:
         return list(players)
-    given = node.get(SIDE_KEY) or []
+    given = humans or []
     return [str(n) for n in given] if isinstance(given, (list, tuple)) else []
 
 

@@ -93,7 +93,9 @@ def people_problems(choices: Choices) -> list[str]:
     sides = {s.key: list(s.player_names) for s in make_scenario(scenario).sides}
     nodes = {side: {"name": choices.side(side).name, **(choices.side(side).model_extra or {})} for side in SIDES}
     found = [p for side in SIDES for p in people.side_problems(side, nodes[side], sides[side])]
-    seats = {side: people.seats_of(nodes[side], sides[side]) for side in SIDES}
+    seats = {
+        side: people.seats_of(nodes[side]["name"], nodes[side].get(people.SIDE_KEY), sides[side]) for side in SIDES
+    }
     return found or people.clock_problems(choices.clock.mode, seats)
 
 
