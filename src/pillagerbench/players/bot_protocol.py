@@ -161,6 +161,9 @@ class BotOps:
     async def equip(self, equipment: Equipment, *, wait: float = 15.0) -> bool:
         return await self._ask("equip", wait, equipment=equipment)
 
+    async def act(self, input: dict[str, Any], *, wait: float = 10.0) -> str:
+        return await self._ask("act", wait, input=input)
+
     async def settle(
         self, pos: Sequence[float] | None = None, timeout: float | None = None, *, wait: float = 10.0
     ) -> bool | Position:

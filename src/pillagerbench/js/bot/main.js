@@ -33,6 +33,7 @@ const { LagMeter } = require('./lag')
 const watchdog = require('./watchdog')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
+const person = require('./person')
 const { seededRandom, seedOf } = require('../clock/random')
 
 const CHAT_LIMIT = 25
@@ -265,6 +266,11 @@ const OPS = {
       await bot.equip(item, dests[i])
     }
     return true
+  },
+  // A person's key or mouse input, inside the current run (its packets pass the gate as the run's own).
+  act: async ({ input }) => {
+    if (!current || !current.active) throw new Error('the game is not on: nothing you do acts now')
+    return within(current, () => person.act(bot, input))
   },
   // Wait until the server's teleport since the last settle has arrived, the bot stands near `pos`
   // and the ground under it is loaded.
