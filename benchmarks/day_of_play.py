@@ -5,6 +5,7 @@ each process holds over them. Writes samples.jsonl (as it goes), summary.json an
     python benchmarks/day_of_play.py [--episodes 500] [--length 15] [--out DIR]
         [--red aggressive --blue slimy] [--every 5]
     python benchmarks/day_of_play.py --report DIR     # the summary and figure again from DIR's samples
+    python benchmarks/day_of_play.py --league [--wall 3600] [--length 15] [--parallel 1] [--out DIR]
 
 It runs `pillagerbench run clock=lockstep red=RED blue=BLUE episodes=N episode_length=L` in a
 subprocess (a plain run is one series: one server and the same bot processes for every episode, a bot
@@ -19,7 +20,18 @@ closest figure the run already records; the bots' own `bot_lag` reads the game c
 The summary gives, per process kind, the RSS and descriptors at the end of warm-up (the episode at
 20 % of the run, 100 of 500) and at the end, growth in % between them (the median of the samples
 during the 5 % of episodes around each point, so one garbage collection does not decide it), and the
-least-squares slope over the same span in MB per 100 episodes. Target: under 5 % growth.
+least-squares slope over the same span in MB per 100 episodes; a process restarted (a starved bot) also
+its own growth since (`since_restart`: its warm-up the first 20 % of the episodes after the restart),
+which is the one the verdict reads. Target: under 5 % growth.
+
+--league: a league of the built-in teams played for --wall seconds of wall time, as a user plays one
+(`pillagerbench league DIR init confidence=0.99999`, then `pillagerbench league DIR play
+budget.episodes=100000 clock=lockstep episode_length=L parallel=P display=plain`, stopped by Ctrl-C at
+the deadline; played again if it settles first). One Python process plays every round; each match is a
+series with its own server and bots, which end with it. So the kinds sampled are `python` (the league's
+process: RSS and descriptors), `server` and `bot` (per process: the mean RSS and descriptors of those
+alive, and `n`, how many are alive: a process left behind by a finished series shows there), against
+the episodes finished in every round.
 """
 
 from __future__ import annotations
@@ -62,10 +74,11 @@ def kind_of(proc: psutil.Process, runner: int) -> str | None:
     return None
 
 
-def sample(runner: psutil.Process) -> dict[str, dict[str, float]]:
+def sample(runner: psutil.Process, league: bool = False) -> dict[str, dict]:
     """RSS (MB) and open descriptors of each process of the run, by kind (a kind seen twice, a bot
-    restarted while the old one ends: summed)."""
-    out: dict[str, dict[str, float]] = {}
+    restarted while the old one ends: summed). `league`: kinds `python`, `server`, `bot`, each the
+    mean of its processes alive, with their number `n`."""
+    out: dict[str, dict] = {}
     try:
         procs = [runner, *runner.children(recursive=True)]
     except psutil.Error:
@@ -74,6 +87,8 @@ def sample(runner: psutil.Process) -> dict[str, dict[str, float]]:
         kind = kind_of(proc, runner.pid)
         if kind is None:
             continue
+        if league:
+            kind = kind.split(":")[0]
         try:
             with proc.oneshot():
                 rss, fds = proc.memory_info().rss / 2**20, proc.num_fds()
@@ -83,15 +98,34 @@ def sample(runner: psutil.Process) -> dict[str, dict[str, float]]:
         seen["rss_mb"] = round(seen["rss_mb"] + rss, 1)
         seen["fds"] += fds
         seen["pids"].append(proc.pid)
+    if league:
+        for seen in out.values():
+            n = seen["n"] = len(seen.pop("pids"))
+            seen["rss_mb"], seen["fds"] = round(seen["rss_mb"] / n, 1), round(seen["fds"] / n, 1)
     return out
 
 
+def episode_files(run_dir: Path) -> list[Path]:
+    """The run's episodes.jsonl; for a league, every round's series' files in order."""
+    if (run_dir / "league.yaml").exists():
+        return sorted((run_dir / "matches").glob("round_*/series/*/episodes.jsonl"))
+    return [run_dir / "episodes.jsonl"]
+
+
 def episodes_done(run_dir: Path) -> int:
-    try:
-        with open(run_dir / "episodes.jsonl", "rb") as fh:
-            return sum(1 for _ in fh)
-    except FileNotFoundError:
-        return 0
+    n = 0
+    for path in episode_files(run_dir):
+        try:
+            with open(path, "rb") as fh:
+                n += sum(1 for _ in fh)
+        except FileNotFoundError:
+            pass
+    return n
+
+
+def records_of(run_dir: Path) -> list[dict]:
+    """Every episode record of the run (a league's round by round, each round's series one after another)."""
+    return [r for path in episode_files(run_dir) if path.exists() for r in read_jsonl(path)]
 
 
 def play(a: argparse.Namespace, out: Path) -> int:
@@ -102,22 +136,50 @@ def play(a: argparse.Namespace, out: Path) -> int:
         f"episode_length={a.length}", f"run_dir={run_dir}", "display=plain",
     ]  # fmt: skip
     (out / "command.txt").write_text(" ".join(cmd) + "\n")
-    t0 = time.monotonic()
-    with open(out / "run.log", "wb") as log, open(out / SAMPLES, "a") as samples:
+    return sampled(cmd, out, run_dir, a.every, time.monotonic(), None)
+
+
+def sampled(cmd: list[str], out: Path, run_dir: Path, every: float, t0: float, deadline: float | None) -> int:
+    """`cmd` played and sampled until it ends, or until `deadline` (monotonic) when it is stopped by
+    Ctrl-C, as a user stops a run; its exit code."""
+    league = deadline is not None
+    with open(out / "run.log", "ab") as log, open(out / SAMPLES, "a") as samples:
         proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
         runner = psutil.Process(proc.pid)
         try:
-            while proc.poll() is None:
+            while proc.poll() is None and (deadline is None or time.monotonic() < deadline):
                 line = {"t": round(time.monotonic() - t0, 1), "episodes": episodes_done(run_dir)}
                 line["load"] = round(psutil.getloadavg()[0], 2)
-                samples.write(json.dumps({**line, "procs": sample(runner)}) + "\n")
+                samples.write(json.dumps({**line, "procs": sample(runner, league)}) + "\n")
                 samples.flush()
-                time.sleep(a.every)
-        finally:  # stopped (Ctrl-C, kill): the run stops too, as its own Ctrl-C would (resume= finishes it)
+                time.sleep(every)
+        finally:  # stopped (Ctrl-C, kill, the deadline): the run stops too, as its own Ctrl-C would
             if proc.poll() is None:
                 proc.send_signal(signal.SIGINT)
-                proc.wait()
+                try:
+                    proc.wait(timeout=120)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
     return proc.returncode
+
+
+def play_league(a: argparse.Namespace, out: Path) -> int:
+    """A league of the built-in teams played for a.wall seconds (see the module's docstring)."""
+    league_dir = out / "run"
+    confidence = 0.99999  # far from settled: the league keeps scheduling for the whole hour
+    init = [*CLI, "league", str(league_dir), "init", f"confidence={confidence}"]
+    subprocess.run(init, cwd=ROOT, check=True, stdout=subprocess.DEVNULL)
+    game = [f"clock={a.clock}", f"episode_length={a.length}", f"parallel={a.parallel}", "display=plain"]
+    play_cmd = [*CLI, "league", str(league_dir), "play", "budget.episodes=100000", *game]
+    (out / "command.txt").write_text(" ".join(play_cmd) + f"  # for {a.wall:g} s of wall time\n")
+    t0 = time.monotonic()
+    deadline, code, again = t0 + a.wall, 0, []
+    while time.monotonic() < deadline - 60 and code == 0:  # settled early: played on, closer to 1
+        code = sampled([*play_cmd, *again], out, league_dir, a.every, t0, deadline)
+        confidence = 1 - (1 - confidence) / 10
+        again = [f"confidence={confidence}"]
+    return 0 if code in (0, -signal.SIGINT, 130) else code
 
 
 def read_jsonl(path: Path) -> list[dict]:
@@ -141,8 +203,10 @@ def slope_per_100(samples: list[dict], kind: str, field: str, start: float) -> f
     return round(100 * sum((x - mx) * (y - my) for x, y in pts) / var, 2) if var else None
 
 
-def growth(samples: list[dict], kind: str, field: str, episodes: int) -> dict:
-    warm, half = max(1.0, episodes * WARM_UP), max(1.0, episodes * WINDOW / 2)
+def growth(samples: list[dict], kind: str, field: str, episodes: int, start: float = 0) -> dict:
+    """From the end of warm-up (WARM_UP of the episodes after `start`) to the end."""
+    span = episodes - start
+    warm, half = max(1.0, start + span * WARM_UP), max(1.0, span * WINDOW / 2)
     first, last = at(samples, kind, field, warm, half), at(samples, kind, field, episodes - half, half)
     pct = round(100 * (last - first) / first, 1) if first and last is not None else None
     return {
@@ -172,18 +236,41 @@ def per_episode(records: list[dict]) -> dict:
     }
 
 
+def last_start(samples: list[dict], kind: str) -> int:
+    """The episode count when the last process of `kind` started (a restart), as the samples saw it."""
+    seen: set[int] = set()
+    start = 0
+    for s in samples:
+        pids = set(s["procs"].get(kind, {}).get("pids", []))
+        if seen and pids - seen:
+            start = s["episodes"]
+        seen |= pids
+    return start
+
+
+def rss_growth(proc: dict) -> float | None:
+    """A kind's RSS growth: the live process's own since its restart, if it was restarted."""
+    return (proc.get("since_restart") or proc["rss_mb"])["growth_pct"]
+
+
 def summarize(out: Path) -> dict:
     samples = read_jsonl(out / SAMPLES)
-    records = read_jsonl(out / "run" / "episodes.jsonl")
+    records = records_of(out / "run")
     n = len(records)
     kinds = sorted({k for s in samples for k in s["procs"]}, key=lambda k: (k != "python", k != "server", k))
     procs = {k: {f: growth(samples, k, f, n) for f, _ in FIELDS} for k in kinds}
     for k in kinds:  # a process restarted (a bot that died or did not stop) starts its RSS afresh
+        if (out / "run" / "league.yaml").exists():  # processes come and go with the series: how many at most
+            procs[k]["most_alive"] = max(s["procs"].get(k, {}).get("n", 0) for s in samples)
+            procs[k]["after_last_sample"] = samples[-1]["procs"].get(k, {}).get("n", 0)
+            continue
         procs[k]["restarts"] = len({p for s in samples for p in s["procs"].get(k, {}).get("pids", [])}) - 1
-    worst = max((p["rss_mb"]["growth_pct"] or 0.0 for p in procs.values()), default=0.0)
+        if procs[k]["restarts"] and (since := last_start(samples, k)) < n:  # the live process's own growth
+            procs[k]["since_restart"] = {"episode": since, **growth(samples, k, "rss_mb", n, since)}
+    worst = max((rss_growth(p) or 0.0 for p in procs.values()), default=0.0)
     eps = per_episode(records)
     return {
-        "command": (out / "command.txt").read_text().strip(),
+        "command": (out / "command.txt").read_text().strip().splitlines()[0],
         "episodes": n,
         "wall_h": round(samples[-1]["t"] / 3600, 2) if samples else 0,
         "load_avg": {"min": min(s["load"] for s in samples), "max": max(s["load"] for s in samples)},
@@ -202,7 +289,7 @@ def figure(out: Path, summary: dict) -> None:
     import matplotlib.pyplot as plt
 
     samples = read_jsonl(out / SAMPLES)
-    series = per_episode(read_jsonl(out / "run" / "episodes.jsonl"))["series"]
+    series = per_episode(records_of(out / "run"))["series"]
     fig, axes = plt.subplots(2, 2, figsize=(12, 8), sharex=True)
     for ax, (field, label) in zip(axes[0], FIELDS, strict=True):
         for kind in summary["processes"]:
@@ -242,14 +329,18 @@ def main() -> int:
     ap.add_argument("--blue", default="slimy")
     ap.add_argument("--every", type=float, default=5, help="seconds between samples")
     ap.add_argument("--report", type=Path, metavar="DIR", help="only the summary and figure of a run in DIR")
+    ap.add_argument("--league", action="store_true", help="a league of the built-in teams for --wall seconds")
+    ap.add_argument("--wall", type=float, default=3600, help="--league: seconds of wall time (default an hour)")
+    ap.add_argument("--parallel", type=int, default=1, help="--league: matches played at once")
+    ap.add_argument("--clock", default="lockstep", choices=("lockstep", "real"), help="--league: the game clock")
     a = ap.parse_args()
     if a.report:
         print(json.dumps(report(a.report), indent=1))
         return 0
-    out = a.out or Path(f"/tmp/day_of_play_{time.strftime('%Y%m%d_%H%M%S')}")
+    out = a.out or Path(f"/tmp/day_of_play_{'league_' if a.league else ''}{time.strftime('%Y%m%d_%H%M%S')}")
     out.mkdir(parents=True, exist_ok=True)
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # kill PID: the run is stopped first (play)
-    code = play(a, out)
+    code = play_league(a, out) if a.league else play(a, out)
     print(json.dumps(report(out), indent=1))
     return code
 

@@ -1,10 +1,11 @@
 """Killed anywhere, nothing lost or doubled (issue 55, item 6), with many seeds: each seed draws a run
-(an experiment on the lockstep or the real clock, a `compare`, a league round; tests/support/kill_targets.py),
-a process to SIGKILL (the runner, the arena server, a bot) and a moment (a time within the run's span,
+(an experiment on the lockstep or the real clock, a `compare`, a league round, a remote team's experiment on
+the lockstep clock on the local launcher or on Ray; tests/support/kill_targets.py), a process to SIGKILL
+(the runner, the arena server, a bot, a remote team's server) and a moment (a time within the run's span,
 or a count of recorded episodes); the run is killed there, resumed when it did not end well by itself,
-and checked (tests/support/kill_anywhere.py): every planned episode once, every record whole, the report
-counting what an unkilled run counts. Prints one JSON summary: kills by process kind and moment, resumes
-that worked, runs with an episode lost or doubled, and every seed's outcome.
+and checked (tests/support/kill_anywhere.py): every planned episode once, every record whole, the run's
+bundle verified, its report counting what an unkilled run counts. Prints one JSON summary: kills by
+process kind and moment, resumes that worked, runs with an episode lost or doubled, and every seed's outcome.
 
     python benchmarks/kill_anywhere.py --seeds 20                 # seeds 0..19, every target
     python benchmarks/kill_anywhere.py --seeds 5 --first 100 --targets experiment_lockstep league_lockstep
@@ -49,9 +50,11 @@ def summary(kills: list[Kill]) -> dict:
         "hung_after_a_child_kill": sum(k.hung for k in kills),
         "runner_kills_with_orphans": sum(bool(k.orphans) for k in kills),
         "orphans_by_kind": dict(Counter(kind for k in kills for kind in k.orphans)),
+        "lingering_by_kind": dict(Counter(kind for k in kills for kind in k.lingering)),
         "with_problems": sum(bool(k.problems) for k in kills),
-        "lost_or_doubled": [k.seed for k in kills if any("not 0.." in p or "used of" in p for p in k.problems)],
+        "lost_or_doubled": [k.seed for k in kills if any("not 0.." in p or "given up of" in p for p in k.problems)],
         "half_written": [k.seed for k in kills if any("not whole" in p for p in k.problems)],
+        "bundle": [k.seed for k in kills if any("bundle" in p for p in k.problems)],
         "seeds": [k.summary() for k in kills],
     }
 

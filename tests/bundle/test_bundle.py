@@ -156,6 +156,15 @@ def test_verify_names_a_tampered_score_even_with_forged_checksums(run, tmp_path,
     assert any("run/episode_000: episode.json differs from its line" in f and "red_score" in f for f in found)
 
 
+def test_verify_names_a_half_written_episode_record(run, tmp_path, capsys):
+    """A record cut short before export (its checksum then matches) is named, not passed."""
+    record = RunDir(run).record_path(0)
+    record.write_text(record.read_text()[:40])
+    assert cli.main(["verify", str(export(tmp_path, run))]) == 1
+    found = [line for line in capsys.readouterr().out.splitlines() if line.startswith("disagrees: ")]
+    assert any("run/episode_000: episode.json: unreadable (half written?)" in f for f in found), found
+
+
 def test_verify_names_a_tampered_missing_and_extra_file(run, tmp_path, capsys):
     def damage(root: Path) -> None:
         run = series_of(root)

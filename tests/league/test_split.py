@@ -10,6 +10,7 @@ import html
 import pytest
 
 from pillagerbench.cli.commands import main as cli_main
+from pillagerbench.config.schema import RunnerConfig
 from pillagerbench.league import results
 from pillagerbench.league.board import write_board
 from pillagerbench.league.rounds import write_round
@@ -44,16 +45,16 @@ def test_the_board_rates_its_split_only_and_says_which(rounds, split, rated, lef
 
 def test_a_test_league_plays_every_match_on_fresh_test_layouts(tmp_path):
     league = League(entrants=[RosterEntry(t, t) for t in TEAMS], split="test")
-    _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), {})
+    _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), RunnerConfig())
     assert [(s.config.layout, s.config.split) for s in specs] == [("paper", "test")] * 2
     league.split = "paper"
-    _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), {})
+    _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), RunnerConfig())
     assert [(s.config.layout, s.config.split) for s in specs] == [("paper", None)] * 2
 
 
 def test_every_match_is_played_with_its_side_swapped_twin_on_the_same_seed(tmp_path):
     league = League(entrants=[RosterEntry(t, t) for t in TEAMS], split="dev")
-    _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), {})
+    _, specs = write_round(tmp_path, league, [Pairing("mushroom_war", *TEAMS)], 2, (), RunnerConfig())
     assert [(s.red, s.blue) for s in specs] == [tuple(TEAMS), tuple(reversed(TEAMS))]
     assert specs[0].seed == specs[1].seed and specs[0].config.split == "dev"  # dev layouts follow the seed
 

@@ -1,8 +1,10 @@
 """Killed anywhere, nothing lost or doubled (issue 55, item 6): start a run in a subprocess (an
-experiment, a `compare`, a league round), SIGKILL one of its processes at a seeded random moment (the
-runner, the arena server, a bot), let the run handle a child's death or resume it after the runner's,
-then check the run directories: every planned episode exactly once, every JSON and JSONL record whole,
-and the report counting what an unkilled run of the same spec plans.
+experiment, a `compare`, a league round; with a remote team, on Ray), SIGKILL one of its processes at a
+seeded random moment (the runner, the arena server, a bot, or a remote team's server, which its owner
+starts again), let the run handle a child's death or resume it after the runner's, then check the run
+directories: every planned episode exactly once, every JSON and JSONL record whole, the report counting
+what an unkilled run of the same spec plans, and the run exported as a results bundle that `verify`
+passes and whose counts are the run's.
 
 Shared by tests/experiments/test_kill_anywhere.py (a few seeds) and benchmarks/kill_anywhere.py (many).
 """
@@ -12,6 +14,7 @@ from __future__ import annotations
 import json
 import os
 import random
+import re
 import signal
 import subprocess
 import tempfile
@@ -28,6 +31,12 @@ ROOT = Path(__file__).resolve().parents[2]
 KINDS = ("runner", "server", "bot")
 MARKS = {"server": "js/server/main.js", "bot": "js/bot/main.js"}  # a child's kind by its command line
 ORPHAN_WAIT_S = 10.0  # how long the runner's children get to leave by themselves after it died
+SUITE_MOVED = re.compile(r"manifest\.json: says suite \S+, but \d+ episode\(s\) say suite ")
+DOWN_S = 1.0  # how long a killed outside process (a remote team's server) stays down before its owner restarts it
+
+
+def _nothing(root: Path, kind: str) -> psutil.Process | None:
+    return None
 
 
 @dataclass(frozen=True)
@@ -42,8 +51,15 @@ class Target:
     series: str  # glob of its series directories under the directory
     runs: Callable[[Path], list[Path]]  # the run directories the report reads
     expected: Callable[[Path], dict[Path, int]]  # series directory -> episodes it must use (read after the run)
-    prepare: Callable[[Path], None] = lambda root: None  # before the start (a league's init)
+    prepare: Callable[[Path], None] = lambda root: None  # before the start (a league's init, a team's server)
     finished: Callable[[Path], list[str]] = lambda root: []  # what else an ended run must show (a compare's answer)
+    kinds: tuple[str, ...] = KINDS  # the kinds of process a seed draws from
+    # a process of a drawn kind that is not the runner's child (a remote team's server), and its restart
+    outside: Callable[[Path, str], psutil.Process | None] = _nothing
+    revive: Callable[[Path, str], None] = lambda root, kind: None
+    cleanup: Callable[[Path], None] = lambda root: None  # after the run and its check (a team's server stopped)
+    # command-line marks of processes not ours that may outlive a killed runner for a while (Ray's agents)
+    lingering: tuple[str, ...] = ()
 
 
 @dataclass
@@ -61,6 +77,7 @@ class Kill:
     run_exit: int | None = None  # a child's kill: how the run ended by itself (None: killed, or hung)
     hung: bool = False  # after a child's kill the run did not end within its time
     orphans: list[str] = field(default_factory=list)  # the runner's children alive ORPHAN_WAIT_S after it died
+    lingering: list[str] = field(default_factory=list)  # those of them the target lets linger (Target.lingering)
     resumed: bool = False
     resume_exit: int | None = None
     given_up: int = 0  # planned episodes given up after every try spoiled (a loaded machine's lag)
@@ -76,7 +93,7 @@ def draw(seed: int, target: Target) -> Kill:
     """The kill a seed gives: which kind of process, and when (a time within the run's span, or a
     count of recorded episodes)."""
     rng = random.Random(seed)
-    kill = Kill(seed, target.name, rng.choice(KINDS))
+    kill = Kill(seed, target.name, rng.choice(target.kinds))
     if rng.random() < 0.5:
         kill.at_s = round(rng.uniform(0.1, 1.0) * target.span_s, 2)
     else:
@@ -89,6 +106,14 @@ def draw(seed: int, target: Target) -> Kill:
 
 def _lines(path: Path) -> list[str]:
     return path.read_text().splitlines() if path.exists() else []
+
+
+def _parsed(text: str) -> dict | None:
+    try:
+        found = json.loads(text)
+    except ValueError:
+        return None
+    return found if isinstance(found, dict) else None
 
 
 def records(root: Path, target: Target) -> int:
@@ -132,17 +157,17 @@ def series_problems(series: Path, planned: int) -> tuple[list[str], int, int]:
 
     name = series.relative_to(series.parents[2])
     run = RunDir(series)
-    lines = [json.loads(x) for x in _lines(run.episodes_path)]
-    indices = [r["episode"] for r in lines]
+    lines = [_parsed(x) or {} for x in _lines(run.episodes_path)]  # a torn line: whole_records names it
+    indices = [r.get("episode") for r in lines]
     out = []
     if indices != list(range(len(indices))):
         out.append(f"{name}: episode lines {indices}, not 0..{len(indices) - 1} once each")
     dirs = {i for i, _ in run.episode_dirs()}
     if dirs != set(indices):
-        out.append(f"{name}: episode directories {sorted(dirs)} but lines {sorted(set(indices))}")
-    for i in indices:
+        out.append(f"{name}: episode directories {sorted(dirs)} but lines {sorted(set(indices), key=str)}")
+    for i in (x for x in indices if isinstance(x, int)):
         record = run.record_path(i)
-        if not record.exists() or json.loads(record.read_text()).get("episode") != i:
+        if not record.exists() or (_parsed(record.read_text()) or {}).get("episode") != i:
             out.append(f"{name}: episode_{i:03d}/episode.json missing or not its line's")
     done = progress(run.finished(), planned)
     if not done.complete or len(lines) != done.used + done.spoiled:
@@ -152,9 +177,8 @@ def series_problems(series: Path, planned: int) -> tuple[list[str], int, int]:
 
 def check(root: Path, target: Target, kill: Kill) -> None:
     """Everything wrong with a finished run, into `kill.problems`: lost, doubled or half-written episodes,
-    records that do not parse, a plan left unfinished, and a report counting other than the plan."""
-    from pillagerbench.report.build import build_report
-
+    records that do not parse, a plan left unfinished, a bundle of the run that fails `verify`, and a
+    report counting other than the plan."""
     expected = target.expected(root)
     kill.problems += whole_records(root)
     found = set(root.glob(target.series))
@@ -167,13 +191,36 @@ def check(root: Path, target: Target, kill: Kill) -> None:
         used, kill.given_up = used + n, kill.given_up + given_up
     kill.problems += target.finished(root)
     with tempfile.TemporaryDirectory() as out_dir:
-        # mix_suites: a working tree edited while the run was killed and resumed stamps two suite hashes
-        counted = build_report(target.runs(root), Path(out_dir), with_replays=False, mix_suites=True)["episodes"]
-    if counted != used or used + kill.given_up != target.planned:
-        kill.problems.append(
-            f"the report counts {counted} episode(s), the run used {used} and gave up {kill.given_up}; "
-            f"an unkilled run plans {target.planned}"
-        )
+        kill.problems += bundle_problems(target.runs(root), used, Path(out_dir))
+    if used + kill.given_up != target.planned:
+        kill.problems.append(f"the run used {used} and gave up {kill.given_up}; an unkilled run plans {target.planned}")
+
+
+def bundle_problems(runs: list[Path], used: int, out_dir: Path) -> list[str]:
+    """The run exported as a results bundle (`pillagerbench export`, in-process): `pillagerbench verify`
+    passes it (its bundle.json's count of used episodes among its checks), bundle.json counts the `used`
+    episodes of the run directories, and the report read from the bundle counts them too."""
+    from pillagerbench.cli.commands import main
+    from pillagerbench.metrics.verified import bundle_problems as verify
+    from pillagerbench.report.build import build_report
+    from pillagerbench.rundir.bundle import unpack
+
+    bundle = out_dir / "killed.tar.gz"
+    if main(["export", *map(str, runs), "--out", str(bundle)]) != 0:
+        return ["export of the run failed"]
+    info = unpack(bundle)[1]
+    # verify's checks (`pillagerbench verify` prints them); a working tree edited while the run was killed and
+    # resumed stamps the resumed episodes with another suite hash than the manifest's: that one is let be
+    moved = len(info["suites"]) > 1
+    disagree = [p for p in verify(bundle)[0] if not (moved and SUITE_MOVED.search(p))]
+    if disagree:
+        return [f"verify fails the bundle of the run ({bundle.name}): {disagree[0]}"]
+    in_info = info["episodes_used"]
+    # mix_suites: a working tree edited while the run was killed and resumed stamps two suite hashes
+    counted = build_report([bundle], out_dir / "report", with_replays=False, mix_suites=True)["episodes"]
+    if in_info != used or counted != used:
+        return [f"the bundle says {in_info} episode(s) used and its report counts {counted}; the run used {used}"]
+    return []
 
 
 # --- the kill ------------------------------------------------------------------------------------------
@@ -202,9 +249,16 @@ def _wait_for_moment(proc: subprocess.Popen, root: Path, target: Target, kill: K
     return False
 
 
-def _victim(proc: subprocess.Popen, kill: Kill, rng: random.Random) -> psutil.Process | None:
-    """The process to kill: the runner, or a child of the drawn kind (waiting up to 10 s for one to be
-    there: a server starts a second or two after the runner); the runner when none comes."""
+def _victim(
+    proc: subprocess.Popen, root: Path, target: Target, kill: Kill, rng: random.Random
+) -> psutil.Process | None:
+    """The process to kill: the runner, a child of the drawn kind (waiting up to 10 s for one to be
+    there: a server starts a second or two after the runner) or the target's outside process of that
+    kind; the runner when none comes."""
+    outside = target.outside(root, kill.asked)
+    if outside is not None:
+        kill.killed = kill.asked
+        return outside
     deadline = time.monotonic() + 10
     while kill.asked != "runner" and proc.poll() is None and time.monotonic() < deadline:
         found = children(proc, kill.asked)
@@ -223,17 +277,19 @@ def _kind(process: psutil.Process) -> str:
         line = " ".join(process.cmdline())
     except psutil.Error:
         return "gone"
-    return next((kind for kind, mark in MARKS.items() if mark in line), "other")
+    return next((kind for kind, mark in MARKS.items() if mark in line), f"other ({line[:80]})")
 
 
-def _kill_runner(proc: subprocess.Popen, kill: Kill) -> None:
+def _kill_runner(proc: subprocess.Popen, target: Target, kill: Kill) -> None:
     """SIGKILL the runner alone, as a crash would; note its children still alive ORPHAN_WAIT_S later (by
     kind), then kill them (the arena server runs in a session of its own: the runner's group is not its)."""
     left = psutil.Process(proc.pid).children(recursive=True)
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
     _, alive = psutil.wait_procs(left, timeout=ORPHAN_WAIT_S)
-    kill.orphans = sorted(_kind(p) for p in alive)
+    kinds = [_kind(p) for p in alive]
+    kill.orphans = sorted(k for k in kinds if not any(mark in k for mark in target.lingering))
+    kill.lingering = sorted(k for k in kinds if any(mark in k for mark in target.lingering))
     for leftover in alive:
         try:
             leftover.kill()
@@ -248,19 +304,23 @@ def strike(proc: subprocess.Popen, root: Path, target: Target, kill: Kill) -> No
     if not _wait_for_moment(proc, root, target, kill, start):
         kill.killed, kill.moment = "none", "the run ended first"
         return
-    victim = _victim(proc, kill, random.Random(kill.seed + 1))
+    victim = _victim(proc, root, target, kill, random.Random(kill.seed + 1))
     if victim is None:
         kill.killed, kill.moment = "none", "the run ended first"
         return
     kill.records_at_kill = records(root, target)
     kill.moment = moment(root, target, alive=True)
     if kill.killed == "runner":
-        _kill_runner(proc, kill)
+        _kill_runner(proc, target, kill)
         return
     try:
         victim.kill()
     except psutil.NoSuchProcess:
         pass
+    if kill.killed not in MARKS:  # an outside process: its owner starts it again a moment later
+        psutil.wait_procs([victim], timeout=10)
+        time.sleep(DOWN_S)
+        target.revive(root, kill.killed)
     try:
         proc.wait(timeout=3 * target.span_s + 60)
         kill.run_exit = proc.returncode
@@ -274,9 +334,19 @@ def run_kill(root: Path, target: Target, kill: Kill) -> Kill:
     """Start, kill as drawn, resume when the run did not end well by itself, check."""
     began = time.monotonic()
     root.mkdir(parents=True, exist_ok=True)
-    target.prepare(root)
-    argv = target.start(root)
-    proc = start_cli(*argv, cwd=ROOT)
+    try:
+        target.prepare(root)
+        _play(root, target, kill)
+        check(root, target, kill)
+    finally:
+        target.cleanup(root)
+    kill.wall_s = round(time.monotonic() - began, 1)
+    return kill
+
+
+def _play(root: Path, target: Target, kill: Kill) -> None:
+    """The run started, killed as drawn, and resumed when it did not end well by itself."""
+    proc = start_cli(*target.start(root), cwd=ROOT)
     try:
         strike(proc, root, target, kill)
         if proc.poll() is None and kill.killed == "none":
@@ -295,6 +365,3 @@ def run_kill(root: Path, target: Target, kill: Kill) -> Kill:
         kill.output += "\n--- resume ---\n" + done.stdout + done.stderr
         if done.returncode != 0:
             kill.problems.append(f"the resume exited {done.returncode}: {(done.stderr or done.stdout)[-300:]}")
-    check(root, target, kill)
-    kill.wall_s = round(time.monotonic() - began, 1)
-    return kill

@@ -138,10 +138,11 @@ class LLMKeys(BaseModel):
         return model
 
     @classmethod
-    def of(cls, data: Any) -> LLMKeys:
-        """The typed node of `data` (a composed node or a mapping), or one ConfigError line per problem."""
+    def of(cls, data: Any, where: str = "llm") -> LLMKeys:
+        """The typed node of `data` (a composed node or a mapping), or one ConfigError line per problem
+        (each named under `where`)."""
         data = plain(data)
-        check(problems(cls, data, "llm"))
+        check(problems(cls, data, where))
         return cls.model_validate(data)
 
     def given(self) -> dict[str, Any]:
@@ -286,6 +287,11 @@ class RunnerConfig(BaseModel):
     plan: bool = written("plan")
     experiment: dict[str, Any] | None = None  # the experiment design (experiments/spec.py reads it)
 
+    def stored(self) -> dict[str, Any]:
+        """The configuration as a run directory stores it (an experiment's manifest.json): the keys given
+        (a league round's runner keys and experiment, a compare's experiment alone)."""
+        return self.model_dump(exclude_unset=True)
+
 
 # the keys of a run that are its runner's, not its series' (RunConfig.for_series leaves them out)
 RUNNER_KEYS: Final = tuple(key for key in RunnerConfig.model_fields if key != "display")
@@ -340,14 +346,15 @@ class RunConfig(RunnerConfig):
         options `{"red": {...}}` ...), typed again."""
         return RunConfig.of(merged(self._stored, changes))
 
-    def with_llm(self, side: str, llm: dict[str, Any]) -> RunConfig:
+    def with_llm(self, side: str, llm: LLMKeys) -> RunConfig:
         """This configuration with `side`'s own `llm` node replaced whole (a league entrant's LLM)."""
         stored = self.stored()
-        stored[side] = {**stored[side], "llm": llm}
+        stored[side] = {**stored[side], "llm": llm.given()}
         return RunConfig.of(stored)
 
     def stored(self) -> dict[str, Any]:
-        """The configuration as composed or stored (what records write: manifest.json, experiment.json)."""
+        """The configuration as composed or stored (what records write: manifest.json, experiment.json),
+        every key, numbers as composed."""
         return copy.deepcopy(self._stored)
 
     def for_series(self) -> RunConfig:

@@ -19,6 +19,7 @@ from pillagerbench.config.compose import load_config
 from pillagerbench.config.registry import Registry
 from pillagerbench.config.schema import (
     Choices,
+    LLMKeys,
     RunConfig,
     ServerConfig,
     check,
@@ -111,6 +112,6 @@ def load_server(argv: Sequence[str]) -> tuple[ServerConfig, int | None]:
     return ServerConfig.model_validate(data["server"]), data.get("watch")
 
 
-def llm_preset(name: str) -> dict[str, Any]:
-    """The settings of the LLM preset `name` (conf/llm/NAME.yaml)."""
-    return plain(load_config([f"llm={name}"]).llm)
+def llm_preset(name: str) -> LLMKeys:
+    """The settings of the LLM preset `name` (conf/llm/NAME.yaml), as composed."""
+    return LLMKeys.of(load_config([f"llm={name}"]).llm)

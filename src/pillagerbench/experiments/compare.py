@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 from pillagerbench.config.compose import ConfigError
-from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.schema import RunConfig, RunnerConfig
 from pillagerbench.experiments.comparison import FILE, Answer, Comparison, answer, read, settle
 from pillagerbench.experiments.outage import Stopped
 from pillagerbench.experiments.runner import write_experiment
@@ -129,8 +129,8 @@ def start(c: Comparison, run_dir: Path | None) -> tuple[Path, dict[str, SeriesSp
     if (run_dir / FILE).exists():
         raise ConfigError(f"{run_dir} holds a compare already: play on with compare resume={run_dir}")
     all_specs = specs(c, cfgs)
-    top = {"experiment": {"name": f"compare {c.a} vs {c.b}", "design": "compare"}}
-    write_experiment(run_dir, top, [c.a, c.b, *c.game], all_specs)
+    experiment = RunnerConfig.model_validate({"experiment": {"name": f"compare {c.a} vs {c.b}", "design": "compare"}})
+    write_experiment(run_dir, experiment, [c.a, c.b, *c.game], all_specs)
     c.write(run_dir)
     return run_dir, {s.id: s for s in all_specs}
 

@@ -262,15 +262,19 @@ def schedule(specs: list[SeriesSpec], durations: dict[str, float], parallel: int
 
 def _specs(cfg: RunConfig, argv: list[str]) -> tuple[str, list[SeriesSpec], dict[str, int]]:
     """(title, series, planned episodes already settled per series: used or given up) of what the
-    command would run."""
+    command would run; a new experiment's series checked (teams, options, LLM settings)."""
+    from pillagerbench.config.schema import check
+    from pillagerbench.config.validate import team_problems
     from pillagerbench.experiments.runner import load_experiment, series_progress
 
     if cfg.resume:
         title, specs, dirs = load_experiment(Path(cfg.resume))
         done = {s.id: series_progress(s, dirs[s.id]) for s in specs}
         return title, specs, {sid: p.used + p.given_up for sid, p in done.items()}
-    if cfg.experiment is not None:
-        return str(cfg.experiment["name"]), build_series(cfg, argv), {}
+    if cfg.experiment is not None:  # its series checked as a run checks them, without the preflight
+        specs = build_series(cfg, argv)
+        check(list(dict.fromkeys(line for s in specs for line in team_problems(s.config))))
+        return str(cfg.experiment["name"]), specs, {}
     red, blue, scenario = cfg.red.name, cfg.blue.name, cfg.scenario.name
     spec = SeriesSpec("run", 0, "run", scenario, red, blue, red, blue, cfg.episodes, cfg.seed, cfg)
     return f"run {scenario}: red {red} vs blue {blue}", [spec], {}
@@ -455,15 +459,6 @@ def lines(plan: Plan) -> list[str]:
 def main_plan(cfg: RunConfig, argv: list[str]) -> int:
     """`pillagerbench run ... plan=true`: print the plan, play nothing. An experiment's series are
     checked as a run checks them (teams, options, LLM settings), without the preflight."""
-    if cfg.experiment is not None and not cfg.resume:
-        from pillagerbench.config.schema import check
-        from pillagerbench.config.validate import team_problems
-
-        seen: dict[str, None] = {}
-        for s in build_series(cfg, argv):
-            for line in team_problems(s.config):
-                seen.setdefault(line, None)
-        check(list(seen))
     for line in lines(build_plan(cfg, argv)):
         print(line)
     return 0

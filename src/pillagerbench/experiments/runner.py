@@ -23,7 +23,6 @@ import time
 import traceback
 from collections.abc import Awaitable, Callable
 from pathlib import Path
-from typing import Any
 
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import RunConfig, RunnerConfig, default
@@ -34,12 +33,12 @@ from pillagerbench.host.machine import CHOOSE_PARALLEL
 from pillagerbench.llm.spend import spend_lines
 from pillagerbench.rundir import (
     ExperimentFile,
-    Manifest,
     RunDir,
     progress,
     read_series,
     write_experiment_file,
 )
+from pillagerbench.rundir.manifest import experiment_manifest
 from pillagerbench.teams.entrant import labels_of
 
 IGNORED_ON_RESUME = ("display",)  # config keys that may differ between a run and its resume
@@ -76,30 +75,20 @@ def experiment_name(cfg: RunConfig) -> str:
     return str((cfg.experiment or {})["name"])
 
 
-def write_experiment(run_dir: Path, top: dict[str, Any], argv: list[str], specs: list[SeriesSpec]) -> None:
-    """experiment.json and manifest.json of a new experiment; `top`: its configuration as stored
-    (RunConfig.stored(), or a league round's runner keys and experiment)."""
-    from pillagerbench import __version__
-    from pillagerbench.rundir.manifest import git_revision
-    from pillagerbench.suite.version import current
-
+def write_experiment(run_dir: Path, config: RunnerConfig, argv: list[str], specs: list[SeriesSpec]) -> None:
+    """experiment.json and manifest.json of a new experiment; `config`: its configuration (a RunConfig,
+    or a league round's runner keys and experiment, a compare's experiment alone), stored as given."""
+    assert config.experiment is not None, "an experiment's configuration names its experiment"
     run_dir.mkdir(parents=True, exist_ok=True)
+    manifest = experiment_manifest(config, created=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
     data = ExperimentFile(
-        name=top["experiment"]["name"],
-        created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        experiment=top["experiment"],
+        name=config.experiment["name"],
+        created=manifest.created,
+        experiment=config.experiment,
         overrides=list(argv),
         series=[s.to_dict() for s in specs],
     )
     write_experiment_file(run_dir, data)
-    manifest = Manifest(
-        created=data.created,
-        config=top,
-        versions={"pillagerbench": __version__},
-        git_revision=git_revision(),
-        suite=current(),
-        experiment=data.name,
-    )
     RunDir(run_dir).write_manifest(manifest)
 
 
@@ -335,7 +324,7 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         run_dir = make_experiment_dir(cfg)
         if RunDir(run_dir).is_experiment():
             raise ConfigError(f"{run_dir} already holds an experiment; finish it with resume={run_dir}")
-        write_experiment(run_dir, cfg.stored(), argv, specs)
+        write_experiment(run_dir, cfg, argv, specs)
         if cfg.calibration:
             shutil.copyfile(cfg.calibration, RunDir(run_dir).calibration_path)
         title, dirs = experiment_name(cfg), {s.id: RunDir(run_dir).series_dir(s.id) for s in specs}
@@ -356,7 +345,8 @@ def main_experiment(cfg: RunConfig, argv: list[str]) -> int:
         print(line)
     for line in lag_lines(specs, dirs):
         print(line)
-    for line in spend_lines((RunDir(dirs[s.id]).ledger_path, labels_of(s.config)) for s in specs):
+    ledgers = [(RunDir(dirs[s.id]).ledger_path, labels_of(s.config)) for s in specs]  # each side's entrant
+    for line in spend_lines(ledgers):
         print(line)
     for line in stopped:
         print(line)

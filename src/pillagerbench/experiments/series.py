@@ -33,6 +33,7 @@ from pillagerbench.rundir import (
     team_state_path,
     write_series,
 )
+from pillagerbench.suite.version import current
 
 
 class ResumeError(RuntimeError):
@@ -88,7 +89,7 @@ async def run_series(
         if not rundir.manifest_path.exists():
             rundir.write_manifest(match_manifest(cfg, scenario))
         else:
-            rundir.note_resume(sorted(finished), discarded)
+            rundir.note_resume(sorted(finished), discarded, current()["label"])
         before = len(finished)
         waiter = Waiter(cfg, rundir, label=f"[{spec.id}] ", say=say, show=on_outage)
         match = _Match(spec, cfg, rundir, scenario, teams, on_episode, on_tick, watch)

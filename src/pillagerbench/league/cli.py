@@ -15,7 +15,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from pillagerbench.config.compose import ConfigError
-from pillagerbench.config.schema import RunnerConfig
+from pillagerbench.config.schema import RunnerConfig, check, problems
 from pillagerbench.experiments.spec import builtin_teams
 from pillagerbench.league.board import write_board
 from pillagerbench.league.compose import check_entrant
@@ -126,8 +126,10 @@ def main(argv: list[str]) -> int:
             print(path)
         return 0
     ours, other = _league_keys(_pairs(rest))
-    runner = RunnerConfig.model_validate({}).model_dump(include=set(RUNNER))  # the defaults, conf/config.yaml's
-    runner |= {k: v for k, v in other.items() if k in RUNNER}
+    given = {k: v for k, v in other.items() if k in RUNNER}
+    check(problems(RunnerConfig, given))
+    defaults = RunnerConfig.model_validate({})  # conf/config.yaml's; every key of RUNNER is written to a round
+    runner = RunnerConfig.model_validate({k: getattr(defaults, k) for k in RUNNER} | given)
     game = tuple(a for a in rest if a.partition("=")[0] in other and a.partition("=")[0] not in RUNNER)
     for a in game:
         if a.partition("=")[0].split(".")[0].lstrip("+~") in ("red", "blue", "scenario", "experiment", "resume"):

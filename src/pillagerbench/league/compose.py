@@ -11,10 +11,9 @@ from __future__ import annotations
 import json
 from dataclasses import asdict
 from functools import cache
-from typing import Any
 
 from pillagerbench.config.compose import ConfigError
-from pillagerbench.config.schema import RunConfig, merged
+from pillagerbench.config.schema import LLMKeys, RunConfig
 from pillagerbench.config.validate import check_run_config, compose_run, llm_preset
 from pillagerbench.league.spec import DEFAULT_SCENARIOS, RosterEntry
 from pillagerbench.rundir.entrant import Entrant
@@ -25,15 +24,15 @@ OPPONENT = RosterEntry(name="do_nothing", team="do_nothing")  # the side an entr
 
 
 @cache
-def _preset(name: str) -> dict[str, Any]:
+def _preset(name: str) -> LLMKeys:
     return llm_preset(name)
 
 
 def _side(cfg: RunConfig, side: str, entrant: RosterEntry) -> RunConfig:
     cfg = cfg.updated({side: entrant.options})
     if entrant.llm or entrant.llm_options:
-        own = _preset(entrant.llm) if entrant.llm else {}
-        cfg = cfg.with_llm(side, merged(own, entrant.llm_options))
+        own = _preset(entrant.llm) if entrant.llm else LLMKeys()
+        cfg = cfg.with_llm(side, own.over(LLMKeys.of(entrant.llm_options, f"{side}.llm")))
     return cfg
 
 

@@ -31,16 +31,16 @@ def _unfinished(run_dir: Path) -> bool:
     return any(not series_progress(s, dirs[s.id]).complete for s in specs)
 
 
-def _play_round(run_dir: Path, runner: dict) -> bool:
+def _play_round(run_dir: Path, runner: RunnerConfig) -> bool:
     """Play (or finish) one round; False when a series failed."""
     title, specs, dirs = load_experiment(run_dir)
     check_series(specs)
     print(f"{run_dir.name}: " + ", ".join(f"{s.red} vs {s.blue} ({s.scenario})" for s in specs), flush=True)
-    got = asyncio.run(execute(run_dir, title, specs, dirs, RunnerConfig.model_validate(runner)))
+    got = asyncio.run(execute(run_dir, title, specs, dirs, runner))
     return all(r["status"] == "done" for r in got.values())
 
 
-def play(league_dir: Path, league: League, game: tuple[str, ...], runner: dict) -> int:
+def play(league_dir: Path, league: League, game: tuple[str, ...], runner: RunnerConfig) -> int:
     check_game(game)
     for e in league.entrants:
         check_entrant(e, league.scenarios, game)

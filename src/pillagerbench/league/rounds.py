@@ -15,6 +15,7 @@ import json
 from pathlib import Path
 
 from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.schema import RunnerConfig
 from pillagerbench.experiments.runner import write_experiment
 from pillagerbench.experiments.spec import SeriesSpec, slug
 from pillagerbench.league.compose import entrant_of_entry, match_config
@@ -68,7 +69,12 @@ def _same(entry: RosterEntry, identity: str) -> bool:
 
 
 def write_round(
-    league_dir: Path, league: League, pairings: list[Pairing], episodes: int, game: tuple[str, ...], runner: dict
+    league_dir: Path,
+    league: League,
+    pairings: list[Pairing],
+    episodes: int,
+    game: tuple[str, ...],
+    runner: RunnerConfig,
 ) -> tuple[Path, list[SeriesSpec]]:
     """A new round directory for these pairings; returns it and its series."""
     index = len(round_dirs(league_dir))
@@ -102,6 +108,6 @@ def write_round(
     stamp = {"game": list(game), "entrants": entrants}
     run_dir.mkdir(parents=True, exist_ok=True)
     (run_dir / STAMP).write_text(json.dumps(stamp, indent=1))  # first: a round counts once experiment.json exists
-    top = {**runner, "experiment": {"name": f"league {run_dir.name}", "design": "league"}}
-    write_experiment(run_dir, top, list(game), specs)
+    experiment = {"name": f"league {run_dir.name}", "design": "league"}
+    write_experiment(run_dir, runner.model_copy(update={"experiment": experiment}), list(game), specs)
     return run_dir, specs

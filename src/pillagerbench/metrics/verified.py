@@ -74,6 +74,8 @@ def episode_problems(run: RunDir, rec: EpisodeRecord) -> list[str]:
     ):
         out.append(f"winner {rec.winner!r} does not follow from {rec.red_score}–{rec.blue_score}")
     beside = run.files(i).record()
+    if beside is None and run.record_path(i).exists():
+        out.append(f"{run.record_path(i).name}: unreadable (half written?)")
     if beside is not None and beside != rec:
         mine, theirs = rec.to_dict(), beside.to_dict()
         keys = sorted(k for k in mine if mine[k] != theirs[k])
@@ -104,9 +106,12 @@ def manifest_problems(runs: Runs, records: dict[Path, list[EpisodeRecord]]) -> l
             continue
         says = manifest.suite_label
         several = len({series for series, _ in recs}) > 1  # an experiment's manifest: name the series too
+        # a resume under another suite says so in its series' resumes.jsonl: those episodes agree too
+        resumed = [x for s in runs.series if s.dir == top or s.root == top for x in RunDir(s.dir).resumed_suites()]
+        played = {label.rpartition("@")[2] for label in [says, *resumed]}
         other: dict[str, list[str]] = {}
         for series, rec in recs:
-            if rec.suite.rpartition("@")[2] != says.rpartition("@")[2]:
+            if rec.suite.rpartition("@")[2] not in played:
                 other.setdefault(rec.suite, []).append(f"{series}/{rec.episode}" if several else f"{rec.episode}")
         out += [
             f"{RunDir(top).manifest_path}: says {says}, but {len(eps)} episode(s) say {suite} ({_few(eps)})"

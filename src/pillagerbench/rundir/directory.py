@@ -248,13 +248,26 @@ class RunDir:
             path, n = self.path / f"{N.SERVER_LOG}.{n}.log", n + 1
         return path
 
-    def note_resume(self, finished: list[int], discarded: list[str]) -> None:
-        """One line in resumes.jsonl: when the series was resumed, what it had finished, what it discarded."""
+    def note_resume(self, finished: list[int], discarded: list[str], suite: str) -> None:
+        """One line in resumes.jsonl: when the series was resumed, what it had finished, what it discarded,
+        and the suite it plays on under (the manifest keeps the one it began under)."""
+        line = {"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "finished": finished, "discarded": discarded}
         with open(self.path / N.RESUMES, "a") as f:
-            f.write(
-                json.dumps({"ts": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "finished": finished, "discarded": discarded})
-                + "\n"
-            )
+            f.write(json.dumps({**line, "suite": suite}) + "\n")
+
+    def resumed_suites(self) -> list[str]:
+        """The suites this series was resumed under (resumes.jsonl; a resume from before says none)."""
+        path = self.path / N.RESUMES
+        lines = path.read_text().splitlines() if path.exists() else []
+        found = []
+        for line in lines:
+            try:
+                suite = json.loads(line).get("suite")
+            except (ValueError, AttributeError):
+                continue
+            if isinstance(suite, str):
+                found.append(suite)
+        return found
 
     def write_live(self, status: Live) -> None:
         replace_json(self.live_path, asdict(replace(status, ts=time.time())))

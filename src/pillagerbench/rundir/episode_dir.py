@@ -10,6 +10,7 @@ from typing import Any
 
 from pillagerbench.rundir import names as N
 from pillagerbench.rundir.episode import EpisodeRecord, TimelinePoint
+from pillagerbench.rundir.whole import replace_json
 
 
 class EpisodeDir:
@@ -78,7 +79,7 @@ class EpisodeDir:
 
     def write_record(self, record: EpisodeRecord) -> None:
         self.path.mkdir(parents=True, exist_ok=True)
-        self.record_path.write_text(json.dumps(record.to_dict(), indent=1))
+        replace_json(self.record_path, record.to_dict(), indent=1)  # a kill leaves no half of one
 
     def timeline(self, scoring: str = "clean") -> list[TimelinePoint]:
         """The score each second; FileNotFoundError when missing, ValueError when cut short."""

@@ -17,7 +17,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict
 
 from pillagerbench import __version__
-from pillagerbench.config.schema import RunConfig
+from pillagerbench.config.schema import RunConfig, RunnerConfig
 from pillagerbench.suite.conditions import conditions_of
 from pillagerbench.suite.version import UNVERSIONED, current
 
@@ -71,6 +71,27 @@ def git_revision() -> str | None:
         return None
 
 
+def stored(config: RunnerConfig) -> dict[str, Any]:
+    """A configuration as a run directory's records write it: a series' whole (its manifest.json, its
+    entry in experiment.json) as composed; an experiment's (its manifest.json) with the keys it was given.
+    The one writer of a stored configuration; `Manifest.config` and `RunConfig.of` read it back."""
+    return config.stored()
+
+
+def experiment_manifest(config: RunnerConfig, created: str) -> Manifest:
+    """The top-level manifest of an experiment (a league round's, a compare's too): its configuration,
+    what played it and its name; no scenario, seed or conditions (each series' manifest has those)."""
+    assert config.experiment is not None, "an experiment's configuration names its experiment"
+    return Manifest(
+        created=created,
+        config=stored(config),
+        versions={"pillagerbench": __version__},
+        git_revision=git_revision(),
+        suite=current(),
+        experiment=config.experiment["name"],
+    )
+
+
 def match_manifest(cfg: RunConfig, scenario: Any) -> Manifest:
     """The manifest of one match (a series); `scenario` is the Scenario played (key, title, version)."""
     from pillagerbench.host.node import node_binary
@@ -78,7 +99,7 @@ def match_manifest(cfg: RunConfig, scenario: Any) -> Manifest:
     node = subprocess.run([str(node_binary()), "--version"], capture_output=True, text=True).stdout.strip()
     return Manifest(
         created=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        config=cfg.stored(),
+        config=stored(cfg),
         scenario=ScenarioStamp(key=scenario.key, title=scenario.title, version=scenario.version),
         versions={
             "pillagerbench": __version__,

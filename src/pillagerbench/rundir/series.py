@@ -12,6 +12,7 @@ from typing import Any
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.rundir.directory import RunDir
 from pillagerbench.rundir.experiment import read_experiment
+from pillagerbench.rundir.manifest import stored
 
 
 @dataclass
@@ -28,7 +29,7 @@ class SeriesSpec:
     blue_team: str
     episodes: int
     seed: int
-    config: RunConfig  # the match's full resolved config, typed (its records store `config.stored()`)
+    config: RunConfig  # the match's full resolved config, typed (its records store it: manifest.stored)
     checkpoint: dict[str, Any] = field(default_factory=dict)  # side -> {"series": id, "episode": k} | {"path": p}
     checkpoint_every: int | None = None  # keep checkpoints after episodes every, 2·every, ... (1-based count)
     checkpoint_at: list[int] = field(default_factory=list)  # keep checkpoints after these episode indices
@@ -50,7 +51,7 @@ class SeriesSpec:
     def to_dict(self) -> dict:
         """The spec as experiment.json records it: every field, the config as stored."""
         own = {f.name: copy.deepcopy(getattr(self, f.name)) for f in fields(self) if f.name != "config"}
-        return {**own, "config": self.config.stored()}
+        return {**own, "config": stored(self.config)}
 
     @classmethod
     def from_dict(cls, d: dict) -> SeriesSpec:
