@@ -1,6 +1,7 @@
 """A person plays a real match from the page in a real headless Chromium (tests/support/cdp.py: keys and
 mouse through the DevTools protocol) on a real server with real bots: types a name, presses Ready, holds
-W, looks down with the mouse and holds the left button to dig; a second page for the taken player is
+W, looks down with the mouse and holds the left button to dig, presses T and sends a teammate's signal
+that comes back on the page, sees its hud and inventory; a second page for the taken player is
 refused, the page's token brings it back into its player, a primitive button runs. One short episode on
 the real clock (people play on it) serves every check; the server's record shows each."""
 
@@ -16,9 +17,10 @@ from pathlib import Path
 
 import httpx
 
+from pillagerbench.people.relay import HUD_S
 from tests.support.cdp import Browser
 
-EPISODE_S = 10
+EPISODE_S = 12
 
 
 def _url(proc: subprocess.Popen) -> str:
@@ -61,6 +63,29 @@ def _walk_and_dig(browser: Browser) -> None:
     browser.click("main", hold=1.5)  # grass takes 0.9 s by hand; the button released ends the dig
 
 
+def _chat(browser: Browser) -> None:
+    """T lets the mouse go and opens the chat box; a teammate's signal typed there and sent with Enter comes
+    back from the server onto the page (marked a signal); the hud shows health, food and the hotbar."""
+    browser.key("KeyT", "keyDown")
+    browser.key("KeyT", "keyUp")
+    browser.wait_for("document.activeElement === document.getElementById('chat') && !document.pointerLockElement")
+    browser.type(None, "[Raze signal]")
+    browser.key("Enter", "keyDown")
+    browser.key("Enter", "keyUp")
+    browser.wait_for(
+        "[...document.querySelectorAll('#chatlog .signal')].some((e) => e.textContent.includes('[Raze signal]'))"
+    )
+    assert browser.eval("document.getElementById('vitals').textContent") == "health 20 · food 20"
+    assert browser.eval("document.querySelectorAll('#hotbar span').length") == 9
+
+
+def _inventory(browser: Browser) -> str:
+    """The inventory the page shows once the button's program is done."""
+    browser.wait_for("document.getElementById('feed').textContent.includes('done: await mineBlock')")
+    time.sleep(2 * HUD_S)  # the hud read after the program's end
+    return browser.eval("document.getElementById('items').textContent")
+
+
 def _frames(run_dir: Path, player: str) -> list[list]:
     with gzip.open(run_dir / "episode_000" / "replay.jsonl.gz", "rt") as f:
         frames = [json.loads(line) for line in f]
@@ -79,10 +104,12 @@ def test_a_person_plays_from_a_browser(tmp_path: Path):
             assert second.status_code == 409 and "second page" in second.json()["error"]
             assert page.get("state", params={"token": token}).json()["seat"]["player"] == "Ryn"
             _walk_and_dig(browser)
+            _chat(browser)
             pressed = page.post(
                 "press", json={"token": token, "primitive": "mineBlock", "args": ["red_mushroom_block", 1]}
             )
             assert pressed.json()["ok"]
+            shown = _inventory(browser)
         assert proc.wait(timeout=60) == 0
     finally:
         proc.kill()
@@ -92,5 +119,10 @@ def test_a_person_plays_from_a_browser(tmp_path: Path):
     events = [json.loads(line) for line in (run_dir / "episode_000" / "world_events.jsonl").read_text().splitlines()]
     dug = [e for e in events if e.get("event") == "block_dug" and e.get("player") == "Ryn"]
     assert {"grass_block", "red_mushroom_block"} <= {e["block"] for e in dug}
+    observed = [
+        json.loads(line) for line in (run_dir / "episode_000" / "events" / "Ryn.jsonl").read_text().splitlines()
+    ]
+    inventory = [e[1]["inventory"] for e in observed if e[0] == "observe"][-1]
+    assert shown == "inventory: " + (", ".join(f"{k} {v}" for k, v in sorted(inventory.items())) or "nothing")
     record = json.loads((run_dir / "episodes.jsonl").read_text().splitlines()[0])
     assert record["red_entrant"]["label"] == "do_nothing+human:alice"

@@ -20,6 +20,7 @@ from typing import Any
 from tests.support.browser import chromium, flags
 
 KEYS = {"KeyW": ("w", 87), "KeyA": ("a", 65), "KeyS": ("s", 83), "KeyD": ("d", 68), "Space": (" ", 32)}
+KEYS |= {"KeyT": ("t", 84), "Enter": ("Enter", 13)}
 
 
 class CdpError(RuntimeError):
@@ -120,14 +121,16 @@ class Browser:
         time.sleep(hold)
         self.mouse("mouseReleased", x, y)
 
-    def type(self, element_id: str, text: str) -> None:
-        self.click(element_id)
+    def type(self, element_id: str | None, text: str) -> None:
+        """Click `element_id` (None: where the keys go now), then type `text` key by key."""
+        if element_id is not None:
+            self.click(element_id)
         for char in text:
             self.call("Input.dispatchKeyEvent", {"type": "keyDown", "key": char, "text": char})
             self.call("Input.dispatchKeyEvent", {"type": "keyUp", "key": char})
 
     def key(self, code: str, kind: str) -> None:
-        """`kind`: keyDown or keyUp of the key whose `code` is KeyW, KeyA, KeyS, KeyD or Space."""
+        """`kind`: keyDown or keyUp of the key whose `code` is one of KEYS."""
         key, vk = KEYS[code]
         self.call("Input.dispatchKeyEvent", {"type": kind, "code": code, "key": key, "windowsVirtualKeyCode": vk})
 

@@ -164,6 +164,9 @@ class BotOps:
     async def act(self, input: dict[str, Any], *, wait: float = 10.0) -> str:
         return await self._ask("act", wait, input=input)
 
+    async def hud(self) -> dict[str, Any]:
+        return await self._ask("hud")
+
     async def settle(
         self, pos: Sequence[float] | None = None, timeout: float | None = None, *, wait: float = 10.0
     ) -> bool | Position:

@@ -272,6 +272,7 @@ const OPS = {
     if (!current || !current.active) throw new Error('the game is not on: nothing you do acts now')
     return within(current, () => person.act(bot, input))
   },
+  hud: async () => person.hud(bot),
   // Wait until the server's teleport since the last settle has arrived, the bot stands near `pos`
   // and the ground under it is loaded.
   settle: async ({ pos, timeout = 5 }) => {
