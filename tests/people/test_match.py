@@ -1,7 +1,7 @@
 """A person plays a real match from the page in a real headless Chromium (tests/support/cdp.py: keys and
 mouse through the DevTools protocol) on a real server with real bots: types a name, presses Ready, holds
 W, looks down with the mouse and holds the left button to dig, presses T and sends a teammate's signal
-that comes back on the page, sees its hud and inventory; a second page for the taken player is
+that comes back on the page, sees its hud and inventory, and its first-person view is served; a second page for the taken player is
 refused, the page's token brings it back into its player, a primitive button runs. One short episode on
 the real clock (people play on it) serves every check; the server's record shows each."""
 
@@ -79,6 +79,24 @@ def _chat(browser: Browser) -> None:
     assert browser.eval("document.querySelectorAll('#hotbar span').length") == 9
 
 
+def _view(browser: Browser, url: str) -> None:
+    """The page shows the first-person view the player's bot serves on loopback (js/bot/view.js): the
+    viewer's page, and its stream (socket.io over HTTP polling) sends the world and the player's eyes."""
+    src = browser.wait_for("document.getElementById('view').src")
+    assert src.startswith("http://127.0.0.1:") and src != url
+    with httpx.Client(base_url=src, timeout=10) as view:
+        assert "Prismarine Viewer" in view.get("").text
+        sid = json.loads(view.get("socket.io/", params={"EIO": 4, "transport": "polling"}).text[1:])["sid"]
+        poll = {"EIO": 4, "transport": "polling", "sid": sid}
+        view.post("socket.io/", params=poll, content="40")
+        got = ""
+        for _ in range(20):
+            got += view.get("socket.io/", params=poll).text
+            if '42["loadChunk"' in got and '"pitch"' in got:
+                break
+    assert '42["version","1.16.4"]' in got and '42["loadChunk"' in got and '42["position"' in got
+
+
 def _inventory(browser: Browser) -> str:
     """The inventory the page shows once the button's program is done."""
     browser.wait_for("document.getElementById('feed').textContent.includes('done: await mineBlock')")
@@ -105,6 +123,7 @@ def test_a_person_plays_from_a_browser(tmp_path: Path):
             assert page.get("state", params={"token": token}).json()["seat"]["player"] == "Ryn"
             _walk_and_dig(browser)
             _chat(browser)
+            _view(browser, url)
             pressed = page.post(
                 "press", json={"token": token, "primitive": "mineBlock", "args": ["red_mushroom_block", 1]}
             )

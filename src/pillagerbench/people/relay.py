@@ -38,6 +38,7 @@ class People:
         self.board: dict[str, Any] = {}  # scores, clock
         self.huds: dict[str, dict[str, Any]] = {}  # player -> what its page shows of it (the bot's hud op)
         self.chats: dict[str, list[dict[str, Any]]] = {}  # player -> the server's chat its bot heard
+        self.views: dict[str, dict[str, Any]] = {}  # player -> its first-person view: {port} or {error}
         self.end_at = 0.0
         self._queues: dict[str, list[str]] = {}
         self._loops: list[asyncio.Task] = []
@@ -73,6 +74,7 @@ class People:
         self.say("the game is on")
         self._loops = [asyncio.create_task(self._hold(name)) for name in self.players]
         self._loops += [asyncio.create_task(self._watch(name)) for name in self.players]
+        self._loops += [asyncio.create_task(self._view(name)) for name in self.players if name not in self.views]
 
     async def end(self, final: dict[str, float] | None = None) -> None:
         """The whistle: the person's runs end (the match stops every player), the pages are told."""
@@ -126,6 +128,14 @@ class People:
                 pass
             await asyncio.sleep(HUD_S)
 
+    async def _view(self, name: str) -> None:
+        """The player's bot starts its first-person view (js/bot/view.js) on a loopback port; without the
+        optional prismarine-viewer the page is told why there is none."""
+        try:
+            self.views[name] = {"port": await self.players[name].channel.view()}
+        except PlayerError as exc:
+            self.views[name] = {"error": str(exc).splitlines()[0]}
+
     def _player(self, token: str | None) -> tuple[str, Player]:
         seat = self.seats.of(token)
         if self.phase != "playing" or seat.player not in self.players:
@@ -171,6 +181,7 @@ class People:
             "feed": self.feed[-40:],
             "hud": self.huds.get(seat.player) if seat else None,
             "chat": self.chats.get(seat.player, [])[-40:] if seat else [],
+            "view": self.views.get(seat.player) if seat else None,
         }
 
 

@@ -73,6 +73,7 @@ class Settings(_RequiredSettings, total=False):
     clock: str | None
     heartbeatMs: int | None
     cue: bool | None
+    view: bool | None
 
 
 class Permissions(TypedDict):
@@ -166,6 +167,9 @@ class BotOps:
 
     async def hud(self) -> dict[str, Any]:
         return await self._ask("hud")
+
+    async def view(self, *, wait: float = 20.0) -> int:
+        return await self._ask("view", wait)
 
     async def settle(
         self, pos: Sequence[float] | None = None, timeout: float | None = None, *, wait: float = 10.0

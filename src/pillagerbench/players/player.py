@@ -81,8 +81,10 @@ class Player:
         watchdog_s: float = 1.0,
         login_timeout: float = 30.0,
         clock: str = "real",
+        view: bool = False,
     ):
         self.name, self.server_port, self.host = name, server_port, host
+        self.view = view  # a person's player: its bot can serve the first-person view (js/bot/view.js)
         self.clock = clock  # "real" or "lockstep": the bot's timers on the wall clock or the server's ticks
         self.last_tick: int | None = None  # lockstep: the server's tick when the last run ended
         self.log_dir = Path(log_dir) if log_dir else None
@@ -135,6 +137,8 @@ class Player:
         A match launches all its players at once, so that this overlaps the logins, one at a time."""
         settings = Settings(host=self.host, port=self.server_port, username=self.name, primitives=self.primitives)
         settings |= {"heartbeatMs": 200, "clock": self.clock, "cue": True}  # cue: it logs in at _login's
+        if self.view:
+            settings["view"] = True
         loop = asyncio.get_running_loop()
         self._generation += 1
         self._spawned = loop.create_future()
