@@ -34,7 +34,7 @@ def _url(proc: subprocess.Popen) -> str:
 def _match(run_dir: Path) -> subprocess.Popen:
     cmd = [sys.executable, "-m", "pillagerbench.cli", "run", "red=do_nothing", "red.humans=[Ryn]"]
     cmd += ["blue=do_nothing", f"episode_length={EPISODE_S}", f"run_dir={run_dir}", "display=plain"]
-    cmd += ["humans.ready_timeout_s=120"]
+    cmd += ["humans.ready_timeout_s=120", "retries=0"]  # one episode, lagged or not (the checks read episode 0)
     return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=os.environ.copy())
 
 
@@ -94,6 +94,7 @@ def _view(browser: Browser, url: str) -> None:
             got += view.get("socket.io/", params=poll).text
             if '42["loadChunk"' in got and '"pitch"' in got:
                 break
+        view.post("socket.io/", params=poll, content="41")  # gone: the bot streams to the page's view only
     assert '42["version","1.16.4"]' in got and '42["loadChunk"' in got and '42["position"' in got
 
 

@@ -7,7 +7,7 @@ const path = require('path')
 const http = require('http')
 
 const VIEWER_VERSION = '1.16.4' // prismarine-viewer's textures and models for 1.16 (same blocks as 1.16.5)
-const VIEW_DISTANCE = 4 // chunks around the player
+const VIEW_DISTANCE = 2 // chunk columns around the player: the arenas fit; each column a viewer is sent costs this bot's CPU
 
 let started = null // the port, once listening
 
