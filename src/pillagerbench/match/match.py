@@ -106,6 +106,7 @@ class Match:
                 log_dir=log_dir,
                 primitives=list(self.scenario.primitives),
                 clock=self.clock_config.mode,
+                view=self.people is not None and spec.name in self.people.seats.seats,
             )
             for spec in (specs[n] for n in self.player_order(0))
         ]

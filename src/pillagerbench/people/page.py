@@ -105,7 +105,7 @@ def app(people: People, primitives: list[str]) -> Starlette:
 
     async def chat(data: dict) -> bool:
         text = str(data.get("text", ""))[:256]
-        await people.program(data.get("token"), f"chat({json.dumps(text)})" if text else "")
+        await people.program(data.get("token"), f"bot.chat({json.dumps(text)})" if text else "")
         return True
 
     async def state(request: Request) -> Response:

@@ -8,7 +8,9 @@ run goes on. A page gone quiet (closed, connection lost) leaves its player stand
 from __future__ import annotations
 
 import asyncio
+import functools
 import json
+import re
 import time
 from collections.abc import Callable
 from typing import Any
@@ -19,6 +21,8 @@ from pillagerbench.players import Player, PlayerError
 HOLD = "await new Promise(() => {})"  # the person's run: it waits, and the person's input acts inside it
 FEED = 200  # lines of the events feed a page is shown
 STILL = {"what": "controls", "controls": {}}
+HUD_S = 0.3  # how often a person's page is given its player's hud (hotbar, inventory, health, food, look)
+SIGNAL = re.compile(r"\[(\w+) signal\]|\[waiting signal\]|\[signal (recieved|timeout)\]")  # multiAgent.js
 
 
 class People:
@@ -32,6 +36,9 @@ class People:
         self.phase = "lobby"  # lobby | waiting | playing | over
         self.feed: list[str] = []
         self.board: dict[str, Any] = {}  # scores, clock
+        self.huds: dict[str, dict[str, Any]] = {}  # player -> what its page shows of it (the bot's hud op)
+        self.chats: dict[str, list[dict[str, Any]]] = {}  # player -> the server's chat its bot heard
+        self.views: dict[str, dict[str, Any]] = {}  # player -> its first-person view: {port} or {error}
         self.end_at = 0.0
         self._queues: dict[str, list[str]] = {}
         self._loops: list[asyncio.Task] = []
@@ -63,8 +70,11 @@ class People:
         self.players = {name: players[name] for name in self.seats.seats}
         self.sink, self.phase, self.end_at = sink, "playing", time.monotonic() + length
         self._queues = {name: [] for name in self.players}
+        self.huds, self.chats = {}, {name: [] for name in self.players}
         self.say("the game is on")
         self._loops = [asyncio.create_task(self._hold(name)) for name in self.players]
+        self._loops += [asyncio.create_task(self._watch(name)) for name in self.players]
+        self._loops += [asyncio.create_task(self._view(name)) for name in self.players if name not in self.views]
 
     async def end(self, final: dict[str, float] | None = None) -> None:
         """The whistle: the person's runs end (the match stops every player), the pages are told."""
@@ -87,7 +97,7 @@ class People:
             queue = self._queues[name]
             code = queue.pop(0) if queue else HOLD
             try:
-                events = await player.run(code)
+                events = await player.run(code, on_event=functools.partial(self._heard, name))
             except PlayerError as exc:
                 self.say(f"{name}: {exc}")
                 await asyncio.sleep(0.5)
@@ -99,6 +109,32 @@ class People:
                     self.say(f"{name}: refused: {str((event[1] or {}).get('onError', ''))[:300]}")
             if code != HOLD:
                 self.say(f"{name}: done: {code[:120]}")
+
+    def _heard(self, name: str, event: list) -> None:
+        """A chat line the player's bot heard (the server's chat: players, teammates' signals, the game's
+        messages), as it happens."""
+        if len(event) < 2 or event[0] != "onChat":
+            return
+        text = str((event[1] or {}).get("onChat", ""))[:300]
+        self.chats[name] = [*self.chats.get(name, []), {"text": text, "signal": bool(SIGNAL.search(text))}][-FEED:]
+
+    async def _watch(self, name: str) -> None:
+        """The player's hud for its page, every HUD_S seconds while the game is on."""
+        player = self.players[name]
+        while self.phase == "playing":
+            try:
+                self.huds[name] = await player.channel.hud()
+            except PlayerError:
+                pass
+            await asyncio.sleep(HUD_S)
+
+    async def _view(self, name: str) -> None:
+        """The player's bot starts its first-person view (js/bot/view.js) on a loopback port; without the
+        optional prismarine-viewer the page is told why there is none."""
+        try:
+            self.views[name] = {"port": await self.players[name].channel.view()}
+        except PlayerError as exc:
+            self.views[name] = {"error": str(exc).splitlines()[0]}
 
     def _player(self, token: str | None) -> tuple[str, Player]:
         seat = self.seats.of(token)
@@ -143,6 +179,9 @@ class People:
             "briefing": self.briefing,
             "board": {**self.board, "left": left},
             "feed": self.feed[-40:],
+            "hud": self.huds.get(seat.player) if seat else None,
+            "chat": self.chats.get(seat.player, [])[-40:] if seat else [],
+            "view": self.views.get(seat.player) if seat else None,
         }
 
 

@@ -60,4 +60,24 @@ async function act (bot, input) {
   return fn(bot, input)
 }
 
-module.exports = { act, CONTROLS }
+// What the person's page shows of its player (the `hud` op): the hotbar (9 slots), the held slot, the whole
+// inventory by name, health, food and where it looks (the page's mouse starts from there).
+function hud (bot) {
+  const slot = (item) => (item ? { name: item.name, count: item.count } : null)
+  const start = bot.inventory.hotbarStart
+  const items = {}
+  for (const item of bot.inventory.items()) items[item.name] = (items[item.name] || 0) + item.count
+  const { position: p, yaw, pitch } = bot.entity
+  return {
+    hotbar: bot.inventory.slots.slice(start, start + 9).map(slot),
+    selected: bot.quickBarSlot,
+    items,
+    health: bot.health,
+    food: bot.food,
+    yaw,
+    pitch,
+    position: { x: p.x, y: p.y, z: p.z }
+  }
+}
+
+module.exports = { act, hud, CONTROLS }
