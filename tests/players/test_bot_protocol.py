@@ -175,7 +175,7 @@ def test_the_bot_starts_with_its_handlers_and_settings_as_declared():
 
 async def test_every_typed_method_is_a_declared_op_with_its_arguments():
     assert await python_problems(BotOps, PROTOCOL) == []
-    assert len(typed_methods(BotOps, NOT_OPS)) == len(PROTOCOL.ops) == 11
+    assert len(typed_methods(BotOps, NOT_OPS)) == len(PROTOCOL.ops) == 14
 
 
 async def test_settings_observation_and_lines_are_as_declared():
@@ -261,7 +261,7 @@ async def test_a_bot_refuses_requests_outside_the_declaration(server, tmp_path):
     try:
         channel = player.channel
         refused = {
-            "nap": 'unknown op "nap" (valid: login, ping, permissions, memory, run, stop, observe, lag, clear, equip, settle)',
+            "nap": 'unknown op "nap" (valid: login, ping, permissions, memory, run, stop, observe, lag, clear, equip, settle, act, hud, view)',
             "settle": 'op settle: "at" is not declared (declared: pos, timeout)',
             "clear": 'op clear: "seed" must be an integer, got "three"',
             "run": 'op run: "code" is missing',

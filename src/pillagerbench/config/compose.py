@@ -54,7 +54,7 @@ def _has_yaml(team: str) -> bool:
 def _aliases(overrides: list[str]) -> list[str]:
     """Our spellings in Hydra's: `red=X` is `team@red=X`; a team without a YAML file of its own
     (import path, entry point, remote) is `team@red=_external` plus `red.name=X`, and its options
-    `red.KEY=V` are added keys; a side's `llm.*` keys may be new too."""
+    `red.KEY=V` are added keys; a side's `llm.*` keys and `humans` (config/people.py) may be new too."""
     side_of = {v: k for k, v in GROUP_ALIASES.items()}
     chosen = {
         side_of.get(k, k): v
@@ -79,7 +79,7 @@ def _aliases(overrides: list[str]) -> list[str]:
             out.append(f"++{override}")
             continue
         side, _, rest = key.partition(".")
-        if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or side in external):
+        if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or rest == "humans" or side in external):
             out.append(f"++{override}")
             continue
         out.append(override)

@@ -32,6 +32,7 @@ from pydantic_core import PydanticCustomError
 
 from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
 from pillagerbench.config.game_tick import TICKS_PER_S
+from pillagerbench.config.people import SIDE_KEY, HumansConfig
 
 SECRET = "secret"  # the error type of a value that must not be echoed (problems() names the key only)
 # conf/config.yaml: every default of a key is written there, once (with the comment `run --help` shows;
@@ -217,8 +218,13 @@ class TeamConfig(BaseModel):
 
     @property
     def options(self) -> dict[str, Any]:
-        """The team's constructor options: the node without `name` and `llm`."""
-        return dict(self.model_extra or {})
+        """The team's constructor options: the node without `name`, `llm` and `humans` (config/people.py)."""
+        return {k: v for k, v in (self.model_extra or {}).items() if k != SIDE_KEY}
+
+    @property
+    def humans(self) -> list[str]:
+        """The side's players named by `red.humans=[Ryn]` (`red=human`: all of them, config/people.seats_of)."""
+        return [str(n) for n in (self.model_extra or {}).get(SIDE_KEY) or []]
 
 
 class Choices(BaseModel):
@@ -233,6 +239,7 @@ class Choices(BaseModel):
     llm: LLMKeys
     layout: int | str = written("layout")
     split: str | None = written("split")
+    clock: ClockConfig = ClockConfig()  # people play on the real clock only (config/people.py)
 
     def side(self, side: str) -> TeamConfig:
         """The team node of `red` or `blue`."""
@@ -384,6 +391,7 @@ class RunConfig(RunnerConfig):
     plan_difference: float = Field(default=written("plan_difference"), gt=0)
     scenario: ScenarioConfig
     clock: ClockConfig = ClockConfig()
+    humans: HumansConfig = HumansConfig.model_validate(written("humans"))  # people's page (config/people.py)
     red: TeamConfig
     blue: TeamConfig
     llm: LLMKeys  # the preset; checked per side that uses an LLM (config/validate.py, LLMConfig)

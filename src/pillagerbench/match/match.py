@@ -25,9 +25,11 @@ from pillagerbench.config.sides import SIDES
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay, Scoreboard
+from pillagerbench.match.people_part import PeoplePart
 from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.match.sides_clock import SidesClock
+from pillagerbench.people import People, SeatHandle
 from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.rundir.entrant import Entrant
@@ -58,6 +60,7 @@ class Match:
         conditions: dict[str, Any] | None = None,
         entrants: dict[str, Entrant] | None = None,
         clock: ClockConfig | None = None,
+        people: People | None = None,
     ):
         SCORINGS.find(scoring)
         self.scoring, self.protocol = scoring, protocol
@@ -75,6 +78,7 @@ class Match:
         self.conditions = dict(conditions or {})  # the rules differing from the suite's (suite/conditions.py)
         self.clock_config = clock or ClockConfig()  # config `clock`: what game time is
         self.clock: GameClock = RealClock()  # lockstep: the server's, from setup() on
+        self.people = people  # the players people play from the page (people/), if any
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -102,6 +106,7 @@ class Match:
                 log_dir=log_dir,
                 primitives=list(self.scenario.primitives),
                 clock=self.clock_config.mode,
+                view=self.people is not None and spec.name in self.people.seats.seats,
             )
             for spec in (specs[n] for n in self.player_order(0))
         ]
@@ -211,23 +216,26 @@ class Match:
         rec.reset_s = round(time.monotonic() - t0, 3)
         return observations
 
+    def _handle(self, name: str, sink, rec: EpisodeRecord, replay: Replay) -> PlayerHandle:
+        """The handle of a player for its team: a person's seat is not the team's to drive."""
+        if self.people is not None and name in self.people.seats.seats:
+            return SeatHandle(name, self.players[name].observe)
+        return RecordedPlayer(
+            self.players[name],
+            sink,
+            rec.runs,
+            step_wait_s=self.step_wait_s,
+            on_program=replay.program,
+            clock=self.clock,
+        )
+
     def _contexts(self, rec: EpisodeRecord, out: Path, sink, replay: Replay, observations: dict) -> dict:
         """Each side's TeamContext for this episode (its players' handles record their runs)."""
         contexts = {}
         for side in self.scenario.sides:
             team_dir = out / side.key
             team_dir.mkdir(exist_ok=True)
-            handles: dict[str, PlayerHandle] = {
-                n: RecordedPlayer(
-                    self.players[n],
-                    sink,
-                    rec.runs,
-                    step_wait_s=self.step_wait_s,
-                    on_program=replay.program,
-                    clock=self.clock,
-                )
-                for n in side.player_names
-            }
+            handles: dict[str, PlayerHandle] = {n: self._handle(n, sink, rec, replay) for n in side.player_names}
             contexts[side.key] = TeamContext(
                 scenario=self.scenario,
                 side=side,
@@ -250,7 +258,7 @@ class Match:
         for team in self.teams.values():
             team.problems = []
         contexts = self._contexts(rec, out, sink, replay, observations)
-        parts = [*parts, Scoreboard(contexts)]
+        parts = [*parts, Scoreboard(contexts)] + ([PeoplePart(self.people, sink)] if self.people is not None else [])
 
         async def timed_pre_game(key):
             t = time.monotonic()

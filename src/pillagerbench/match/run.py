@@ -8,8 +8,12 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
+from pillagerbench.config.compose import ConfigError
+from pillagerbench.config.people import seats_of
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.match import Match
+from pillagerbench.people import People
+from pillagerbench.people.page import PageServer
 from pillagerbench.players import PlayerError
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
@@ -47,6 +51,8 @@ async def play_match(
         if cfg.clock.mode == "lockstep" and cfg.clock.speed == "max":
             print("live view: the lockstep clock runs unpaced (clock.speed=max); clock.speed=1 to watch", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
+    people = people_of(cfg, scenario)
+    page = PageServer(people, list(scenario.primitives), cfg.server.host, cfg.humans.port) if people else None
     match = Match(
         server,
         scenario,
@@ -62,16 +68,43 @@ async def play_match(
         llms=llms,
         entrants={side: entrant_of(cfg, side) for side in teams},
         clock=cfg.clock,
+        people=people,
     )
     match.last_records.update(last or {})
     try:
         await set_up(match)
+        if page is not None and people is not None:
+            print(f"people: open {await page.start()} to play", flush=True)
+            await seat_people(match, people, cfg.humans.ready_timeout_s)
         await match.play_episodes(episodes, on_episode)
     finally:
+        if page is not None:
+            await page.stop()
         await match.close()
         await server.stop()
         for llm in llms.values():
             await llm.aclose()
+
+
+def people_of(cfg: RunConfig, scenario: Scenario) -> People | None:
+    """The people of a match (config/people.py), or None when agents play every player."""
+    teams = {s.key: cfg.side(s.key) for s in scenario.sides}
+    seats = {k: seats_of(teams[k].name, teams[k].humans, list(s.player_names)) for k, s in zip(teams, scenario.sides)}
+    if not any(seats.values()):
+        return None
+    briefing = {"title": scenario.title, "scenario": scenario.key, "description": scenario.description()}
+    return People({k: v for k, v in seats.items() if v}, briefing)
+
+
+async def seat_people(match: Match, people: People, timeout: float) -> None:
+    """Wait until every person is ready; then each side's entrant names its people (human:NAME)."""
+    if not await people.wait_ready(timeout):
+        raise ConfigError(
+            f"humans: not every person was ready within {timeout:g} s (humans.ready_timeout_s); no episode played"
+        )
+    for side, entrant in match.entrants.items():
+        names = [s.person or "?" for s in people.seats.seats.values() if s.side == side]
+        match.entrants[side] = entrant.with_people(names)
 
 
 async def set_up(match: Match) -> None:

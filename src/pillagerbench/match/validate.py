@@ -8,6 +8,7 @@ use an LLM, and the LLM settings of every side that uses one. Each takes the cho
 
 from __future__ import annotations
 
+from pillagerbench.config import people
 from pillagerbench.config.compose import ConfigError
 from pillagerbench.config.schema import Choices, problems
 from pillagerbench.config.sides import SIDES
@@ -15,7 +16,7 @@ from pillagerbench.config.validate import GROUP_CHECKS, LAYOUT, SCENARIO, TEAMS
 from pillagerbench.llm.errors import LLMConfigError
 from pillagerbench.llm.prices import price_problem
 from pillagerbench.llm.settings import LLMSettings
-from pillagerbench.scenarios import SCENARIOS
+from pillagerbench.scenarios import SCENARIOS, make_scenario
 from pillagerbench.scenarios.layout import PAPER, LayoutError, parse_layout, parse_split
 from pillagerbench.teams import TEAMS as TEAM_CLASSES
 from pillagerbench.teams import find_team
@@ -81,7 +82,21 @@ def sides_problems(choices: Choices) -> list[str]:
     found: list[str] = []
     for side in SIDES:
         found += [p for p in _team_problems(choices, side) if p not in found]
-    return found
+    return found + people_problems(choices)
+
+
+def people_problems(choices: Choices) -> list[str]:
+    """`red.humans=[...]` names the side's own players; people play on the real clock (config/people.py)."""
+    scenario = choices.scenario.name
+    if scenario not in SCENARIOS:
+        return []
+    sides = {s.key: list(s.player_names) for s in make_scenario(scenario).sides}
+    nodes = {side: {"name": choices.side(side).name, **(choices.side(side).model_extra or {})} for side in SIDES}
+    found = [p for side in SIDES for p in people.side_problems(side, nodes[side], sides[side])]
+    seats = {
+        side: people.seats_of(nodes[side]["name"], nodes[side].get(people.SIDE_KEY), sides[side]) for side in SIDES
+    }
+    return found or people.clock_problems(choices.clock.mode, seats)
 
 
 @GROUP_CHECKS.register(LAYOUT)

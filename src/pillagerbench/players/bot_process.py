@@ -77,9 +77,11 @@ class BotProcess:
         watchdog_s: float,
         login_timeout: float,
         clock: str,
+        view: bool = False,
     ):
         self.name, self.server_port, self.host = name, server_port, host
         self.clock = clock  # "real" or "lockstep": the bot's timers on the wall clock or the server's ticks
+        self.view = view  # a person's player: its bot can serve the first-person view (js/bot/view.js)
         self.primitives = primitives
         self.server = server  # the arena's control channel, to restore a restarted bot (None: not restored)
         self.watchdog_s = watchdog_s
@@ -131,6 +133,8 @@ class BotProcess:
         A match launches all its players at once, so that this overlaps the logins, one at a time."""
         settings = Settings(host=self.host, port=self.server_port, username=self.name, primitives=self.primitives)
         settings |= {"heartbeatMs": 200, "clock": self.clock, "cue": True}  # cue: it logs in at _login's
+        if self.view:
+            settings["view"] = True
         loop = asyncio.get_running_loop()
         self.generation += 1
         self._spawned = loop.create_future()

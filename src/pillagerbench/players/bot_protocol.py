@@ -73,6 +73,7 @@ class Settings(_RequiredSettings, total=False):
     clock: str | None
     heartbeatMs: int | None
     cue: bool | None
+    view: bool | None
 
 
 class Permissions(TypedDict):
@@ -160,6 +161,15 @@ class BotOps:
 
     async def equip(self, equipment: Equipment, *, wait: float = 15.0) -> bool:
         return await self._ask("equip", wait, equipment=equipment)
+
+    async def act(self, input: dict[str, Any], *, wait: float = 10.0) -> str:
+        return await self._ask("act", wait, input=input)
+
+    async def hud(self) -> dict[str, Any]:
+        return await self._ask("hud")
+
+    async def view(self, *, wait: float = 20.0) -> int:
+        return await self._ask("view", wait)
 
     async def settle(
         self, pos: Sequence[float] | None = None, timeout: float | None = None, *, wait: float = 10.0

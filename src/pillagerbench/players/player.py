@@ -44,6 +44,7 @@ class Player:
         watchdog_s: float = 1.0,
         login_timeout: float = 30.0,
         clock: str = "real",
+        view: bool = False,
     ):
         self.name = name
         self.clock = clock  # "real" or "lockstep": the bot's timers on the wall clock or the server's ticks
@@ -59,6 +60,7 @@ class Player:
             watchdog_s=watchdog_s,
             login_timeout=login_timeout,
             clock=clock,
+            view=view,
         )
         self._run_lock = asyncio.Lock()
 

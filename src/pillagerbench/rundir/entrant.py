@@ -41,6 +41,11 @@ WORDS: dict[tuple[str, bool], str] = {
 # version, and its model when given (options: name, version, model), not by the team's own name
 IDENTITY: dict[str, tuple[str, str, str]] = {"agent": ("agent", "agent_version", "agent_model")}
 
+# the people playing some of a team's players (docs/people.md): the option holding their names, in the order of
+# the side's players; a person is the entrant `human:NAME`, a mixed team `cot@gpt-4o+human:NAME`
+PEOPLE = "people"
+HUMAN_TEAM = "human"
+
 LONG = 24  # a string value longer than this reads as `key=#` and 6 hex digits of its hash
 
 
@@ -90,6 +95,10 @@ class Entrant:
 
     @cached_property
     def label(self) -> str:
+        people = [f"human:{name}" for name in self.options.get(PEOPLE) or []]
+        if people:
+            rest = Entrant(self.team, self.models, {k: v for k, v in self.options.items() if k != PEOPLE})
+            return "+".join(people if self.team == HUMAN_TEAM else [rest.label, *people])
         if self.team not in IDENTITY:
             return label_of(self.team, self.models, self.options)
         name_key, version_key, _ = IDENTITY[self.team]
@@ -105,6 +114,10 @@ class Entrant:
 
     def __repr__(self) -> str:
         return f"Entrant({self.label!r}, id={self.id})"
+
+    def with_people(self, names: list[str]) -> Entrant:
+        """This entrant with people playing some of its players (their names, as they typed them)."""
+        return Entrant(self.team, self.models, {**self.options, PEOPLE: list(names)}) if names else self
 
     def to_dict(self) -> dict[str, Any]:
         """As an episode record holds it: label, id, team, models, options."""

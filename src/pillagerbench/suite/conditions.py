@@ -73,6 +73,8 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("run_dir", NOT, "where the run is written"),
     Setting("display", NOT, "how the terminal shows the run"),
     Setting("watch", NOT, "the live view (bounded so it never holds the game up)"),
+    Setting("humans.port", NOT, "where the people's page listens"),
+    Setting("humans.ready_timeout_s", NOT, "how long the match waits for people before it plays"),
     Setting("clock.speed", NOT, "lockstep: how fast game time passes on the wall, not what happens in it"),
     Setting("parallel", NOT, "matches at once: load is recorded per episode as lag"),
     Setting("launcher", NOT, "where series run: load is recorded per episode as lag"),

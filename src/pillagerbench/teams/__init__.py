@@ -7,6 +7,7 @@ from pillagerbench.teams.base import Team, TeamContext
 from pillagerbench.teams.cot import ChainOfThought
 from pillagerbench.teams.dash_and_dine import Berries, CakeBeetroot, MelonPumpkin, PotatoCookie
 from pillagerbench.teams.do_nothing import DoNothing
+from pillagerbench.teams.human import Human
 from pillagerbench.teams.mushroom_war import Aggressive, Balanced, Passive, Slimy
 from pillagerbench.teams.random_team import RandomTeam
 from pillagerbench.teams.registry import (
@@ -38,6 +39,7 @@ BUILT_IN: tuple[type[Team], ...] = (
     RemoteTeam,  # a team in any language behind HTTP (docs/remote-teams.md)
     AgentTeam,  # a team an outside agent plays through the game's tools (docs/any-agent.md)
     ToolsTeam,  # an LLM team playing through the same tools by function calling (beyond the paper)
+    Human,  # people playing from the browser (docs/people.md)
 )
 for _cls in BUILT_IN:
     register(_cls)

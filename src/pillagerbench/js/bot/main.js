@@ -33,6 +33,8 @@ const { LagMeter } = require('./lag')
 const watchdog = require('./watchdog')
 const sandbox = require('./sandbox')
 const primitives = require('./primitives')
+const person = require('./person')
+const view = require('./view')
 const { seededRandom, seedOf } = require('../clock/random')
 
 const CHAT_LIMIT = 25
@@ -76,6 +78,7 @@ bot.loadPlugin(tool)
 bot.loadPlugin(collectBlock)
 bot.loadPlugin(pvp)
 gate(bot, () => current) // a stopped run's leftovers cannot act (gate.js)
+if (settings.view) view.load(bot) // a person's player: its view's server made before the bot is hardened (view.js)
 // The bots' writes are not batched (batch.js): a dig's finish and the next packet would then reach the
 // server in one read, and flying-squid's asynchronous dig handler lets the next packet (a place against
 // the block just dug) see the block before the dig has changed it (tests/server/test_fair_play.py).
@@ -266,6 +269,13 @@ const OPS = {
     }
     return true
   },
+  // A person's key or mouse input, inside the current run (its packets pass the gate as the run's own).
+  act: async ({ input }) => {
+    if (!current || !current.active) throw new Error('the game is not on: nothing you do acts now')
+    return within(current, () => person.act(bot, input))
+  },
+  hud: async () => person.hud(bot),
+  view: async () => view.view(),
   // Wait until the server's teleport since the last settle has arrived, the bot stands near `pos`
   // and the ground under it is loaded.
   settle: async ({ pos, timeout = 5 }) => {
