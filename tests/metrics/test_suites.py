@@ -99,14 +99,15 @@ def test_every_manifest_names_the_suite(tmp_path):
     from types import SimpleNamespace
 
     from pillagerbench.config.compose import load_config
-    from pillagerbench.config.schema import RunConfig
+    from pillagerbench.config.schema import RunConfig, RunnerConfig
     from pillagerbench.experiments.runner import write_experiment
     from pillagerbench.rundir import RunDir
     from pillagerbench.rundir.manifest import match_manifest
 
     scenario = SimpleNamespace(key="mushroom_war", title="Mushroom War", version="1")
     RunDir(tmp_path / "run").write_manifest(match_manifest(RunConfig.of(load_config([])), scenario))
-    write_experiment(tmp_path / "exp", {"experiment": {"name": "x"}}, [], [])
+    runner = RunnerConfig.model_validate({"experiment": {"name": "x", "design": "fidelity"}})
+    write_experiment(tmp_path / "exp", runner, [], [])
     for run in ("run", "exp"):
         assert RunDir(tmp_path / run).manifest().suite == current()
 
