@@ -118,7 +118,7 @@ class RunDir:
 
     def write_manifest(self, manifest: Manifest) -> None:
         self.path.mkdir(parents=True, exist_ok=True)
-        self.manifest_path.write_text(json.dumps(manifest.to_json(), indent=1, default=str))
+        replace_json(self.manifest_path, manifest.to_dict(), indent=1)  # a kill leaves no half of one
 
     def episode(self, index: int) -> Path:
         return self.path / f"{_EPISODE}{index:03d}"

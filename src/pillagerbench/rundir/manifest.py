@@ -43,7 +43,7 @@ class Manifest(BaseModel):
     conditions: dict[str, Any] | None = None  # the rules differing from the suite's (suite/conditions.py)
     experiment: str | None = None  # an experiment's top-level manifest: its name
 
-    def to_json(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """The fields given, as written."""
         return self.model_dump(exclude_unset=True)
 

@@ -1,5 +1,6 @@
 """A JSON file of a run replaced whole: written beside it and renamed over it, so a kill leaves the old
-file or the new one, never half of one (live.json, experiment.json, compare.json, outage.json)."""
+file or the new one, never half of one (live.json, experiment.json, compare.json, outage.json,
+manifest.json, episode.json)."""
 
 from __future__ import annotations
 
