@@ -115,7 +115,7 @@ async def main(n_bots: int, seconds: float, repeats: int) -> dict:
         )
         await server.fill([3, 4, -3], [20, 4, 3], "air")
 
-        procs = [psutil.Process(p.proc.pid) for p in players]
+        procs = [psutil.Process(p.bot.proc.pid) for p in players]
         for i, p in enumerate(players):
             await p.reset(position=(i * 40, 4, 0), inventory={})
         await asyncio.sleep(1)

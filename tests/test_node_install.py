@@ -1,6 +1,7 @@
 """The lighter install: the live view's package (prismarine-viewer) is the lock's one optional
 dependency, left out of the base install and added on the first use of watch=. What the server and
-the bots require must never be one of the packages only the viewer brings."""
+the bots require must never be one of the packages only the viewer brings (but a person's view, made
+only for a person's bot and only when the viewer is there: js/bot/view.js)."""
 
 from __future__ import annotations
 
@@ -24,8 +25,12 @@ def test_the_viewer_is_the_one_optional_dependency_and_only_the_live_view_requir
     optional = optional_packages()
     assert {"prismarine-viewer", "express", "socket.io", "three"} <= optional
     assert not optional & set(package["dependencies"])
+    # a person's first-person view needs the viewer too: a bot makes it only when it plays a person
+    # (settings.view), and says why there is none when the viewer is not installed (docs/people.md)
+    assert "if (settings.view) view.load(bot)" in (JS_DIR / "bot" / "main.js").read_text()
+    assert "MODULE_NOT_FOUND" in (JS_DIR / "bot" / "view.js").read_text()
     for path in JS_DIR.rglob("*.js"):
-        if "node_modules" in path.parts or path.parent.name == "watch":
+        if "node_modules" in path.parts or path.parent.name == "watch" or path == JS_DIR / "bot" / "view.js":
             continue
         wrong = optional & set(REQUIRE.findall(path.read_text()))
         assert not wrong, f"{path.relative_to(JS_DIR)} requires {wrong}, which the base install leaves out"

@@ -19,15 +19,18 @@ class HeldPassive(Passive):
     name = "held_passive"
     options_declared = {"hold": "", "hold_at": "play", "hold_episode": 1}
 
-    def _here(self, at: str, episode: int) -> Path | None:
-        """The hold file if this is the moment and the file exists (after the test removed it: None)."""
+    def _holds(self, at: str, episode: int) -> bool:
+        """Whether this is the moment and the hold file exists (after the test removed it: not)."""
         hold = Path(str(self.options.get("hold") or "/nonexistent"))
-        if (
-            at != self.options.get("hold_at")
-            or episode != int(self.options.get("hold_episode", 1))
-            or not hold.exists()
-        ):
+        return (
+            at == self.options.get("hold_at") and episode == int(self.options.get("hold_episode", 1)) and hold.exists()
+        )
+
+    def _here(self, at: str, episode: int) -> Path | None:
+        """The hold file if this is the moment (`<hold>.reached` written: the test may kill from now on)."""
+        if not self._holds(at, episode):
             return None
+        hold = Path(str(self.options.get("hold")))
         hold.with_name(hold.name + ".reached").write_text(at)
         return hold
 
@@ -47,12 +50,12 @@ class HeldPassive(Passive):
 
     def save_checkpoint(self, directory: Path) -> Path:
         self.saves = getattr(self, "saves", 0) + 1  # once after each episode, from episode 0
-        hold = self._here("save", self.saves - 1)
-        if hold:
+        if self._holds("save", self.saves - 1):
             directory.mkdir(parents=True, exist_ok=True)
             text = json.dumps({"team": self.name, "state": self.state()})
             (directory / "team.json").write_text(text[: len(text) // 2])
-            while hold.exists():  # the event loop stands still here, as in a slow disk write
+            hold = self._here("save", self.saves - 1)  # reached once the torn half is on disk
+            while hold and hold.exists():  # the event loop stands still here, as in a slow disk write
                 time.sleep(0.05)
         return super().save_checkpoint(directory)
 

@@ -111,7 +111,7 @@ class StopsItsBot(DoNothing):
         code = "bot.chat('waiting'); await bot.waitForTicks(100000)"
         run = asyncio.create_task(handle.run(code, on_event=lambda e: running.set()))
         await running.wait()
-        os.kill(handle.proc.pid, signal.SIGSTOP)  # (its restart kills it)
+        os.kill(handle.bot.proc.pid, signal.SIGSTOP)  # (its restart kills it)
         self.events = await run
         await rest
         await super().play(ctx)

@@ -39,7 +39,7 @@ async def test_a_failed_login_is_tried_once_more_on_a_fresh_server(tmp_path, cap
             await set_up(match)
             assert server.process.pid != frozen
             assert sorted(p["name"] for p in await server.players()) == sorted(p.name for p in sc.all_players())
-            assert [p.login_timeout for p in match.players.values()] == [DEFAULT_LOGIN_S] * 4
+            assert [p.bot.login_timeout for p in match.players.values()] == [DEFAULT_LOGIN_S] * 4
             rec = await match.play_episode(0)
             assert rec.status == "ok", rec.error
         finally:
