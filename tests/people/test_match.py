@@ -1,9 +1,10 @@
 """A person plays a real match from the page in a real headless Chromium (tests/support/cdp.py: keys and
-mouse through the DevTools protocol) on a real server with real bots: types a name, presses Ready, holds
-W, looks down with the mouse and holds the left button to dig, presses T and sends a teammate's signal
-that comes back on the page, sees its hud and inventory, and its first-person view is served; a second page for the taken player is
-refused, the page's token brings it back into its player, a primitive button runs. One short episode on
-the real clock (people play on it) serves every check; the server's record shows each."""
+mouse through the DevTools protocol) on a real server with real bots: sees the lobby's map, types a name,
+presses Ready, holds W, looks down with the mouse and holds the left button to dig, presses T and sends
+a teammate's signal that comes back on the page (and so does the Signal button's), sees its hud and
+inventory, and its first-person view is served; a second page for the taken player is refused, the
+page's token brings it back into its player, a primitive button runs. One short episode on the real
+clock (people play on it) serves every check; the server's record shows each."""
 
 from __future__ import annotations
 
@@ -42,6 +43,7 @@ def _lobby(browser: Browser, url: str) -> str:
     """The person types a name, takes the seat and presses Ready; the page's token."""
     browser.open(url)
     browser.wait_for("document.getElementById('seat').options.length > 0")
+    browser.wait_for("!!document.getElementById('map').contentDocument?.querySelector('canvas')")  # the map
     browser.type("name", "alice")
     browser.click("join")
     browser.wait_for("!document.getElementById('ready').disabled")
@@ -65,16 +67,20 @@ def _walk_and_dig(browser: Browser) -> None:
 
 def _chat(browser: Browser) -> None:
     """T lets the mouse go and opens the chat box; a teammate's signal typed there and sent with Enter comes
-    back from the server onto the page (marked a signal); the hud shows health, food and the hotbar."""
+    back from the server onto the page (marked a signal), and so does the Signal button's; the hud shows
+    health, food and the hotbar."""
     browser.key("KeyT", "keyDown")
     browser.key("KeyT", "keyUp")
     browser.wait_for("document.activeElement === document.getElementById('chat') && !document.pointerLockElement")
     browser.type(None, "[Raze signal]")
     browser.key("Enter", "keyDown")
     browser.key("Enter", "keyUp")
-    browser.wait_for(
-        "[...document.querySelectorAll('#chatlog .signal')].some((e) => e.textContent.includes('[Raze signal]'))"
+    signals = (
+        "[...document.querySelectorAll('#chatlog .signal')].filter((e) => e.textContent.includes('[Raze signal]'))"
     )
+    typed = browser.wait_for(f"{signals}.length")
+    browser.click("signal")  # the Signal button, its teammate (Raze) chosen: the same line again
+    browser.wait_for(f"{signals}.length > {typed}")
     assert browser.eval("document.getElementById('vitals').textContent") == "health 20 · food 20"
     assert browser.eval("document.querySelectorAll('#hotbar span').length") == 9
 

@@ -2,8 +2,9 @@
 before playing it. LAYOUT is what `layout=` takes: paper, a seed, or a layout file (.json). The
 picture is one self-contained HTML page (it loads nothing) drawing the arena as built, top-down, as
 the replay page draws a recording (js/replay/map.js): blocks, mobs and every player at its spawn,
-with what the chests and furnaces hold. `--json` writes the layout itself instead, a file that
-`layout=FILE.json` plays (edit it to make your own; docs/layouts.md says the rules it must keep).
+with what the chests and furnaces hold (people/lobby.py builds it: the people's lobby shows the same
+page). `--json` writes the layout itself instead, a file that `layout=FILE.json` plays (edit it to
+make your own; docs/layouts.md says the rules it must keep).
 
     pillagerbench layout show mushroom_war 42                 # writes layout_mushroom_war_42.html
     pillagerbench layout show dash_and_dine paper --out map.html
@@ -16,9 +17,8 @@ import json
 from pathlib import Path
 
 from pillagerbench.config.args import Parser
-from pillagerbench.replay.map_page import render_still, still_data
+from pillagerbench.people.lobby import layout_page
 from pillagerbench.scenarios import SCENARIOS, Scenario, make_scenario
-from pillagerbench.scenarios.arena import GROUND_Y, Arena
 from pillagerbench.scenarios.layout import PAPER, LayoutError, parse_layout
 
 
@@ -43,44 +43,6 @@ def scenario_on(name: str, value: str) -> Scenario:
 
 def layout_json(scenario: Scenario) -> str:
     return json.dumps({"scenario": scenario.key, **scenario.layout.model_dump(mode="json")}, indent=1) + "\n"
-
-
-def notes(scenario: Scenario, arena: Arena) -> list[str]:
-    """What the map cannot show: where it lies, the spawns, the chests' and furnaces' contents, the mobs."""
-    (x0, _, z0), (x1, _, z1) = arena.box
-    out = [f"top-down, north (-z) up, east (+x) right: x {x0}..{x1}, z {z0}..{z1}; players stand at y = {GROUND_Y + 1}"]
-    out += [
-        f"{side.key}: " + ", ".join(f"{p.name} at {p.spawn}" for p in side.players) + f"; centre {side.center}"
-        for side in scenario.sides
-    ]
-    out += [f"{p.name} at {p.spawn}" for p in scenario.extra_players]
-    out += [f"chest at {pos}: {_listed(items) or 'empty'}" for pos, items in arena.chests.items()]
-    out += [f"furnace at {pos}: {_listed(contents)}" for pos, contents in arena.furnaces.items()]
-    out += [f"egg farm: the chickens lay into the chest at {chest}" for chest, _ in arena.egg_farms]
-    mobs: dict[str, int] = {}
-    for name, _ in arena.mobs:
-        mobs[name] = mobs.get(name, 0) + 1
-    return out + [f"{count} {name}" for name, count in mobs.items()]
-
-
-def _listed(contents: dict) -> str:
-    """{"bowl": 64} -> "bowl 64"; {"fuel": ["coal", 64]} -> "fuel coal 64"."""
-    return ", ".join(" ".join(map(str, [k, *(v if isinstance(v, list) else [v])])) for k, v in contents.items())
-
-
-def layout_page(scenario: Scenario) -> str:
-    arena = scenario.arena
-    data = still_data(
-        arena.box,
-        arena.blocks,
-        arena.mobs,
-        [(p.name, p.spawn) for p in scenario.all_players()],
-        {side.key: side.player_names for side in scenario.sides},
-    )
-    key = scenario.layout_key
-    title = f"{scenario.title}, layout {key} ({scenario.split})"
-    play = f"play it: pillagerbench run scenario={scenario.key} layout={key}"
-    return render_still(data, title, [*notes(scenario, arena), play])
 
 
 def default_out(scenario: Scenario, as_json: bool) -> Path:

@@ -1,6 +1,6 @@
-"""The people's part of a game (docs/people.md): at the start each person's player runs the person's run
-(people/relay.py), each second the pages get the score and the clock and quiet pages' players stand still,
-at the whistle the pages are told."""
+"""The people's part of a game (docs/people.md): at the start the pages get the episode's map and each
+person's player runs the person's run (people/relay.py), each second the pages get the score and the clock
+and quiet pages' players stand still, at the whistle the pages are told."""
 
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ class PeoplePart(Part):
         self.people, self.sink = people, sink
 
     async def start(self, game: Game) -> None:
+        self.people.show_layout(game.scenario)  # the episode's own layout under split=dev|test
         self.people.board = {"scores": {}, "episode": game.rec.episode, "length": game.length}
         self.people.begin(game.players, self.sink, game.length)
 

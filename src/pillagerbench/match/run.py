@@ -13,6 +13,7 @@ from pillagerbench.config.people import seats_of
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.match import Match
 from pillagerbench.people import People
+from pillagerbench.people.lobby import briefing_of
 from pillagerbench.people.page import PageServer
 from pillagerbench.players import PlayerError
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
@@ -92,8 +93,10 @@ def people_of(cfg: RunConfig, scenario: Scenario) -> People | None:
     seats = {k: seats_of(teams[k].name, teams[k].humans, list(s.player_names)) for k, s in zip(teams, scenario.sides)}
     if not any(seats.values()):
         return None
-    briefing = {"title": scenario.title, "scenario": scenario.key, "description": scenario.description()}
-    return People({k: v for k, v in seats.items() if v}, briefing)
+    people = People({k: v for k, v in seats.items() if v}, briefing_of(scenario, cfg.split))
+    if cfg.split in (None, "paper"):  # the layout every episode is played on; else each episode's, as it starts
+        people.show_layout(scenario)
+    return people
 
 
 async def seat_people(match: Match, people: People, timeout: float) -> None:

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import json
 import re
 import socket
 from collections.abc import Generator
@@ -20,7 +19,7 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Route
 
-from pillagerbench.people.relay import People, code_of
+from pillagerbench.people.relay import People, chat_code, code_of
 from pillagerbench.people.seats import Refused
 
 # the primitive buttons: name -> its arguments after `bot` (kind: item, count, player, block, position)
@@ -105,8 +104,11 @@ def app(people: People, primitives: list[str]) -> Starlette:
 
     async def chat(data: dict) -> bool:
         text = str(data.get("text", ""))[:256]
-        await people.program(data.get("token"), f"bot.chat({json.dumps(text)})" if text else "")
+        await people.program(data.get("token"), chat_code(text))
         return True
+
+    async def signal(data: dict) -> str:
+        return await people.signal(data.get("token"), data.get("to"))
 
     async def state(request: Request) -> Response:
         return JSONResponse({**people.state(request.query_params.get("token")), "buttons": buttons})
@@ -114,11 +116,15 @@ def app(people: People, primitives: list[str]) -> Starlette:
     async def page(request: Request) -> Response:
         return HTMLResponse((resources.files("pillagerbench.people") / "page.html").read_text(encoding="utf-8"))
 
-    routes = [Route("/", page), Route("/state", state)]
-    routes += [
-        Route(f"/{n}", answer(f), methods=["POST"])
-        for n, f in (("join", join), ("ready", ready), ("act", act), ("press", press), ("chat", chat))
-    ]
+    async def layout(request: Request) -> Response:
+        """The map of the layout played (people/lobby.py), or 404 while it is not known yet."""
+        if not people.map_page:
+            return HTMLResponse("no map yet: the episode's layout is drawn once it starts", status_code=404)
+        return HTMLResponse(people.map_page)
+
+    routes = [Route("/", page), Route("/state", state), Route("/map", layout)]
+    posts = {"join": join, "ready": ready, "act": act, "press": press, "chat": chat, "signal": signal}
+    routes += [Route(f"/{n}", answer(f), methods=["POST"]) for n, f in posts.items()]
     return Starlette(routes=routes)
 
 

@@ -15,8 +15,10 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from pillagerbench.people.lobby import layout_page
 from pillagerbench.people.seats import Refused, Seats
 from pillagerbench.players import Player, PlayerError
+from pillagerbench.scenarios import Scenario
 
 HOLD = "await new Promise(() => {})"  # the person's run: it waits, and the person's input acts inside it
 FEED = 200  # lines of the events feed a page is shown
@@ -30,7 +32,8 @@ class People:
 
     def __init__(self, seats: dict[str, list[str]], briefing: dict[str, Any]):
         self.seats = Seats(seats)
-        self.briefing = briefing  # what the lobby shows: scenario, description, map
+        self.briefing = briefing  # what the lobby shows: scenario, description, sides, map (lobby.briefing_of)
+        self.map_page = ""  # the map of the layout played (lobby.layout_page), served at the briefing's `map`
         self.players: dict[str, Player] = {}
         self.sink: Callable[[str, list], None] | None = None
         self.phase = "lobby"  # lobby | waiting | playing | over
@@ -48,6 +51,16 @@ class People:
         self.feed = [*self.feed, line][-FEED:]
 
     # ---- the lobby ----------------------------------------------------------------------------
+    def show_layout(self, scenario: Scenario) -> None:
+        """The pages show the map of `scenario`'s layout (the one played: before the first episode, or each
+        episode's when `split=` gives each its own)."""
+        key = str(scenario.layout_key)
+        if self.map_page and self.briefing.get("layout") == key:
+            return
+        self.map_page = layout_page(scenario, play=False)
+        version = int(self.briefing.get("map_version") or 0) + 1
+        self.briefing = {**self.briefing, "layout": key, "map": f"map?v={version}", "map_version": version}
+
     def ready(self, token: str | None) -> None:
         seat = self.seats.of(token)
         seat.ready = True
@@ -156,6 +169,24 @@ class People:
         self._queues[name].append(code)
         await player.stop()  # ends the person's waiting run; the hold loop runs the code next
 
+    def teammates(self, player: str) -> list[str]:
+        """The other players of `player`'s side (the briefing's `sides`): whom its person may signal."""
+        for names in (self.briefing.get("sides") or {}).values():
+            if player in names:
+                return [n for n in names if n != player]
+        return []
+
+    async def signal(self, token: str | None, to: object) -> str:
+        """The person's signal to the teammate `to`: the chat line `[TO signal]` that multiAgent.js's sendSignal
+        chats and a teammate's waitSignal waits for, sent as the chat box sends a line; the line sent."""
+        seat = self.seats.of(token)
+        mates = self.teammates(seat.player)
+        if to not in mates:
+            raise Refused(f"{to!r} is not a teammate of {seat.player} (teammates: {', '.join(mates) or 'none'})")
+        line = f"[{to} signal]"
+        await self.program(token, chat_code(line))
+        return line
+
     async def still(self) -> None:
         """Players whose page has gone quiet stand still."""
         for seat in self.seats.seats.values():
@@ -181,6 +212,7 @@ class People:
             "feed": self.feed[-40:],
             "hud": self.huds.get(seat.player) if seat else None,
             "chat": self.chats.get(seat.player, [])[-40:] if seat else [],
+            "teammates": self.teammates(seat.player) if seat else [],
             "view": self.views.get(seat.player) if seat else None,
         }
 
@@ -206,3 +238,8 @@ class SeatHandle:
 def code_of(primitive: str, args: list[Any]) -> str:
     """The program a primitive button runs: the same call an agent's code makes."""
     return f"await {primitive}(bot, {', '.join(json.dumps(a) for a in args)})"
+
+
+def chat_code(text: str) -> str:
+    """The program a chat line runs (the chat box, the signal button): the bot says `text`; nothing for ''."""
+    return f"bot.chat({json.dumps(text)})" if text else ""
