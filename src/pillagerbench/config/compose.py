@@ -15,6 +15,8 @@ from hydra.core.global_hydra import GlobalHydra
 from hydra.errors import HydraException
 from omegaconf import DictConfig, OmegaConf
 
+from pillagerbench.config.people import SIDE_KEY
+
 
 class ConfigError(ValueError):
     """Bad configuration or override; the message names the problem and the valid choices."""
@@ -79,7 +81,7 @@ def _aliases(overrides: list[str]) -> list[str]:
             out.append(f"++{override}")
             continue
         side, _, rest = key.partition(".")
-        if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or rest == "humans" or side in external):
+        if sep and side in GROUP_ALIASES and (rest.startswith("llm.") or rest == SIDE_KEY or side in external):
             out.append(f"++{override}")
             continue
         out.append(override)

@@ -30,6 +30,8 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
+from pillagerbench.config.people import HUMAN_TEAM
+
 # how a switch (a true/false option) reads in a label; any other option reads `key=value`
 WORDS: dict[tuple[str, bool], str] = {
     ("causal", False): "no causal",
@@ -44,7 +46,6 @@ IDENTITY: dict[str, tuple[str, str, str]] = {"agent": ("agent", "agent_version",
 # the people playing some of a team's players (docs/people.md): the option holding their names, in the order of
 # the side's players; a person is the entrant `human:NAME`, a mixed team `cot@gpt-4o+human:NAME`
 PEOPLE = "people"
-HUMAN_TEAM = "human"
 
 LONG = 24  # a string value longer than this reads as `key=#` and 6 hex digits of its hash
 
