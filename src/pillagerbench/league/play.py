@@ -2,7 +2,7 @@
 adjacent pair of every scenario's board is separated or the budget is spent.
 
 Each round: finish an unfinished round first (resume, as `pillagerbench run resume=`), rebuild the
-ratings from the episodes, check the budget, schedule (schedule.py), write the round directory
+ratings from the episodes (each finished round read once: results.Played), check the budget, schedule (schedule.py), write the round directory
 and play it through the experiment runner."""
 
 from __future__ import annotations
@@ -50,6 +50,7 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: Runner
     start = results.spent(league_dir)
     if (over := start.over(league.budget)) and not (round_dirs(league_dir) and _unfinished(round_dirs(league_dir)[-1])):
         raise ConfigError(f"budget already spent ({over}); raise it (e.g. budget.episodes=N) to play more")
+    played = results.Played(league_dir, league.mix_suites, not league.no_verify)
     while True:
         rounds = round_dirs(league_dir)
         if rounds and _unfinished(rounds[-1]):
@@ -58,13 +59,11 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: Runner
                 print(f"a series of {rounds[-1].name} failed; see its series_error.txt, then play again to finish it")
                 return 1
             continue
-        spent = results.spent(league_dir)
+        spent = played.spent()  # every round finished: each read once (results.Played)
         if over := spent.over(league.budget):
             print(f"league stopped: budget spent ({over})")
             return 0
-        outs = results.outcomes(
-            on_split(results.load(league_dir, league.mix_suites, not league.no_verify), league.split)[0]
-        )
+        outs = results.outcomes(on_split(played.runs(), league.split)[0])
         pairings = next_round(boards(league, outs), outs, league.confidence, league.matches_per_round)
         if not pairings:
             print(f"league settled: every adjacent pair is separated at confidence {league.confidence:g}")

@@ -22,7 +22,7 @@ counts a series' used episodes, so a spoiled one leaves no hole.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -368,13 +368,8 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
-    every = named(rows + spoilt)  # red and blue: the entrants, in every table (spoiled episodes' too)
-    rows, spoilt = every[: len(rows)], every[len(rows) :]
-    name_entrants(found, every)  # the Failures table names them too
-    _label_calls(ledger, rows)
-    suites = _suites(rows, mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
-    return Runs(
+    runs = Runs(
         rows=rows,
         series=series,
         ledger=ledger,
@@ -383,10 +378,36 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
         runs=list(roots),
         roots=roots,
         faults=found,
-        suites=suites,
         bundles=[r for r in inputs if is_bundle(r)],
         spoiled_rows=spoilt,
     )
+    return _across(runs, mix_suites)
+
+
+def joined(parts: list[Runs], mix_suites: bool = False) -> Runs:
+    """Runs read apart (a league's rounds, each read once: league/results.py) as one read of them all would
+    give them: the scenario versions and episode lengths checked across them, the entrants named across
+    them all, the suites refused mixed unless `mix_suites`."""
+    _check_comparable([s for p in parts for s in p.series])
+    runs = Runs(
+        **{
+            f.name: [x for p in parts for x in getattr(p, f.name)]
+            for f in fields(Runs)
+            if f.init and f.name not in ("roots", "suites")
+        },
+        roots={name: root for p in parts for name, root in p.roots.items()},
+    )
+    return _across(runs, mix_suites)
+
+
+def _across(runs: Runs, mix_suites: bool) -> Runs:
+    """What is decided across every episode read: the entrants' names (in every table, spoiled episodes' and
+    the Failures table's too), the red calls' labels, the suites."""
+    every = named(runs.rows + runs.spoiled_rows)
+    rows, spoilt = every[: len(runs.rows)], every[len(runs.rows) :]
+    name_entrants(runs.faults, every)
+    _label_calls(runs.ledger, rows)
+    return replace(runs, rows=rows, spoiled_rows=spoilt, suites=_suites(rows, mix_suites))
 
 
 def _label_calls(ledger: list[dict[str, Any]], rows: list[EpisodeRow]) -> None:

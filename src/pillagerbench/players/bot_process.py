@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import asyncio
 import time
+import weakref
 from collections.abc import Callable
 from pathlib import Path
 
@@ -33,8 +34,9 @@ from .bot_protocol import Settings
 from .channel import BotChannel, PlayerError
 from .observation import Observation, observation
 
-# One login at a time per server (flying-squid handles concurrent logins badly), with a short gap.
-_login_locks: dict[tuple[str, int], asyncio.Lock] = {}
+# One login at a time per server (flying-squid handles concurrent logins badly), with a short gap. A lock
+# lives while a login holds or awaits it (a weak table: a long run's servers and loops leave none behind).
+_login_locks: weakref.WeakValueDictionary[tuple[str, int], asyncio.Lock] = weakref.WeakValueDictionary()
 LOGIN_GAP_S = 0.05
 # A bot silent past its watchdog whose process got less than this share of one core meanwhile was
 # starved (stopped, or the machine gave it no time), not looping: a loop burns its fair share of a core
@@ -120,11 +122,14 @@ class BotProcess:
     def restarting(self) -> bool:
         return self._recover_lock.locked()
 
+    def _login_lock(self) -> asyncio.Lock:
+        return _login_locks.setdefault((self.host, self.server_port), asyncio.Lock())
+
     async def start(self) -> None:
         """Spawn the bot process (unless `launch` has), log in and wait until it has spawned."""
         if not self._awaits_cue:
             await self.launch()
-        async with _login_locks.setdefault((self.host, self.server_port), asyncio.Lock()):
+        async with self._login_lock():
             await self._login()
             await asyncio.sleep(LOGIN_GAP_S)
 
@@ -247,8 +252,7 @@ class BotProcess:
         last: Exception | None = None
         for attempt in range(5):
             try:
-                lock = _login_locks.setdefault((self.host, self.server_port), asyncio.Lock())
-                async with lock:
+                async with self._login_lock():
                     await self.launch()
                     await self._login()
                 return
