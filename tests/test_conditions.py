@@ -34,6 +34,7 @@ OTHER = {
     "protocol": "upstream",
     "clock.mode": "lockstep",
     "clock.ticks_per_1k_tokens": 5,
+    "humans.client": "minecraft",
 }
 
 

@@ -26,7 +26,7 @@ def test_a_lone_dollar_fails_at_load(tmp_path):
 def test_the_cot_prompts_load():
     from pillagerbench.teams.cot.team import PROMPTS
 
-    assert {"system", "user", "retry", "code_format"} <= set(PROMPTS)
+    assert {"system", "user", "retry", "code_format", "people_said"} <= set(PROMPTS)
     assert PROMPTS["user"].placeholders == {
         "last_code",
         "last_errors",
@@ -37,4 +37,5 @@ def test_the_cot_prompts_load():
         "team_players",
         "scenario",
         "task",
+        "people_said",  # what the team's people said (people_said.txt; empty without a person)
     }

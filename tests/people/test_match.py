@@ -8,7 +8,6 @@ clock (people play on it) serves every check; the server's record shows each."""
 
 from __future__ import annotations
 
-import gzip
 import json
 import os
 import subprocess
@@ -20,16 +19,9 @@ import httpx
 
 from pillagerbench.people.relay import HUD_S
 from tests.support.cdp import Browser
+from tests.support.people import frames, page_url
 
 EPISODE_S = 12
-
-
-def _url(proc: subprocess.Popen) -> str:
-    assert proc.stdout is not None
-    for line in proc.stdout:
-        if line.startswith("people: open "):
-            return line.split()[2]
-    raise AssertionError("no page address printed")
 
 
 def _match(run_dir: Path) -> subprocess.Popen:
@@ -111,18 +103,12 @@ def _inventory(browser: Browser) -> str:
     return browser.eval("document.getElementById('items').textContent")
 
 
-def _frames(run_dir: Path, player: str) -> list[list]:
-    with gzip.open(run_dir / "episode_000" / "replay.jsonl.gz", "rt") as f:
-        frames = [json.loads(line) for line in f]
-    return [p for f in frames if f["type"] == "frame" for p in f["players"] if p[0] == player]
-
-
 def test_a_person_plays_from_a_browser(tmp_path: Path):
     run_dir = tmp_path / "run"
     browser = Browser()  # it starts while the match does
     proc = _match(run_dir)
     try:
-        url = _url(proc)
+        url = page_url(proc)
         token = _lobby(browser, url)
         with httpx.Client(base_url=url, timeout=10) as page:
             second = page.post("join", json={"name": "mallory", "player": "Ryn"})
@@ -140,7 +126,7 @@ def test_a_person_plays_from_a_browser(tmp_path: Path):
     finally:
         proc.kill()
         browser.close()
-    positions = _frames(run_dir, "Ryn")
+    positions = frames(run_dir, "Ryn")
     assert abs(positions[-1][3] - positions[0][3]) + abs(positions[-1][1] - positions[0][1]) > 1.5, positions[-1]
     events = [json.loads(line) for line in (run_dir / "episode_000" / "world_events.jsonl").read_text().splitlines()]
     dug = [e for e in events if e.get("event") == "block_dug" and e.get("player") == "Ryn"]

@@ -100,3 +100,39 @@ def test_the_signal_button_chats_the_teammates_signal_as_the_chat_box_would():
         refused = page.post("signal", json={"token": token, "to": to})
         assert refused.status_code == 409 and "is not a teammate of Ryn (teammates: Raze)" in refused.json()["error"]
     assert people._queues["Ryn"] == ['bot.chat("[Raze signal]")'] * 2
+
+
+class _Held:
+    """A person's player whose run the whistle stops (people/relay.py `end`)."""
+
+    stops = 0
+
+    async def stop(self) -> None:
+        self.stops += 1
+
+
+async def test_after_the_whistle_the_page_says_the_score_and_what_happens_next():
+    people, page, _ = _page()
+    people.run_dir, people.planned = "/runs/study", 2
+    token = page.post("join", json={"name": "alice", "player": "Ryn"}).json()["result"]["token"]
+
+    def seen() -> dict:
+        return page.get("state", params={"token": token}).json()
+
+    episodes = people.episodes(iter([0, 1]))
+    assert next(episodes) == 0 and seen()["next"].startswith("Episode 1 (the run plans 2;")
+    # the game on, as `begin` puts it, without a game
+    people.players, people.phase = {"Ryn": _Held()}, "playing"  # type: ignore[dict-item]
+    await people.end({"red": 3.0, "blue": 5.0})
+    state = seen()
+    assert state["phase"] == "over" and state["board"]["final"] == {"red": 3.0, "blue": 5.0}
+    assert "being recorded" in state["next"] and people.players["Ryn"].stops == 1  # type: ignore[attr-defined]
+    assert next(episodes) == 1  # decided once the episode is recorded: the next one
+    assert seen()["next"].startswith("Episode 2 (the run plans 2; one spoiled on our side is played again) starts")
+    assert "nothing to press" in seen()["next"] and "the whistle: red 3, blue 5 (final)" in seen()["feed"]
+    assert next(episodes, None) is None  # no more: the run is over
+    state = seen()
+    assert state["phase"] == "done" and state["run_dir"] == "/runs/study"
+    assert state["next"] == "The run is over: results in /runs/study; you can close this page."
+    shown = page.get("").text  # the page shows it, and says it once its server is gone
+    assert "'The whistle: ' + final + '. ' + s.next" in shown and "function gone ()" in shown

@@ -3,7 +3,10 @@
 - `red=human`: a team whose every player is a person (teams/human.py);
 - `red.humans=[Ryn]`: the named players of a side are people, the rest its team's agents;
 - `humans.port`, `humans.ready_timeout_s`: the people's page (0 = a free port) and how long the match waits,
-  before the first episode, for every person to be ready.
+  before the first episode, for every person to be ready;
+- `humans.client`: `page` (people play from the browser) or `minecraft` (from a Minecraft Java 1.16.5 client,
+  joining at the address the run prints under the player's name: people/client.py; `humans.port` is then
+  that address's port).
 
 People play on the real clock: `clock=lockstep` with any person is refused (a person cannot wait for a
 world held tick by tick). A person's own name, typed on the page, follows Minecraft's player-name rules
@@ -13,12 +16,13 @@ world held tick by tick). A person's own name, typed on the page, follows Minecr
 from __future__ import annotations
 
 import re
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
 HUMAN_TEAM = "human"  # the team whose players are all people
 SIDE_KEY = "humans"  # red.humans=[NAME, ...]: the side's players played by people
+CLIENTS = ("page", "minecraft")  # humans.client: what a person plays from
 PLAYER_NAME = re.compile(r"[A-Za-z0-9_]{3,16}")  # Minecraft Java's player names
 
 
@@ -29,6 +33,7 @@ class HumansConfig(BaseModel):
 
     port: int = Field(ge=0, le=65535)
     ready_timeout_s: float = Field(gt=0, allow_inf_nan=False)
+    client: Literal["page", "minecraft"] = "page"  # CLIENTS; runs from before the key: the page
 
 
 def name_problem(name: object) -> str | None:

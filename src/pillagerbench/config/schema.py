@@ -32,7 +32,8 @@ from pydantic_core import PydanticCustomError
 
 from pillagerbench.config.compose import ENV_NAME, ConfigError, looks_like_key, to_dict
 from pillagerbench.config.game_tick import TICKS_PER_S
-from pillagerbench.config.people import SIDE_KEY, HumansConfig
+from pillagerbench.config.people import HUMAN_TEAM, SIDE_KEY, HumansConfig
+from pillagerbench.config.sides import SIDES
 
 SECRET = "secret"  # the error type of a value that must not be echoed (problems() names the key only)
 # conf/config.yaml: every default of a key is written there, once (with the comment `run --help` shows;
@@ -443,6 +444,10 @@ class RunConfig(RunnerConfig):
     def side(self, side: str) -> TeamConfig:
         """The team node of `red` or `blue`."""
         return {"red": self.red, "blue": self.blue}[side]
+
+    def seated(self) -> list[str]:
+        """The sides some of whose players people play (`red=human` or `red.humans=[...]`: config/people.py)."""
+        return [side for side in SIDES if self.side(side).name == HUMAN_TEAM or self.side(side).humans]
 
     def llm_of(self, side: str) -> LLMKeys:
         """The `llm` settings `side` plays with: the run's, with the side's own keys merged in."""

@@ -67,7 +67,16 @@ def configs(c: Comparison) -> dict[str, RunConfig]:
     """Each series' whole configuration, checked (one ConfigError line per problem, nothing played)."""
     from pillagerbench.config.validate import load_run
 
-    return {sid: load_run([*c.game, f"red={red}", f"blue={blue}"]) for sid, (red, blue) in c.series().items()}
+    cfgs = {sid: load_run([*c.game, f"red={red}", f"blue={blue}"]) for sid, (red, blue) in c.series().items()}
+    for cfg in cfgs.values():
+        if seated := cfg.seated():
+            raise ConfigError(
+                f"people would play {' and '.join(seated)} (team human or humans=): compare plays pair after "
+                "pair as it decides, a fresh match each, and cannot seat people; play the person's episodes with "
+                "`pillagerbench run` and another entrant's on the same seed and opponent, then `pillagerbench report "
+                "RUN RUN` (differences.md; docs/people.md)"
+            )
+    return cfgs
 
 
 def specs(c: Comparison, cfgs: dict[str, RunConfig]) -> list[SeriesSpec]:

@@ -60,12 +60,18 @@ def check_entrant(entrant: RosterEntry, scenarios: list[str], game: tuple[str, .
             f"({', '.join(scenarios)}); it plays {', '.join(find_team(entrant.team).scenarios or [])}"
         )
     try:
-        match_config(where[0], entrant, OPPONENT, game)
+        cfg = match_config(where[0], entrant, OPPONENT, game)
     except ConfigError as exc:
         first = str(exc).splitlines()[0]
         if first.startswith("red"):  # the entrant played red in the checked config
             first = "team" + first[3:]
         raise ConfigError(f"entrant {entrant.name!r}: {first}") from None
+    if seated := cfg.seated():
+        raise ConfigError(
+            f"entrant {entrant.name!r}: people would play {' and '.join(seated)} (team human or humans=): a league "
+            "schedules and plays its matches itself and cannot seat people; play a person's matches with "
+            "`pillagerbench run` and read them with `pillagerbench report` (docs/people.md)"
+        )
 
 
 def entrant_of_entry(entry: RosterEntry) -> Entrant:

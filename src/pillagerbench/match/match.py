@@ -25,11 +25,12 @@ from pillagerbench.config.sides import SIDES
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay, Scoreboard
-from pillagerbench.match.people_part import PeoplePart
+from pillagerbench.match.people_part import ClientsPart, PeoplePart
 from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.match.sides_clock import SidesClock
 from pillagerbench.people import People, SeatHandle
+from pillagerbench.people.client import ClientPlayer, Clients
 from pillagerbench.players import Player
 from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir, winner_of
 from pillagerbench.rundir.entrant import Entrant
@@ -61,6 +62,7 @@ class Match:
         entrants: dict[str, Entrant] | None = None,
         clock: ClockConfig | None = None,
         people: People | None = None,
+        clients: Clients | None = None,
     ):
         SCORINGS.find(scoring)
         self.scoring, self.protocol = scoring, protocol
@@ -79,6 +81,7 @@ class Match:
         self.clock_config = clock or ClockConfig()  # config `clock`: what game time is
         self.clock: GameClock = RealClock()  # lockstep: the server's, from setup() on
         self.people = people  # the players people play from the page (people/), if any
+        self.clients = clients  # the players people play from Minecraft clients (people/client.py): no bot
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -99,7 +102,9 @@ class Match:
         port, log_dir = self.server.port, self.rundir.logs_dir()
         specs = {p.name: p for p in self.scenario.all_players()}
         players = [
-            Player(
+            ClientPlayer(spec.name, self.server, spec.gamemode)
+            if self._client(spec.name)
+            else Player(
                 spec.name,
                 port,
                 server=self.server,
@@ -212,13 +217,22 @@ class Match:
         resets = (self.players[p.name].reset(position=p.spawn, inventory={}, seed=rec.seed) for p in sc.all_players())
         observations = dict(zip(names, await asyncio.gather(*resets)))
         for p in sc.all_players():
-            await self.server.gamemode(p.name, p.gamemode)
+            if not self._client(p.name):  # a client's is set by its reset, while its person is in the world
+                await self.server.gamemode(p.name, p.gamemode)
         rec.reset_s = round(time.monotonic() - t0, 3)
         return observations
 
+    def _seated(self, name: str) -> bool:
+        """Whether a person plays the player `name` (from the page: people/)."""
+        return self.people is not None and name in self.people.seats.seats
+
+    def _client(self, name: str) -> bool:
+        """Whether a person plays the player `name` from a Minecraft client (people/client.py)."""
+        return self.clients is not None and name in self.clients.side_of
+
     def _handle(self, name: str, sink, rec: EpisodeRecord, replay: Replay) -> PlayerHandle:
         """The handle of a player for its team: a person's seat is not the team's to drive."""
-        if self.people is not None and name in self.people.seats.seats:
+        if (self.people is not None and name in self.people.seats.seats) or self._client(name):
             return SeatHandle(name, self.players[name].observe)
         return RecordedPlayer(
             self.players[name],
@@ -248,6 +262,7 @@ class Match:
                 llm=self.llms.get(side.key),
                 last_episode=self.last_records.get(side.key, LastEpisode()),
                 protocol=self.protocol,
+                people=tuple(n for n in side.player_names if self._seated(n) or self._client(n)),
             )
         return contexts
 
@@ -259,6 +274,7 @@ class Match:
             team.problems = []
         contexts = self._contexts(rec, out, sink, replay, observations)
         parts = [*parts, Scoreboard(contexts)] + ([PeoplePart(self.people, sink)] if self.people is not None else [])
+        parts += [ClientsPart(self.clients)] if self.clients is not None else []
 
         async def timed_pre_game(key):
             t = time.monotonic()

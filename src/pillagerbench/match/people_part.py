@@ -1,6 +1,7 @@
 """The people's part of a game (docs/people.md): at the start the pages get the episode's map and each
 person's player runs the person's run (people/relay.py), each second the pages get the score and the clock
-and quiet pages' players stand still, at the whistle the pages are told."""
+and quiet pages' players stand still, at the whistle the pages are told; `ClientsPart`: the same for people playing
+from Minecraft clients (people/client.py)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from collections.abc import Callable
 
 from pillagerbench.match.parts import Game, Part
 from pillagerbench.people import People
+from pillagerbench.people.client import Clients
 
 
 class PeoplePart(Part):
@@ -33,3 +35,27 @@ class PeoplePart(Part):
 
     async def abort(self) -> None:
         await self.people.end()
+
+
+class ClientsPart(Part):
+    """The part of people playing from Minecraft clients (people/client.py): the game's start and the whistle
+    told in their chat; each second a person back in the world is put where their player was."""
+
+    def __init__(self, clients: Clients):
+        self.clients = clients
+
+    async def start(self, game: Game) -> None:
+        await self._tell(game, f"the game is on: {game.length:g} s")
+
+    def second(self, game: Game, t: int, scores: dict[str, float]) -> None:
+        task = asyncio.ensure_future(self.clients.rejoined(game.players))
+        task.add_done_callback(lambda t: t.cancelled() or t.exception())
+
+    async def whistle(self, game: Game, final: dict[str, float]) -> None:
+        await self._tell(game, "the whistle: " + ", ".join(f"{k} {v:g}" for k, v in final.items()))
+
+    async def _tell(self, game: Game, line: str) -> None:
+        online = {p["name"] for p in await game.server.players()}
+        for name in self.clients.names:
+            if name in online:
+                await game.server.tell(name, line)

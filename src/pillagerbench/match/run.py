@@ -13,6 +13,8 @@ from pillagerbench.config.people import seats_of
 from pillagerbench.config.schema import RunConfig
 from pillagerbench.match import Match
 from pillagerbench.people import People
+from pillagerbench.people.client import Clients
+from pillagerbench.people.gate import LoginGate
 from pillagerbench.people.lobby import briefing_of
 from pillagerbench.people.page import PageServer
 from pillagerbench.players import PlayerError
@@ -53,7 +55,16 @@ async def play_match(
             print("live view: the lockstep clock runs unpaced (clock.speed=max); clock.speed=1 to watch", flush=True)
     llms = make_llms(cfg, teams, rundir.path)
     people = people_of(cfg, scenario)
+    clients = Clients.of(people.seats) if people is not None and cfg.humans.client == "minecraft" else None
+    people = None if clients is not None else people  # people on Minecraft clients have no page (docs/people.md)
+    gate = (
+        LoginGate(clients.names, lambda: (cfg.server.host, server.port or 0), cfg.server.host, cfg.humans.port)
+        if clients
+        else None
+    )
     page = PageServer(people, list(scenario.primitives), cfg.server.host, cfg.humans.port) if people else None
+    if people is not None:
+        people.run_dir = str(rundir.path.resolve())  # the pages say where the results are once the run is over
     match = Match(
         server,
         scenario,
@@ -70,6 +81,7 @@ async def play_match(
         entrants={side: entrant_of(cfg, side) for side in teams},
         clock=cfg.clock,
         people=people,
+        clients=clients,
     )
     match.last_records.update(last or {})
     try:
@@ -77,10 +89,14 @@ async def play_match(
         if page is not None and people is not None:
             print(f"people: open {await page.start()} to play", flush=True)
             await seat_people(match, people, cfg.humans.ready_timeout_s)
-        await match.play_episodes(episodes, on_episode)
+        if gate is not None and clients is not None:
+            await seat_clients(match, clients, gate, cfg.humans.ready_timeout_s)
+        await match.play_episodes(people.episodes(episodes) if people else episodes, on_episode)
     finally:
         if page is not None:
             await page.stop()
+        if gate is not None:
+            await gate.stop()
         await match.close()
         await server.stop()
         for llm in llms.values():
@@ -94,6 +110,7 @@ def people_of(cfg: RunConfig, scenario: Scenario) -> People | None:
     if not any(seats.values()):
         return None
     people = People({k: v for k, v in seats.items() if v}, briefing_of(scenario, cfg.split))
+    people.planned = cfg.episodes
     if cfg.split in (None, "paper"):  # the layout every episode is played on; else each episode's, as it starts
         people.show_layout(scenario)
     return people
@@ -108,6 +125,19 @@ async def seat_people(match: Match, people: People, timeout: float) -> None:
     for side, entrant in match.entrants.items():
         names = [s.person or "?" for s in people.seats.seats.values() if s.side == side]
         match.entrants[side] = entrant.with_people(names)
+
+
+async def seat_clients(match: Match, clients: Clients, gate: LoginGate, timeout: float) -> None:
+    """People on Minecraft clients (people/client.py): the address and names to join with; joining is being
+    ready; each side's entrant names its people by the players' names (human:Ryn)."""
+    names = ", ".join(f"{n} ({side})" for n, side in clients.side_of.items())
+    print(f"people: join with a Minecraft Java 1.16.5 client at {await gate.start()} as {names}", flush=True)
+    if not await clients.wait_joined(match.server, timeout):
+        raise ConfigError(
+            f"humans: not every person joined within {timeout:g} s (humans.ready_timeout_s); no episode played"
+        )
+    for side, entrant in match.entrants.items():
+        match.entrants[side] = entrant.with_people([n for n, s in clients.side_of.items() if s == side])
 
 
 async def set_up(match: Match) -> None:

@@ -12,7 +12,7 @@ import functools
 import json
 import re
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from pillagerbench.people.lobby import layout_page
@@ -36,7 +36,10 @@ class People:
         self.map_page = ""  # the map of the layout played (lobby.layout_page), served at the briefing's `map`
         self.players: dict[str, Player] = {}
         self.sink: Callable[[str, list], None] | None = None
-        self.phase = "lobby"  # lobby | waiting | playing | over
+        self.phase = "lobby"  # lobby | waiting | playing | over (an episode's whistle) | done (the run is over)
+        self.next = ""  # what happens next, shown from the whistle on (`end`, `episodes`, `done`)
+        self.run_dir = ""  # where the run's results are (match/run.py)
+        self.planned = 0  # the episodes the run plans (a spoiled one is played again: config `retries`)
         self.feed: list[str] = []
         self.board: dict[str, Any] = {}  # scores, clock
         self.huds: dict[str, dict[str, Any]] = {}  # player -> what its page shows of it (the bot's hud op)
@@ -82,6 +85,7 @@ class People:
         """The game is on: each person's player runs the person's run until `length` seconds from now."""
         self.players = {name: players[name] for name in self.seats.seats}
         self.sink, self.phase, self.end_at = sink, "playing", time.monotonic() + length
+        self.next = ""
         self._queues = {name: [] for name in self.players}
         self.huds, self.chats = {}, {name: [] for name in self.players}
         self.say("the game is on")
@@ -90,23 +94,43 @@ class People:
         self._loops += [asyncio.create_task(self._view(name)) for name in self.players if name not in self.views]
 
     async def end(self, final: dict[str, float] | None = None) -> None:
-        """The whistle: the person's runs end (the match stops every player), the pages are told."""
+        """The whistle: the person's runs end (the match stops every player), the pages are told the final
+        score; what follows is told once the episode is recorded (`episodes`)."""
         self.phase, self.end_at = "over", 0.0
+        # the person's run the hold loop started after the whistle's stop is stopped too (its loop ends with it):
+        # a run left going would outlive the episode and the next whistle's stop would wait for it in vain
+        await asyncio.gather(*(player.stop() for player in self.players.values()), return_exceptions=True)
         for task in self._loops:
             task.cancel()
         await asyncio.gather(*self._loops, return_exceptions=True)
         self._loops = []
+        self.next = "The episode is over; it is being recorded, and what follows is told here in a moment."
         if final is not None:
             self.board = {**self.board, "final": final}
-            self.say(
-                "the whistle: "
-                + ", ".join(f"{k} {v:g}" for k, v in final.items())
-                + "; next: the next episode, or the end"
+            self.say("the whistle: " + ", ".join(f"{k} {v:g}" for k, v in final.items()) + " (final)")
+
+    def episodes(self, indices: Iterable[int]) -> Iterator[int]:
+        """The match's episode indices, each told to the pages as it is decided (after the last one was
+        recorded: rundir/schedule.py), and at the end that the run is over."""
+        for index in indices:
+            self.next = (
+                f"Episode {index + 1} (the run plans {self.planned}; one spoiled on our side is played again) starts "
+                "as soon as the arena is reset and every team's pre-game is done (a few seconds; an LLM team's takes "
+                "longer): nothing to press, stay on this page."
             )
+            self.say(f"next: episode {index + 1}")
+            yield index
+        self.done()
+
+    def done(self) -> None:
+        """The run is over: the pages say where its results are and that they may be closed."""
+        self.phase = "done"
+        self.next = f"The run is over: results in {self.run_dir or 'the run directory'}; you can close this page."
+        self.say("the run is over")
 
     async def _hold(self, name: str) -> None:
         player = self.players[name]
-        while time.monotonic() < self.end_at:
+        while self.phase == "playing" and time.monotonic() < self.end_at:
             queue = self._queues[name]
             code = queue.pop(0) if queue else HOLD
             try:
@@ -209,6 +233,8 @@ class People:
             "seats": [s.view() for s in self.seats.seats.values()],
             "briefing": self.briefing,
             "board": {**self.board, "left": left},
+            "next": self.next,
+            "run_dir": self.run_dir,
             "feed": self.feed[-40:],
             "hud": self.huds.get(seat.player) if seat else None,
             "chat": self.chats.get(seat.player, [])[-40:] if seat else [],

@@ -50,6 +50,9 @@ SETTINGS: tuple[Setting, ...] = (
         "clock.mode", RULE, "what game time is: the wall clock (load and LLM latency cost game time) or lockstep ticks"
     ),
     Setting("clock.ticks_per_1k_tokens", RULE, "lockstep: the game time a team's thinking costs"),
+    Setting(
+        "humans.client", RULE, "what people play with: the page (its controls, primitive buttons) or a Minecraft client"
+    ),
     # -- arena: recorded on every episode (layout, split); tables and references compare by split
     Setting("layout", ARENA, "where everything is in the arena (recorded per episode as layout)"),
     Setting("split", ARENA, "each episode on its own generated layout (recorded per episode as split)"),

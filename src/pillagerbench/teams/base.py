@@ -54,6 +54,9 @@ class TeamContext:
     clock: GameClock = field(default_factory=RealClock)
     # the scoreboard: each side's score at the last whole second of the game (the match's sample)
     scores: dict[str, float] = field(default_factory=dict)
+    # the side's players people play (from the page or a Minecraft client: docs/people.md): their handles are seats the team
+    # cannot drive, and what they say in chat is for the team's agents to hear (teams/heard.py)
+    people: tuple[str, ...] = ()
 
     @property
     def upstream_protocol(self) -> bool:

@@ -1,6 +1,7 @@
 """The Chain-of-Thought baseline (paper, Experiments): once per episode, in the pre-game, one LLM
 call writes every player's program from the scenario, the primitives' documentation, the team,
-what the players see, and last episode's code, errors and chat. During the game each player runs
+what the players see, and last episode's code, errors and chat (and, beside a person, what the person
+said: people_said.txt, docs/people.md). During the game each player runs
 its program, started again whenever it ends or throws, until the whistle.
 
 An answer that cannot be used (no code, too few blocks, syntax errors, calls to primitives the
@@ -28,6 +29,7 @@ from pillagerbench.llm import LLMError
 from pillagerbench.players import primitives as prim
 from pillagerbench.scenarios.upstream import UPSTREAM_ATTEMPTS, UPSTREAM_STEPS
 from pillagerbench.teams.base import Team, TeamContext
+from pillagerbench.teams.heard import people_said
 from pillagerbench.teams.options import TeamOptions
 
 PROMPTS = load_prompts(Path(__file__).parent)
@@ -97,6 +99,7 @@ class ChainOfThought(Team):
             team_players=", ".join(players),
             scenario=ctx.scenario.description(),
             task=task_text(ctx),
+            people_said=self._people_said_text(ctx),
         )
         return [{"role": "system", "content": system}, {"role": "user", "content": user}]
 
@@ -130,6 +133,12 @@ class ChainOfThought(Team):
         events = C.episode_events(ctx.last_episode, players[:1])[players[0]] if players else []
         agents = [p.name for s in ctx.scenario.sides for p in s.players]
         return C.chat_log_text(events, agents, max_lines=self.max_chat_lines)
+
+    def _people_said_text(self, ctx: TeamContext) -> str:
+        """What the side's people said in chat last round (everything since this team's last prompt, asked
+        before that round's game): the section people_said.txt, or nothing when none of them spoke."""
+        chat = ctx.last_episode.get("chat") or []
+        return people_said(PROMPTS["people_said"], chat, ctx.people, max_lines=self.max_chat_lines)
 
     # --- phases -----------------------------------------------------------------------------
 

@@ -34,6 +34,7 @@ from pillagerbench.players import primitives as prim
 from pillagerbench.players.observation import Observation
 from pillagerbench.scenarios.upstream import UPSTREAM_ATTEMPTS
 from pillagerbench.teams.base import TeamContext
+from pillagerbench.teams.heard import people_said
 
 from .events import DedupStats, dedupe, last_observation, tail
 from .memory import Memory
@@ -155,6 +156,12 @@ class BaseAgent:
             return self.chat_before
         return tail([str(x) for x in pev.chat_log(self.events)], self.team.max_chat_lines)
 
+    def _people_said_text(self, ctx) -> str:
+        """What the side's people said, from the chat the chat log shows (the last run's, or before the
+        first run last episode's): prompts/people_said.txt, or nothing when none of them spoke."""
+        heard = [str(x) for x in pev.chat_log(self.events)] if self.events else ctx.last_episode.get("chat") or []
+        return people_said(PROMPTS["people_said"], heard, ctx.people, max_lines=self.team.max_chat_lines)
+
     def action_messages(self, ctx) -> list[dict]:
         t = self.team
         # the system prompt is the same for every player (a shared prefix: provider prompt caches)
@@ -176,6 +183,7 @@ class BaseAgent:
             team=f"{ctx.side.team_name} ({', '.join(ctx.side.player_names)})",
             scenario=ctx.scenario.description(),
             task=t.objective(ctx),
+            people_said=self._people_said_text(ctx),
         )
         return [{"role": "system", "content": system}, {"role": "user", "content": user}]
 
