@@ -1,17 +1,18 @@
 """`league play` reads each finished round once (league/results.py `Played`), not every round again
-before each new one, and what it reads is what a read of every round gives: the same outcomes and
-budget, the same refusals (scenario versions, episode lengths, suites) and the entrants named across
-every round (metrics/runs.py `joined`)."""
+before each new one, and keeps only its outcomes; what it gives is what a read of every round gives: the
+same outcomes of the league's split and budget, the same refusals across rounds (scenario versions,
+episode lengths, suites: metrics/runs.py `check_comparable`, `suites`)."""
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 from pillagerbench.league import results
-from pillagerbench.metrics.runs import ReportError, joined, read_runs
+from pillagerbench.league.splits import on_split
+from pillagerbench.metrics.runs import ReportError, read_runs
+from pillagerbench.scenarios.layout import PAPER
 from tests.metrics.fake_runs import write_run
 
 A, B = "suite 1.0@aaaaaaaaaaaaaaaa", "suite 1.1@bbbbbbbbbbbbbbbb"
@@ -49,36 +50,26 @@ def test_each_finished_round_is_read_once_and_gives_what_reading_them_all_gives(
     played = results.Played(tmp_path)
     for i in range(3):
         shown.append(_round(tmp_path, i))
-        got = results.outcomes(played.runs())
-        assert got == results.outcomes(read_runs(shown))
+        got = played.outcomes(PAPER)
+        assert got == results.outcomes(on_split(read_runs(shown), PAPER)[0])
         assert played.spent() == results.Spent(episodes=2 * (i + 1), hours=0.25 * (i + 1))
     assert reads == [p for d in shown for p in (d, d / "spent")]  # each round once, in order
-    assert len(got) == 6 and all(not r.t for r in played.runs().rows)  # kept without their timelines
+    assert len(got) == 6 and played.outcomes("test") == []  # episodes of another split are not rated
 
 
 def test_a_later_round_of_another_scenario_version_or_suite_is_refused_as_a_read_of_all_is(tmp_path, league):
     shown, _ = league
     played = results.Played(tmp_path)
     shown.append(_round(tmp_path, 0))
-    played.runs()
+    played.outcomes(PAPER)
     for i, kw in ((1, {"version": "2"}), (2, {"length": 5})):
         shown[1:] = [_round(tmp_path, i, **kw)]
         with pytest.raises(ReportError) as whole:
             read_runs(shown)
         with pytest.raises(ReportError) as apart:
-            results.Played(tmp_path).runs()
+            results.Played(tmp_path).outcomes(PAPER)
         assert str(apart.value) == str(whole.value)
     shown[1:] = [write_run(tmp_path / "other", "mushroom_war", "passive", "do_nothing", [(1, 2)], suite=B)]
     with pytest.raises(ReportError, match="refusing to mix suite versions"):
-        results.Played(tmp_path).runs()
-    assert results.Played(tmp_path, mix_suites=True).runs().suites == [A, B]
-
-
-def test_entrants_reading_alike_in_two_rounds_are_named_apart(tmp_path):
-    first = read_runs([_round(tmp_path, 1)])
-    second = read_runs([_round(tmp_path, 3)])
-    assert {r.red for r in first.rows + second.rows} == {"do_nothing"}
-    twin = [r.model_copy(update={"red_entrant_id": "f" * 12}) for r in second.rows]  # another, labelled alike
-    both = joined([first, replace(second, rows=twin)])
-    assert {r.red for r in both.rows} == {f"do_nothing#{first.rows[0].red_entrant_id[:6]}", "do_nothing#ffffff"}
-    assert {r.red for r in joined([first, second]).rows} == {"do_nothing"}
+        results.Played(tmp_path).outcomes(PAPER)
+    assert len(results.Played(tmp_path, mix_suites=True).outcomes(PAPER)) == 3

@@ -18,7 +18,7 @@ from pillagerbench.league.compose import check_entrant
 from pillagerbench.league.rounds import check_stamps, handed_over, round_dirs, write_round
 from pillagerbench.league.schedule import next_round
 from pillagerbench.league.spec import League
-from pillagerbench.league.splits import check_game, on_split
+from pillagerbench.league.splits import check_game
 from pillagerbench.league.standings import boards
 from pillagerbench.metrics.verified import check_bundles
 
@@ -63,7 +63,7 @@ def play(league_dir: Path, league: League, game: tuple[str, ...], runner: Runner
         if over := spent.over(league.budget):
             print(f"league stopped: budget spent ({over})")
             return 0
-        outs = results.outcomes(on_split(played.runs(), league.split)[0])
+        outs = played.outcomes(league.split)
         pairings = next_round(boards(league, outs), outs, league.confidence, league.matches_per_round)
         if not pairings:
             print(f"league settled: every adjacent pair is separated at confidence {league.confidence:g}")

@@ -1,13 +1,13 @@
 """What a league has played, read only from its round directories: the usable episodes (through
 metrics.runs, the report's reader), their outcomes for the ratings, and the budget spent.
 
-`Played` is what `league play` reads between rounds: a round is read once, when finished, and kept
-without its timelines, so an hour of play does not read every round again before each new one (the
-process kept the memory of its largest read: docs/performance.md)."""
+`Played` is what `league play` reads between rounds: a round is read once, when finished, and only its
+outcomes kept, so an hour of play does not read every round again before each new one (the process kept
+the memory of its largest read) nor keep every round's read (docs/performance.md)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 import pandas as pd
@@ -16,7 +16,7 @@ from pillagerbench.league.ratings import Outcome
 from pillagerbench.league.rounds import handed_over, round_dirs
 from pillagerbench.llm.ledger import read_ledger
 from pillagerbench.metrics.rows import EpisodeRow
-from pillagerbench.metrics.runs import Runs, joined
+from pillagerbench.metrics.runs import Comparable, Runs, check_comparable, comparable, suites
 from pillagerbench.metrics.verified import load_runs
 from pillagerbench.rundir import LEDGER, RunDir
 
@@ -48,20 +48,12 @@ def load(league_dir: Path, mix_suites: bool = False, verify: bool = True) -> Run
 
 
 def outcomes(runs: Runs) -> list[Outcome]:
-    df = runs.episodes
-    if not len(df):
-        return []
-    return [
-        Outcome(
-            r.scenario,
-            r.red_name,
-            r.blue_name,
-            float(r.red_score),
-            float(r.blue_score),
-            (r.run, r.series, int(r.episode)),
-        )
-        for r in df.itertuples()
-    ]
+    return [_outcome(r) for r in runs.rows]
+
+
+def _outcome(r: EpisodeRow) -> Outcome:
+    """An episode's outcome for the ratings: the sides by the names the league gave them (`red_name`)."""
+    return Outcome(r.scenario, r.red_name, r.blue_name, r.red_score, r.blue_score, (r.run, r.series, r.episode))
 
 
 def ledger(runs: Runs) -> pd.DataFrame:
@@ -100,22 +92,44 @@ def _spent_in(round_dir: Path) -> Spent:
     return out
 
 
+@dataclass(frozen=True)
+class _Round:
+    """What `Played` keeps of a round: each used episode's outcome with its layouts' split, and what the checks
+    across rounds read (metrics/runs.py: the series' versions and episode lengths, the episodes' suites)."""
+
+    outcomes: list[tuple[str, Outcome]]
+    series: list[Comparable]
+    stamps: list[tuple[str, str]]  # (stamp, run), each once
+
+    @classmethod
+    def of(cls, runs: Runs) -> _Round:
+        return cls(
+            [(r.split, _outcome(r)) for r in runs.rows],
+            comparable(runs.series),
+            list(dict.fromkeys((r.stamp, r.run) for r in runs.rows)),
+        )
+
+
 class Played:
     """What `league play` has read of the league's rounds and handed-over bundles: each read once, when every
-    round is finished (play's loop reads only then), its rows kept without their timelines (the ratings
-    need none); the checks and names across them are made again on every read (metrics/runs.py `joined`)."""
+    round is finished (play's loop reads only then), and of it kept only the outcomes and what the checks
+    across rounds read (a round's whole read is ~30 KB an episode; an outcome ~0.3 KB)."""
 
     def __init__(self, league_dir: Path, mix_suites: bool = False, verify: bool = True) -> None:
         self.league_dir, self.mix_suites, self.verify = league_dir, mix_suites, verify
-        self._runs: dict[Path, Runs] = {}
+        self._rounds: dict[Path, _Round] = {}
         self._spent: dict[Path, Spent] = {}
 
-    def runs(self) -> Runs:
-        """The league's usable episodes, as `load` reads them but without their timelines."""
+    def outcomes(self, split: str) -> list[Outcome]:
+        """The outcomes of the episodes of `split` (league/splits.py), as `outcomes(on_split(load(...)))` gives
+        them; versions, episode lengths and suites refused mixed across rounds as within one."""
         for d in [*round_dirs(self.league_dir), *handed_over(self.league_dir)]:
-            if d not in self._runs:
-                self._runs[d] = _light(load_runs([d], self.mix_suites, self.verify))
-        return joined(list(self._runs.values()), self.mix_suites)
+            if d not in self._rounds:
+                self._rounds[d] = _Round.of(load_runs([d], self.mix_suites, self.verify))
+        rounds = list(self._rounds.values())
+        check_comparable([key for r in rounds for key in r.series])
+        suites([stamp for r in rounds for stamp in r.stamps], self.mix_suites)
+        return [o for r in rounds for on, o in r.outcomes if on == split]
 
     def spent(self) -> Spent:
         out = Spent()
@@ -124,12 +138,3 @@ class Played:
                 self._spent[d] = _spent_in(d)
             out.add(self._spent[d])
         return out
-
-
-def _light(runs: Runs) -> Runs:
-    """The runs without what the ratings do not read: timelines and the LLM calls."""
-    return replace(runs, rows=_untimed(runs.rows), spoiled_rows=_untimed(runs.spoiled_rows), ledger=[])
-
-
-def _untimed(rows: list[EpisodeRow]) -> list[EpisodeRow]:
-    return [r.model_copy(update={"t": (), "red_t": (), "blue_t": ()}) for r in rows]

@@ -22,7 +22,7 @@ counts a series' used episodes, so a spoiled one leaves no hole.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
@@ -295,12 +295,21 @@ def _row(s: SeriesInfo, i: int, rec: EpisodeRecord, ep: Path, timeline: list, sc
     )
 
 
-def _check_comparable(series: list[SeriesInfo]) -> None:
-    for attr, what in (("version", "versions"), ("episode_length", "episode lengths")):
+# what the readers compare across runs of a scenario: (scenario, version, episode length, run) of a series played
+Comparable = tuple[str, str, float, str]
+
+
+def comparable(series: list[SeriesInfo]) -> list[Comparable]:
+    """What `check_comparable` reads of the series (those played: their directory exists)."""
+    return [(s.scenario, s.version, s.episode_length, str(s.run)) for s in series if s.dir.exists()]
+
+
+def check_comparable(found: list[Comparable]) -> None:
+    """ReportError when the series of a scenario were played under different versions or episode lengths."""
+    for at, what in ((1, "versions"), (2, "episode lengths")):
         seen: dict[str, dict] = {}
-        for s in series:
-            if s.dir.exists():
-                seen.setdefault(s.scenario, {}).setdefault(getattr(s, attr), s.run)
+        for key in found:
+            seen.setdefault(key[0], {}).setdefault(key[at], key[3])
         for scenario, values in seen.items():
             if len(values) > 1:
                 detail = "; ".join(f"{v} in {run}" for v, run in values.items())
@@ -310,18 +319,18 @@ def _check_comparable(series: list[SeriesInfo]) -> None:
                 )
 
 
-def _suites(rows: list[EpisodeRow], mix_suites: bool) -> list[str]:
-    """The stamps of the episodes (suite version and the rules differing from its defaults,
+def suites(stamps: list[tuple[str, str]], mix_suites: bool) -> list[str]:
+    """The stamps of the episodes ((stamp, run) each: suite version and the rules differing from its defaults,
     suite/conditions.py), in order; more than one is refused unless `mix_suites`. A version is its hash: the
     same files named before and after their hash was recorded (`suite 1.0+dev@H`, `suite 1.0@H`) are
     one version, written with both names; so are a version's earlier hashes (re-recorded after a change
     that moved no score: suite.same_version)."""
     names: dict[str, list[str]] = {}
     where: dict[str, list[str]] = {}
-    for r in rows:
-        digest, _, conditions = r.stamp.rpartition("@")[2].partition(" ")
+    for stamp, run in stamps:
+        digest, _, conditions = stamp.rpartition("@")[2].partition(" ")
         key = f"{one_version(digest)} {conditions}"  # the version (its hash, earlier ones too) and the conditions
-        for seen, item in ((names, r.stamp), (where, r.run)):
+        for seen, item in ((names, stamp), (where, run)):
             if item not in seen.setdefault(key, []):
                 seen[key].append(item)
     labels = {key: " = ".join(found) for key, found in names.items()}
@@ -356,7 +365,7 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
         series += _series_of(run, name)
         if RunDir(run).calibration_path.exists():
             cals.append(RunDir(run).calibration_path)
-    _check_comparable(series)
+    check_comparable(comparable(series))
     for s in series:
         _load_series(s, rows, skipped, found, spoilt)
         path = RunDir(s.dir).ledger_path
@@ -368,8 +377,13 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
                 for r in read_ledger(path)
                 if r.get("team") == "red"
             ]
+    every = named(rows + spoilt)  # red and blue: the entrants, in every table (spoiled episodes' too)
+    rows, spoilt = every[: len(rows)], every[len(rows) :]
+    name_entrants(found, every)  # the Failures table names them too
+    _label_calls(ledger, rows)
+    stamps = suites([(r.stamp, r.run) for r in rows], mix_suites)
     skipped = [(_named(where, roots), why) for where, why in skipped]  # a bundle's runs by their names
-    runs = Runs(
+    return Runs(
         rows=rows,
         series=series,
         ledger=ledger,
@@ -378,36 +392,10 @@ def read_runs(paths: list[str | Path], mix_suites: bool = False) -> Runs:
         runs=list(roots),
         roots=roots,
         faults=found,
+        suites=stamps,
         bundles=[r for r in inputs if is_bundle(r)],
         spoiled_rows=spoilt,
     )
-    return _across(runs, mix_suites)
-
-
-def joined(parts: list[Runs], mix_suites: bool = False) -> Runs:
-    """Runs read apart (a league's rounds, each read once: league/results.py) as one read of them all would
-    give them: the scenario versions and episode lengths checked across them, the entrants named across
-    them all, the suites refused mixed unless `mix_suites`."""
-    _check_comparable([s for p in parts for s in p.series])
-    runs = Runs(
-        **{
-            f.name: [x for p in parts for x in getattr(p, f.name)]
-            for f in fields(Runs)
-            if f.init and f.name not in ("roots", "suites")
-        },
-        roots={name: root for p in parts for name, root in p.roots.items()},
-    )
-    return _across(runs, mix_suites)
-
-
-def _across(runs: Runs, mix_suites: bool) -> Runs:
-    """What is decided across every episode read: the entrants' names (in every table, spoiled episodes' and
-    the Failures table's too), the red calls' labels, the suites."""
-    every = named(runs.rows + runs.spoiled_rows)
-    rows, spoilt = every[: len(runs.rows)], every[len(runs.rows) :]
-    name_entrants(runs.faults, every)
-    _label_calls(runs.ledger, rows)
-    return replace(runs, rows=rows, spoiled_rows=spoilt, suites=_suites(rows, mix_suites))
 
 
 def _label_calls(ledger: list[dict[str, Any]], rows: list[EpisodeRow]) -> None:
