@@ -1,6 +1,7 @@
 """A person plays a real match from the page in a real headless Chromium (tests/support/cdp.py: keys and
 mouse through the DevTools protocol) on a real server with real bots: sees the lobby's map, types a name,
-presses Ready, holds W, looks down with the mouse and holds the left button to dig, presses T and sends
+presses Ready, turns with the mouse to a mushroom block, holds the left button until it breaks and holds W
+to walk over its drop, looks down with the mouse and holds the left button to dig, presses T and sends
 a teammate's signal that comes back on the page (and so does the Signal button's), sees its hud and
 inventory, and its first-person view is served; a second page for the taken player is refused, the
 page's token brings it back into its player, a primitive button runs. One short episode on the real
@@ -9,52 +10,62 @@ clock (people play on it) serves every check; the server's record shows each."""
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import httpx
 
 from pillagerbench.people.relay import HUD_S
 from tests.support.cdp import Browser
-from tests.support.people import frames, page_url
+from tests.support.people import aim, events, frames, lobby, page_url
 
-EPISODE_S = 12
+EPISODE_S = 18
+SEED = 1  # the server's first drop roll of episode 0 (js/server/plugins/drops.js, seeded by it) gives a mushroom
+CAP = (-6, 5, -8)  # a cap block of the red mushroom at (-5, -8), the nearest to Ryn's spawn (-7, -10): paper layout
+CAP_CENTRE = (CAP[0] + 0.5, CAP[1] + 0.5, CAP[2] + 0.5)
+WALK = 4.3  # blocks a second a walking player goes
 
 
 def _match(run_dir: Path) -> subprocess.Popen:
     cmd = [sys.executable, "-m", "pillagerbench.cli", "run", "red=do_nothing", "red.humans=[Ryn]"]
     cmd += ["blue=do_nothing", f"episode_length={EPISODE_S}", f"run_dir={run_dir}", "display=plain"]
-    cmd += ["humans.ready_timeout_s=120", "retries=0"]  # one episode, lagged or not (the checks read episode 0)
+    cmd += ["humans.ready_timeout_s=120", "retries=0", f"seed={SEED}"]  # one episode, lagged or not (episode 0)
     return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=os.environ.copy())
 
 
-def _lobby(browser: Browser, url: str) -> str:
-    """The person types a name, takes the seat and presses Ready; the page's token."""
-    browser.open(url)
-    browser.wait_for("document.getElementById('seat').options.length > 0")
-    browser.wait_for("!!document.getElementById('map').contentDocument?.querySelector('canvas')")  # the map
-    browser.type("name", "alice")
-    browser.click("join")
-    browser.wait_for("!document.getElementById('ready').disabled")
-    browser.click("ready")
-    return browser.eval("localStorage.getItem('pb-token')")
+def _mushroom(browser: Browser, hud: Callable[[], dict]) -> None:
+    """The person turns to a cap block of the mushroom nearest Ryn's spawn with the mouse (closed loop on the
+    hud's look), holds the left button until it breaks, then holds W to walk where it was, over its drop
+    (seed 1: the episode's first drop roll gives a mushroom), and sees the mushroom in the hud."""
+    at = aim(browser, hud, CAP_CENTRE)["position"]
+    browser.hold(0.8)  # a mushroom block takes 0.3 s by hand
+    browser.key("KeyW", "keyDown")
+    time.sleep(math.hypot(CAP_CENTRE[0] - at["x"], CAP_CENTRE[2] - at["z"]) / WALK)  # as the look goes
+    browser.key("KeyW", "keyUp")
+    deadline = time.monotonic() + 3
+    while "red_mushroom" not in hud()["items"] and time.monotonic() < deadline:
+        time.sleep(0.1)
 
 
-def _walk_and_dig(browser: Browser) -> None:
+def _play(browser: Browser, hud: Callable[[], dict]) -> None:
     browser.wait_for("document.getElementById('board').textContent.startsWith('playing')")
     browser.click("main")  # pointer lock; the click itself digs at nothing (refused on the page)
     browser.wait_for("document.pointerLockElement === document.getElementById('main')")
-    browser.key("KeyW", "keyDown")
-    time.sleep(1.0)
-    browser.key("KeyW", "keyUp")
-    x, y = browser.centre("main")
-    for step in range(1, 11):  # the mouse down: the player looks at the ground before it
-        browser.mouse("mouseMoved", x, y + 20 * step)
+    browser.wait_for("document.getElementById('vitals').textContent")  # the hud is read
+    _mushroom(browser, hud)
+    _dig_down(browser)
+
+
+def _dig_down(browser: Browser) -> None:
+    """The mouse down: the player looks at the ground under it; the left button held digs the grass."""
+    browser.turn(0, 300)  # the page clamps the pitch at -1.5
     time.sleep(0.3)  # the look is sent 50 ms after the last move
-    browser.click("main", hold=1.5)  # grass takes 0.9 s by hand; the button released ends the dig
+    browser.hold(1.5)  # grass takes 0.9 s by hand; the button released ends the dig
 
 
 def _chat(browser: Browser) -> None:
@@ -109,12 +120,12 @@ def test_a_person_plays_from_a_browser(tmp_path: Path):
     proc = _match(run_dir)
     try:
         url = page_url(proc)
-        token = _lobby(browser, url)
+        token = lobby(browser, url)
         with httpx.Client(base_url=url, timeout=10) as page:
             second = page.post("join", json={"name": "mallory", "player": "Ryn"})
             assert second.status_code == 409 and "second page" in second.json()["error"]
             assert page.get("state", params={"token": token}).json()["seat"]["player"] == "Ryn"
-            _walk_and_dig(browser)
+            _play(browser, lambda: page.get("state", params={"token": token}).json()["hud"])
             _chat(browser)
             _view(browser, url)
             pressed = page.post(
@@ -128,9 +139,14 @@ def test_a_person_plays_from_a_browser(tmp_path: Path):
         browser.close()
     positions = frames(run_dir, "Ryn")
     assert abs(positions[-1][3] - positions[0][3]) + abs(positions[-1][1] - positions[0][1]) > 1.5, positions[-1]
-    events = [json.loads(line) for line in (run_dir / "episode_000" / "world_events.jsonl").read_text().splitlines()]
-    dug = [e for e in events if e.get("event") == "block_dug" and e.get("player") == "Ryn"]
+    assert min(math.hypot(x - CAP_CENTRE[0], z - CAP_CENTRE[2]) for _, x, _, z, *_ in positions) < 1  # walked there
+    world = events(run_dir)
+    dug = [e for e in world if e.get("event") == "block_dug" and e.get("player") == "Ryn"]
     assert {"grass_block", "red_mushroom_block"} <= {e["block"] for e in dug}
+    assert dug[0]["pos"] == list(CAP) and dug[0]["drops"], dug[0]  # the page's dig first, its drop
+    got = next(i for i, e in enumerate(world) if e.get("event") == "item_picked_up" and e.get("player") == "Ryn")
+    assert world[got]["item"] == "red_mushroom", world[got]
+    assert got < world.index(dug[1]) and got < world.index(dug[2])  # before the grass and the button's mineBlock
     observed = [
         json.loads(line) for line in (run_dir / "episode_000" / "events" / "Ryn.jsonl").read_text().splitlines()
     ]

@@ -43,6 +43,7 @@ class Browser:
         os.close(to_chromium)
         os.close(from_chromium)
         self._next = 0
+        self.at = (0.0, 0.0)  # where the mouse is
         self._answers: dict[int, dict] = {}
         self._cond = threading.Condition()
         threading.Thread(target=self._read, daemon=True).start()
@@ -108,7 +109,35 @@ class Browser:
         )
         return box[0], box[1]
 
+    def centre_of(self, selector: str) -> tuple[float, float]:
+        """The centre of the first element matching the CSS `selector`."""
+        box = self.eval(
+            f"(() => {{ const r = document.querySelector({selector!r}).getBoundingClientRect(); return [r.x + r.width / 2, r.y + r.height / 2] }})()"
+        )
+        return box[0], box[1]
+
+    def click_on(self, selector: str) -> None:
+        """A click on the first element matching the CSS `selector` (by its place on the page, as a person)."""
+        x, y = self.centre_of(selector)
+        self.mouse("mouseMoved", x, y)
+        self.mouse("mousePressed", x, y)
+        self.mouse("mouseReleased", x, y)
+
+    def type_into(self, selector: str, text: str) -> None:
+        """Click the field matching the CSS `selector`, then type `text` key by key."""
+        self.click_on(selector)
+        self.type(None, text)
+
+    def turn(self, dx: float, dy: float, step: float = 20.0) -> None:
+        """Mouse movement by (dx, dy) pixels from where the mouse is, in steps of at most `step` pixels: under
+        pointer lock the page reads each move's movementX/Y (person.js: it turns the player's head)."""
+        x, y = self.at
+        n = max(1, int(max(abs(dx), abs(dy)) // step) + 1)
+        for i in range(1, n + 1):
+            self.mouse("mouseMoved", x + dx * i / n, y + dy * i / n)
+
     def mouse(self, kind: str, x: float, y: float, button: str = "left") -> None:
+        self.at = (x, y)
         params: dict[str, Any] = {"type": kind, "x": x, "y": y, "button": button, "clickCount": 1}
         if kind == "mouseMoved":
             params["buttons"] = 0
@@ -119,6 +148,13 @@ class Browser:
         self.mouse("mouseMoved", x, y)
         self.mouse("mousePressed", x, y)
         time.sleep(hold)
+        self.mouse("mouseReleased", x, y)
+
+    def hold(self, seconds: float) -> None:
+        """The left button held where the mouse is (no move: under pointer lock a move turns the head)."""
+        x, y = self.at
+        self.mouse("mousePressed", x, y)
+        time.sleep(seconds)
         self.mouse("mouseReleased", x, y)
 
     def type(self, element_id: str | None, text: str) -> None:

@@ -30,7 +30,7 @@ BUTTONS: dict[str, list[str]] = {
     "placeItem": ["item", "position"],
     "giveToPlayer": ["item", "player", "count"],
     "killMob": ["mob", "seconds"],
-    "depositIntoChest": ["position", "items"],
+    "depositItemIntoChest": ["position", "items"],
     "getItemFromChest": ["position", "items"],
 }
 WORD = re.compile(r"[A-Za-z_]{1,40}")
@@ -129,7 +129,7 @@ def app(people: People, primitives: list[str]) -> Starlette:
 
 
 def _module_of(primitive: str) -> str:
-    return {"depositIntoChest": "useChest", "getItemFromChest": "useChest"}.get(primitive, primitive)
+    return {"depositItemIntoChest": "useChest", "getItemFromChest": "useChest"}.get(primitive, primitive)
 
 
 class PageServer:
