@@ -25,7 +25,7 @@ from pillagerbench.config.sides import SIDES
 from pillagerbench.llm import LLMClient
 from pillagerbench.match.game import play_game
 from pillagerbench.match.parts import PARTS, Game, Part, Progress, Replay, Scoreboard
-from pillagerbench.match.people_part import ClientsPart, PeoplePart
+from pillagerbench.match.people_part import Seating
 from pillagerbench.match.player import RecordedPlayer
 from pillagerbench.match.scoring import SCORINGS
 from pillagerbench.match.sides_clock import SidesClock
@@ -80,8 +80,7 @@ class Match:
         self.conditions = dict(conditions or {})  # the rules differing from the suite's (suite/conditions.py)
         self.clock_config = clock or ClockConfig()  # config `clock`: what game time is
         self.clock: GameClock = RealClock()  # lockstep: the server's, from setup() on
-        self.people = people  # the players people play from the page (people/), if any
-        self.clients = clients  # the players people play from Minecraft clients (people/client.py): no bot
+        self.seating = Seating(people, clients)  # who plays each player: agents, people on the page or on clients
 
     def player_order(self, episode: int) -> list[str]:
         """The order the server visits players in during an episode: the sides' players interleaved,
@@ -103,7 +102,7 @@ class Match:
         specs = {p.name: p for p in self.scenario.all_players()}
         players = [
             ClientPlayer(spec.name, self.server, spec.gamemode)
-            if self._client(spec.name)
+            if self.seating.on_client(spec.name)
             else Player(
                 spec.name,
                 port,
@@ -111,7 +110,7 @@ class Match:
                 log_dir=log_dir,
                 primitives=list(self.scenario.primitives),
                 clock=self.clock_config.mode,
-                view=self.people is not None and spec.name in self.people.seats.seats,
+                view=self.seating.on_page(spec.name),
             )
             for spec in (specs[n] for n in self.player_order(0))
         ]
@@ -217,22 +216,14 @@ class Match:
         resets = (self.players[p.name].reset(position=p.spawn, inventory={}, seed=rec.seed) for p in sc.all_players())
         observations = dict(zip(names, await asyncio.gather(*resets)))
         for p in sc.all_players():
-            if not self._client(p.name):  # a client's is set by its reset, while its person is in the world
+            if not self.seating.on_client(p.name):  # a client's is set by its reset, while its person is in the world
                 await self.server.gamemode(p.name, p.gamemode)
         rec.reset_s = round(time.monotonic() - t0, 3)
         return observations
 
-    def _seated(self, name: str) -> bool:
-        """Whether a person plays the player `name` (from the page: people/)."""
-        return self.people is not None and name in self.people.seats.seats
-
-    def _client(self, name: str) -> bool:
-        """Whether a person plays the player `name` from a Minecraft client (people/client.py)."""
-        return self.clients is not None and name in self.clients.side_of
-
     def _handle(self, name: str, sink, rec: EpisodeRecord, replay: Replay) -> PlayerHandle:
         """The handle of a player for its team: a person's seat is not the team's to drive."""
-        if (self.people is not None and name in self.people.seats.seats) or self._client(name):
+        if self.seating.by_person(name):
             return SeatHandle(name, self.players[name].observe)
         return RecordedPlayer(
             self.players[name],
@@ -262,7 +253,7 @@ class Match:
                 llm=self.llms.get(side.key),
                 last_episode=self.last_records.get(side.key, LastEpisode()),
                 protocol=self.protocol,
-                people=tuple(n for n in side.player_names if self._seated(n) or self._client(n)),
+                people=tuple(n for n in side.player_names if self.seating.by_person(n)),
             )
         return contexts
 
@@ -273,8 +264,7 @@ class Match:
         for team in self.teams.values():
             team.problems = []
         contexts = self._contexts(rec, out, sink, replay, observations)
-        parts = [*parts, Scoreboard(contexts)] + ([PeoplePart(self.people, sink)] if self.people is not None else [])
-        parts += [ClientsPart(self.clients)] if self.clients is not None else []
+        parts = [*parts, Scoreboard(contexts), *self.seating.parts(sink)]
 
         async def timed_pre_game(key):
             t = time.monotonic()

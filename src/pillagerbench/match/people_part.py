@@ -1,16 +1,46 @@
-"""The people's part of a game (docs/people.md): at the start the pages get the episode's map and each
-person's player runs the person's run (people/relay.py), each second the pages get the score and the clock
-and quiet pages' players stand still, at the whistle the pages are told; `ClientsPart`: the same for people playing
-from Minecraft clients (people/client.py)."""
+"""People in a match (docs/people.md). `Seating`: who plays each player (the team's agents, a person on
+the page, a person on a Minecraft client). `PeoplePart`, the people's part of a game: at the start the pages
+get the episode's map and each person's player runs the person's run (people/relay.py), each second the
+pages get the score and the clock and quiet pages' players stand still, at the whistle the pages are told;
+`ClientsPart`: the same for people playing from Minecraft clients (people/client.py)."""
 
 from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from pillagerbench.match.parts import Game, Part
 from pillagerbench.people import People
 from pillagerbench.people.client import Clients
+
+
+@dataclass(frozen=True)
+class Seating:
+    """Who plays each player of a match: people on the page (`people`), people on Minecraft clients
+    (`clients`: no bot), else the team's agents."""
+
+    people: People | None = None
+    clients: Clients | None = None
+
+    def on_page(self, name: str) -> bool:
+        return self.people is not None and name in self.people.seats.seats
+
+    def on_client(self, name: str) -> bool:
+        return self.clients is not None and name in self.clients.side_of
+
+    def by_person(self, name: str) -> bool:
+        """Whether a person plays `name`: its handle is a seat the team cannot drive."""
+        return self.on_page(name) or self.on_client(name)
+
+    def parts(self, sink: Callable[[str, list], None]) -> list[Part]:
+        """The people's parts of a game (none without people)."""
+        out: list[Part] = []
+        if self.people is not None:
+            out.append(PeoplePart(self.people, sink))
+        if self.clients is not None:
+            out.append(ClientsPart(self.clients))
+        return out
 
 
 class PeoplePart(Part):
