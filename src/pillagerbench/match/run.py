@@ -95,10 +95,10 @@ async def play_match(
     finally:
         if page is not None:
             await page.stop()
-        if gate is not None:
-            await gate.stop()
         await match.close()
         await server.stop()
+        if gate is not None:  # after the server: its last words (the whistle) pass the gate before it closes
+            await gate.stop()
         for llm in llms.values():
             await llm.aclose()
 

@@ -115,9 +115,13 @@ class LoginGate:
         self.port = self._server.sockets[0].getsockname()[1]
         return f"{self.host}:{self.port}"
 
-    async def stop(self) -> None:
+    async def stop(self, grace_s: float = 2.0) -> None:
+        """No more logins; each client's pipe ends when the arena server closes its side (what the server said
+        last, the whistle, still reaches the client), or is cut after `grace_s`."""
         if self._server is not None:
             self._server.close()
+            if self._pipes:
+                await asyncio.wait(list(self._pipes), timeout=grace_s)
             for task in list(self._pipes):
                 task.cancel()
             await asyncio.gather(*self._pipes, return_exceptions=True)
