@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pillagerbench.match.parts import Game, Part
 from pillagerbench.people import People
 from pillagerbench.people.client import Clients
+from pillagerbench.people.relay import whistle_line
 
 
 @dataclass(frozen=True)
@@ -82,7 +83,7 @@ class ClientsPart(Part):
         task.add_done_callback(lambda t: t.cancelled() or t.exception())
 
     async def whistle(self, game: Game, final: dict[str, float]) -> None:
-        await self._tell(game, "the whistle: " + ", ".join(f"{k} {v:g}" for k, v in final.items()))
+        await self._tell(game, whistle_line(final))
 
     async def _tell(self, game: Game, line: str) -> None:
         online = {p["name"] for p in await game.server.players()}

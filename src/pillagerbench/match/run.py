@@ -22,6 +22,7 @@ from pillagerbench.rundir import EpisodeRecord, LastEpisode, RunDir
 from pillagerbench.scenarios import Scenario, make_scenario
 from pillagerbench.scenarios.layout import parse_layout
 from pillagerbench.server import ArenaServer
+from pillagerbench.server.process import MC_VERSION
 from pillagerbench.suite.conditions import conditions_of
 from pillagerbench.teams import Team
 from pillagerbench.teams.entrant import entrant_of
@@ -131,7 +132,7 @@ async def seat_clients(match: Match, clients: Clients, gate: LoginGate, timeout:
     """People on Minecraft clients (people/client.py): the address and names to join with; joining is being
     ready; each side's entrant names its people by the players' names (human:Ryn)."""
     names = ", ".join(f"{n} ({side})" for n, side in clients.side_of.items())
-    print(f"people: join with a Minecraft Java 1.16.5 client at {await gate.start()} as {names}", flush=True)
+    print(f"people: join with a Minecraft Java {MC_VERSION} client at {await gate.start()} as {names}", flush=True)
     if not await clients.wait_joined(match.server, timeout):
         raise ConfigError(
             f"humans: not every person joined within {timeout:g} s (humans.ready_timeout_s); no episode played"

@@ -13,8 +13,9 @@ import json
 from collections.abc import Callable, Sequence
 
 from pillagerbench.config.people import name_problem
+from pillagerbench.server.process import MC_VERSION
 
-PROTOCOL = 754  # Minecraft Java 1.16.5's protocol version
+PROTOCOL = 754  # the protocol version of Minecraft Java MC_VERSION (1.16.5), the server's
 MAX_PACKET = 2**16  # a handshake or a login start is far smaller
 
 
@@ -131,7 +132,7 @@ class LoginGate:
         """Refusal unless a 1.16.5 client logs in under the name of a player people play here."""
         if version != PROTOCOL:
             raise Refusal(
-                f"join with Minecraft Java 1.16.5 (protocol {PROTOCOL}); this client speaks protocol {version}"
+                f"join with Minecraft Java {MC_VERSION} (protocol {PROTOCOL}); this client speaks protocol {version}"
             )
         problem = name_problem(name)
         if problem:

@@ -27,6 +27,11 @@ HUD_S = 0.3  # how often a person's page is given its player's hud (hotbar, inve
 SIGNAL = re.compile(r"\[(\w+) signal\]|\[waiting signal\]|\[signal (recieved|timeout)\]")  # multiAgent.js
 
 
+def whistle_line(final: dict[str, float]) -> str:
+    """What people are told at the whistle: `the whistle: red 3, blue 5`."""
+    return "the whistle: " + ", ".join(f"{k} {v:g}" for k, v in final.items())
+
+
 class People:
     """The people of one match: their seats, their feed, and their players while a game is on."""
 
@@ -107,7 +112,7 @@ class People:
         self.next = "The episode is over; it is being recorded, and what follows is told here in a moment."
         if final is not None:
             self.board = {**self.board, "final": final}
-            self.say("the whistle: " + ", ".join(f"{k} {v:g}" for k, v in final.items()) + " (final)")
+            self.say(whistle_line(final) + " (final)")
 
     def episodes(self, indices: Iterable[int]) -> Iterator[int]:
         """The match's episode indices, each told to the pages as it is decided (after the last one was
